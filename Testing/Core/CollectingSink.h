@@ -1,0 +1,50 @@
+// A ScaleSampleSink that keeps every sample (point-major), for tests.
+#pragma once
+
+#include "gls/ScaleSpaceEngine.h"
+
+#include <vector>
+
+namespace glstest
+{
+
+class CollectingSink : public gls::ScaleSampleSink
+{
+public:
+  CollectingSink(std::size_t points, std::size_t scales)
+    : Scales(scales)
+    , Samples(points * scales)
+  {
+  }
+  void consume(std::uint64_t id, const gls::ScaleSample* s, int) override
+  {
+    for (std::size_t k = 0; k < this->Scales; ++k)
+    {
+      this->Samples[id * this->Scales + k] = s[k];
+    }
+  }
+  const gls::ScaleSample& at(std::size_t point, std::size_t scale) const
+  {
+    return this->Samples[point * this->Scales + scale];
+  }
+  std::size_t Scales;
+  std::vector<gls::ScaleSample> Samples;
+};
+
+/// Runs the engine over a cloud and returns every sample.
+inline CollectingSink runScaleSpace(const std::vector<double>& points, const std::vector<double>& normals,
+  const std::vector<double>& scales, int threads = 0, double minNeighbors = 6.0,
+  gls::EvaluationMethod method = gls::EvaluationMethod::OnePass)
+{
+  gls::ScaleSpaceSettings settings;
+  settings.scales = scales;
+  settings.minNeighbors = minNeighbors;
+  settings.parallel.threads = threads;
+  const std::size_t n = points.size() / 3;
+  gls::ScaleSpaceEngine engine(points.data(), normals.data(), n, settings);
+  CollectingSink sink(n, scales.size());
+  engine.run(sink, nullptr, method);
+  return sink;
+}
+
+} // namespace glstest

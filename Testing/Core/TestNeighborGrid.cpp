@@ -1,0 +1,122 @@
+// Ball and k-nearest queries of the grid against brute force on seeded random clouds.
+#include "gls/NeighborGrid.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+namespace
+{
+
+std::vector<double> randomCloud(std::size_t n, unsigned seed, double sx, double sy, double sz)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> xyz(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    xyz[3 * i] = sx * u(rng);
+    xyz[3 * i + 1] = sy * u(rng);
+    xyz[3 * i + 2] = sz * u(rng);
+  }
+  return xyz;
+}
+
+double dist2(const std::vector<double>& xyz, std::size_t i, const gls::Vec3& c)
+{
+  const double dx = xyz[3 * i] - c.x, dy = xyz[3 * i + 1] - c.y, dz = xyz[3 * i + 2] - c.z;
+  return dx * dx + dy * dy + dz * dz;
+}
+
+} // namespace
+
+TEST(NeighborGrid, BallQueryMatchesBruteForce)
+{
+  for (double cell : { 0.05, 0.2, 3.0 })
+  {
+    const std::vector<double> xyz = randomCloud(3000, 1, 1.0, 2.0, 0.3);
+    gls::NeighborGrid grid;
+    grid.build(xyz.data(), nullptr, 3000, cell);
+    std::mt19937_64 rng(2);
+    std::uniform_real_distribution<double> u(-0.5, 2.5);
+    for (int q = 0; q < 50; ++q)
+    {
+      const gls::Vec3 c{ u(rng), u(rng), u(rng) * 0.2 };
+      const double r = 0.02 + 0.3 * (q % 5);
+      std::vector<std::uint64_t> found;
+      gls::forEachInBall(grid.view(), c, r, [&](std::uint64_t s, const gls::Vec3&, double) {
+        found.push_back(grid.view().ids[s]);
+      });
+      std::vector<std::uint64_t> expected;
+      for (std::size_t i = 0; i < 3000; ++i)
+      {
+        if (dist2(xyz, i, c) < r * r)
+        {
+          expected.push_back(i);
+        }
+      }
+      std::sort(found.begin(), found.end());
+      ASSERT_EQ(found, expected) << "cell " << cell << " query " << q;
+    }
+  }
+}
+
+TEST(NeighborGrid, KNearestMatchesBruteForce)
+{
+  const std::vector<double> xyz = randomCloud(2000, 3, 5.0, 1.0, 0.01);
+  gls::NeighborGrid grid;
+  grid.build(xyz.data(), nullptr, 2000, gls::NeighborGrid::suggestCellSizeForKNearest(xyz.data(), 2000, 16));
+  std::vector<std::pair<double, std::uint64_t>> out;
+  for (std::size_t q = 0; q < 2000; q += 37)
+  {
+    const gls::Vec3 c{ xyz[3 * q], xyz[3 * q + 1], xyz[3 * q + 2] };
+    for (int k : { 1, 16, 40 })
+    {
+      grid.kNearest(c, k, out);
+      std::vector<std::pair<double, std::uint64_t>> all;
+      for (std::size_t i = 0; i < 2000; ++i)
+      {
+        all.emplace_back(dist2(xyz, i, c), i);
+      }
+      std::sort(all.begin(), all.end());
+      ASSERT_EQ(out.size(), static_cast<std::size_t>(k));
+      for (int j = 0; j < k; ++j)
+      {
+        EXPECT_EQ(grid.view().ids[out[j].second], all[j].second);
+        EXPECT_EQ(out[j].first, all[j].first);
+      }
+    }
+  }
+  // A query outside the cloud and a k larger than the cloud.
+  grid.kNearest({ -10.0, 30.0, 5.0 }, 5000, out);
+  EXPECT_EQ(out.size(), 2000u);
+}
+
+TEST(NeighborGrid, LeavesOutNonFinitePointsAndMaskedPoints)
+{
+  std::vector<double> xyz = { 0, 0, 0, 1, 0, 0, std::nan(""), 0, 0, 0, 1, 0, 0, 0, INFINITY };
+  const unsigned char mask[] = { 1, 0, 1, 1, 1 };
+  gls::NeighborGrid grid;
+  grid.build(xyz.data(), nullptr, 5, 0.5, mask);
+  EXPECT_EQ(grid.view().count, 2u);
+  std::vector<std::uint64_t> found;
+  gls::forEachInBall(grid.view(), { 0, 0, 0 }, 10.0, [&](std::uint64_t s, const gls::Vec3&, double) {
+    found.push_back(grid.view().ids[s]);
+  });
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found, (std::vector<std::uint64_t>{ 0, 3 }));
+}
+
+TEST(NeighborGrid, HugeExtentWithTinyCellsStaysBounded)
+{
+  // A cloud 1e6 times longer than wide with a tiny requested cell: the cell count is capped.
+  std::vector<double> xyz = randomCloud(1000, 4, 1e6, 1.0, 1.0);
+  gls::NeighborGrid grid;
+  grid.build(xyz.data(), nullptr, 1000, 1e-3);
+  const auto& g = grid.view();
+  EXPECT_LE(static_cast<double>(g.dims[0]) * g.dims[1] * g.dims[2], 65536.0 * 1.05);
+  std::size_t n = 0;
+  gls::forEachInBall(g, { 5e5, 0.5, 0.5 }, 2e6, [&](std::uint64_t, const gls::Vec3&, double) { ++n; });
+  EXPECT_EQ(n, 1000u);
+}

@@ -1,0 +1,128 @@
+// PCA normals and their orientation: analytic sphere and plane, degenerate neighbourhoods, every orientation mode.
+#include "TestClouds.h"
+
+#include "gls/NormalEstimation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace glstest;
+
+namespace
+{
+
+double dot3(const double* a, const double* b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+} // namespace
+
+TEST(NormalEstimation, SphereNormalsAreRadialAndMinimumSpanningTreeOrientsThemOutward)
+{
+  const Cloud c = sphere(5000, 2.0, false, 1.0, -3.0, 0.5);
+  for (auto type : { gls::NeighborhoodType::KNearest, gls::NeighborhoodType::Radius })
+  {
+    gls::NormalEstimationSettings s;
+    s.neighborhood = type;
+    s.k = 12;
+    s.radius = 0.25;
+    gls::NormalEstimationResult r;
+    ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+    EXPECT_EQ(r.components, 1u);
+    for (std::size_t i = 0; i < c.size(); ++i)
+    {
+      ASSERT_GT(dot3(&r.normals[3 * i], &c.normals[3 * i]), 0.999) << i;
+    }
+  }
+}
+
+TEST(NormalEstimation, TwoSpheresAreTwoComponentsBothOutward)
+{
+  Cloud c = sphere(2000, 1.0);
+  const Cloud d = sphere(2000, 0.5, false, 5.0, 0.0, 0.0);
+  c.points.insert(c.points.end(), d.points.begin(), d.points.end());
+  c.normals.insert(c.normals.end(), d.normals.begin(), d.normals.end());
+  gls::NormalEstimationSettings s;
+  gls::NormalEstimationResult r;
+  ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+  EXPECT_EQ(r.components, 2u);
+  for (std::size_t i = 0; i < c.size(); ++i)
+  {
+    ASSERT_GT(dot3(&r.normals[3 * i], &c.normals[3 * i]), 0.99) << i;
+  }
+}
+
+TEST(NormalEstimation, ViewpointAndReferenceOrientations)
+{
+  const Cloud c = plane(30, 1.0);
+  gls::NormalEstimationSettings s;
+  s.orientation = gls::NormalOrientation::TowardsPoint;
+  s.viewpoint = { 0.0, 0.0, -5.0 };
+  gls::NormalEstimationResult r;
+  ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+  for (std::size_t i = 0; i < c.size(); ++i)
+  {
+    ASSERT_NEAR(r.normals[3 * i + 2], -1.0, 1e-12);
+  }
+  s.orientation = gls::NormalOrientation::AwayFromPoint;
+  ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+  for (std::size_t i = 0; i < c.size(); ++i)
+  {
+    ASSERT_NEAR(r.normals[3 * i + 2], 1.0, 1e-12);
+  }
+  std::vector<double> reference(c.normals);
+  for (std::size_t i = 0; i < c.size(); i += 2)
+  {
+    reference[3 * i + 2] = -1.0; // every other point wants -z
+  }
+  s.orientation = gls::NormalOrientation::AgreeWithReference;
+  s.reference = reference.data();
+  ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+  for (std::size_t i = 0; i < c.size(); ++i)
+  {
+    ASSERT_NEAR(r.normals[3 * i + 2], i % 2 ? 1.0 : -1.0, 1e-12);
+  }
+}
+
+TEST(NormalEstimation, DegenerateNeighbourhoodsGiveNaN)
+{
+  // Two points: fewer than 3 neighbours.
+  std::vector<double> two = { 0, 0, 0, 1, 0, 0 };
+  gls::NormalEstimationSettings s;
+  gls::NormalEstimationResult r;
+  ASSERT_TRUE(gls::estimateNormals(two.data(), 2, s, r));
+  EXPECT_TRUE(std::isnan(r.normals[0]));
+  EXPECT_EQ(r.neighborCounts[0], 2);
+  // Collinear points: the normal is undefined.
+  std::vector<double> line;
+  for (int i = 0; i < 40; ++i)
+  {
+    line.insert(line.end(), { 0.1 * i, 0.2 * i, -0.05 * i });
+  }
+  ASSERT_TRUE(gls::estimateNormals(line.data(), 40, s, r));
+  for (int i = 0; i < 40; ++i)
+  {
+    EXPECT_TRUE(std::isnan(r.normals[3 * i])) << i;
+  }
+  // Radius too small: only the point itself.
+  const Cloud c = plane(10, 1.0);
+  s.neighborhood = gls::NeighborhoodType::Radius;
+  s.radius = 1e-3;
+  ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+  EXPECT_EQ(r.neighborCounts[5], 1);
+  EXPECT_TRUE(std::isnan(r.normals[15]));
+}
+
+TEST(NormalEstimation, AbortStopsTheRun)
+{
+  const Cloud c = sphere(20000, 1.0);
+  gls::NormalEstimationSettings s;
+  s.parallel.chunk = 64;
+  int calls = 0;
+  s.parallel.progress = [&calls](double) { return ++calls >= 3; };
+  gls::NormalEstimationResult r;
+  EXPECT_FALSE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+  EXPECT_GE(calls, 3);
+}

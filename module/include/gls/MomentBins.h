@@ -1,0 +1,86 @@
+// The one-pass moment formulation (gls-math.md "All scales in one pass"). Inside the ball,
+// w = 1 - 2 d^2/t^2 + d^4/t^4 and dw/dt = 4 d^2/t^3 - 4 d^4/t^5, so every weighted sum at scale t is a combination
+// of the un-weighted moments A_k(t) = sum_{d_i < t} d_i^(2k) f_i, k = 0, 1, 2, of the nine values
+// f_i = (1, x_i, n_i, x_i . n_i, |x_i|^2). A neighbour is added once, into the bin of the first scale whose open
+// ball holds it; a prefix sum over the bins gives A_k at every scale.
+#pragma once
+
+#include "gls/WeightedSums.h"
+
+namespace gls
+{
+
+constexpr int kMomentValues = 9;                     ///< f = 1, x (3), n (3), x.n, |x|^2
+constexpr int kMomentCount = 3 * kMomentValues;      ///< k = 0, 1, 2
+
+/// The 27 moments of one bin (or, after the prefix sum, of one ball): m[k * 9 + j] = sum d^(2k) f_j.
+struct Moments
+{
+  double m[kMomentCount];
+};
+
+GLS_INLINE void clearMoments(Moments& a)
+{
+  for (int i = 0; i < kMomentCount; ++i)
+  {
+    a.m[i] = 0.0;
+  }
+}
+
+/// Adds one neighbour with local position x (d2 = |x|^2) and normal n.
+GLS_INLINE void addToMoments(Moments& a, const Vec3& x, const Vec3& n)
+{
+  const double d2 = squaredNorm(x);
+  const double f[kMomentValues] = { 1.0, x.x, x.y, x.z, n.x, n.y, n.z, dot(x, n), d2 };
+  const double d4 = d2 * d2;
+  for (int j = 0; j < kMomentValues; ++j)
+  {
+    a.m[j] += f[j];
+    a.m[kMomentValues + j] += d2 * f[j];
+    a.m[2 * kMomentValues + j] += d4 * f[j];
+  }
+}
+
+/// a += b (used by the prefix sum over scale bins).
+GLS_INLINE void addMoments(Moments& a, const Moments& b)
+{
+  for (int i = 0; i < kMomentCount; ++i)
+  {
+    a.m[i] += b.m[i];
+  }
+}
+
+/// Number of neighbours in the ball the moments describe.
+GLS_INLINE double neighborCount(const Moments& a)
+{
+  return a.m[0];
+}
+
+/// Weighted sums at scale t (s) and their t-derivatives (ds) from the moments of the ball of radius t.
+GLS_INLINE void weightedSumsFromMoments(const Moments& a, double t, WeightedSums& s, WeightedSums& ds)
+{
+  const double it2 = 1.0 / (t * t);
+  const double it4 = it2 * it2;
+  const double c0 = 1.0, c1 = -2.0 * it2, c2 = it4;          // w    = c0 + c1 d^2 + c2 d^4
+  const double e1 = 4.0 * it2 / t, e2 = -4.0 * it4 / t;      // dw/dt =      e1 d^2 + e2 d^4
+  double v[kMomentValues];
+  double dv[kMomentValues];
+  for (int j = 0; j < kMomentValues; ++j)
+  {
+    const double a0 = a.m[j], a1 = a.m[kMomentValues + j], a2 = a.m[2 * kMomentValues + j];
+    v[j] = c0 * a0 + c1 * a1 + c2 * a2;
+    dv[j] = e1 * a1 + e2 * a2;
+  }
+  s.W = v[0];
+  s.P = { v[1], v[2], v[3] };
+  s.N = { v[4], v[5], v[6] };
+  s.PN = v[7];
+  s.PP = v[8];
+  ds.W = dv[0];
+  ds.P = { dv[1], dv[2], dv[3] };
+  ds.N = { dv[4], dv[5], dv[6] };
+  ds.PN = dv[7];
+  ds.PP = dv[8];
+}
+
+} // namespace gls

@@ -1,0 +1,43 @@
+// NeighborGrid owns the arrays behind a GridView: it sorts the admitted points by cell once (a counting sort, stable
+// in the original index, so the layout is deterministic) and answers ball and k-nearest queries without any
+// O(N^2) step. Points with a non-finite coordinate, or those the caller's mask excludes, are left out.
+#pragma once
+
+#include "gls/GridView.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace gls
+{
+
+class NeighborGrid
+{
+public:
+  /// Builds the grid. xyz: n interleaved positions; normals: n interleaved normals or null; include: n flags
+  /// (non-zero = admit) or null for all finite points. The cell size is enlarged if the grid would need more than
+  /// max(8 n, 65536) cells.
+  void build(const double* xyz, const double* normals, std::size_t n, double cellSize,
+    const unsigned char* include = nullptr);
+
+  const GridView& view() const { return this->View; }
+
+  /// A cell size suited to k-nearest queries on a surface sampled by the admitted points: about sqrt(k) sample
+  /// spacings, the spacing estimated from the bounding-box area and the point count.
+  static double suggestCellSizeForKNearest(const double* xyz, std::size_t n, int k);
+
+  /// The k nearest grid points to c (fewer if the grid holds fewer), as (squared distance, sorted index), nearest
+  /// first, ties broken by the original index. `out` is reused scratch.
+  void kNearest(const Vec3& c, int k, std::vector<std::pair<double, std::uint64_t>>& out) const;
+
+private:
+  std::vector<std::uint64_t> CellStart;
+  std::vector<Vec3> Points;
+  std::vector<Vec3> Normals;
+  std::vector<std::uint64_t> Ids;
+  GridView View;
+};
+
+} // namespace gls

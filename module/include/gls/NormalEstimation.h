@@ -1,0 +1,62 @@
+// PCA normal estimation with orientation (the first step of every GLS pipeline).
+// The normal of a point is the eigenvector of the smallest eigenvalue of the covariance of its neighbourhood
+// (k nearest points including itself, or every point strictly inside a radius), computed in local coordinates.
+// Degenerate input: with fewer than 3 neighbours, or neighbours on a line (two vanishing eigenvalues), or a
+// non-finite position, the normal is NaN (documented, never a silent value).
+#pragma once
+
+#include "gls/ParallelFor.h"
+#include "gls/Vec3.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace gls
+{
+
+enum class NeighborhoodType
+{
+  KNearest = 0,  ///< the k nearest points (including the point itself)
+  Radius = 1     ///< every point at distance < radius (including the point itself)
+};
+
+enum class NormalOrientation
+{
+  None = 0,                ///< the eigen solver's sign (deterministic, not consistent)
+  TowardsPoint = 1,        ///< n . (viewpoint - p) >= 0
+  AwayFromPoint = 2,       ///< n . (p - viewpoint) >= 0
+  MinimumSpanningTree = 3, ///< Hoppe 1992: propagate along the MST of the k-NN graph with cost 1 - |n_i . n_j|;
+                           ///< each connected component starts from its point farthest from its centroid, oriented
+                           ///< away from that centroid (outward on closed shapes)
+  AgreeWithReference = 4   ///< n . reference >= 0 where the reference normal is finite and non-zero
+};
+
+struct NormalEstimationSettings
+{
+  NeighborhoodType neighborhood = NeighborhoodType::KNearest;
+  int k = 16;                       ///< neighbours for KNearest (at least 3)
+  double radius = 0.0;              ///< length for Radius
+  NormalOrientation orientation = NormalOrientation::MinimumSpanningTree;
+  Vec3 viewpoint{ 0.0, 0.0, 0.0 };  ///< for TowardsPoint / AwayFromPoint
+  const double* reference = nullptr; ///< 3 n reference normals for AgreeWithReference
+  int graphNeighbors = 10;          ///< k of the k-NN graph used by MinimumSpanningTree
+  ParallelOptions parallel;
+};
+
+struct NormalEstimationResult
+{
+  std::vector<double> normals;      ///< 3 n components; NaN where undefined
+  std::vector<int> neighborCounts;  ///< neighbours used per point
+  std::size_t components = 0;       ///< MinimumSpanningTree: connected components oriented
+};
+
+/// Estimates (and orients) the normals of n interleaved points. Returns false if aborted through the progress
+/// callback (the result is then incomplete and must not be used).
+bool estimateNormals(const double* xyz, std::size_t n, const NormalEstimationSettings& settings,
+  NormalEstimationResult& result);
+
+/// Orients unit normals (3 n, NaN allowed) in place by MST propagation over the k-NN graph of the points.
+/// Returns the number of connected components.
+std::size_t orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals);
+
+} // namespace gls

@@ -1,0 +1,45 @@
+// Per-point analyses over the sampled scales (gls-math.md): pertinent scales (local minima of nu), the continuous
+// feature f(p) and the multi-scale dissimilarity Delta(p, q) with a normalized scale prior.
+#pragma once
+
+#include "gls/ScaleSample.h"
+
+#include <string>
+#include <vector>
+
+namespace gls
+{
+
+/// Scale indices k (0 < k < S-1) where nu has a strict local minimum: nu[k] < nu[k-1] and nu[k] <= nu[k+1] (a flat
+/// bottom counts once, at its first scale); NaN neighbours disqualify. Keeps the maxCount minima with the lowest nu,
+/// written in increasing scale order to `out` (the scales, not indices). Returns how many were written.
+int pertinentScales(const double* nu, const double* scales, int count, int maxCount, double* out);
+
+enum class FeatureMeasure
+{
+  Scale = 0,    ///< integrate in t
+  LogScale = 1  ///< integrate in ln t (every octave of scales weighs the same)
+};
+
+/// f = (1/|I|) integral over I of tanh(nu/sigma) (trapezoid over the sampled scales, in t or ln t), in [0, 1].
+/// Intervals with a NaN end are left out of the integral and of |I|; NaN when no interval is left. With one scale,
+/// f = tanh(nu_0/sigma).
+double continuousFeature(const double* nu, const double* scales, int count, double sigma, FeatureMeasure measure);
+
+enum class ScalePriorShape
+{
+  Box = 0,          ///< h = 1 on [minScale, maxScale]
+  LogGaussian = 1   ///< Gaussian in ln t, centred at sqrt(min max), standard deviation (ln max - ln min) / 4
+};
+
+/// Normalized prior weights h_i (sum 1) over the sampled scales, or an empty vector and a reason in `why` when no
+/// sampled scale gets a positive weight.
+std::vector<double> scalePrior(
+  const std::vector<double>& scales, ScalePriorShape shape, double minScale, double maxScale, std::string& why);
+
+/// Delta(p, q) = sum_i delta_{p,q}(t_i) h_i, over the scales where both fits are valid, with h renormalized over
+/// those scales; NaN when none is valid.
+double multiScaleDissimilarity(
+  const ScaleSample* p, const ScaleSample* q, const std::vector<double>& scales, const std::vector<double>& prior);
+
+} // namespace gls

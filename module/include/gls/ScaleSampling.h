@@ -1,0 +1,27 @@
+// Scale sampling (gls-math.md "Scale sampling"): absolute scales t_0 < ... < t_{S-1} in length units.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace gls
+{
+
+enum class ScaleSampling
+{
+  Linear = 0,      ///< t_k = t_min + (t_max - t_min) k / (S - 1)
+  Quadratic = 1,   ///< t_k = t_min + (t_max - t_min) (k / (S - 1))^2 (the paper's figures)
+  Logarithmic = 2  ///< t_k = t_min (t_max / t_min)^(k / (S - 1))
+};
+
+/// S scales from minScale to maxScale; with S = 1 the single scale is minScale. Call checkScaleRange first.
+std::vector<double> sampleScales(double minScale, double maxScale, int count, ScaleSampling sampling);
+
+/// Empty when 0 < minScale <= maxScale (finite) and count >= 1 (minScale < maxScale when count > 1); else the
+/// reason, for an error message.
+std::string checkScaleRange(double minScale, double maxScale, int count);
+
+/// Empty when the list is non-empty, finite, positive and strictly increasing; else the reason.
+std::string checkScaleList(const std::vector<double>& scales);
+
+} // namespace gls

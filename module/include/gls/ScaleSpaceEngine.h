@@ -1,0 +1,66 @@
+// The CPU scale-space engine: builds the neighbour grid once, then evaluates every point at every scale on all
+// threads and hands each point's samples to a sink. Neighbourhoods hold only points with finite coordinates and a
+// finite non-zero normal (normals are normalized); every point with finite coordinates is evaluated, the others get
+// invalid (NaN) samples. Results do not depend on the thread count (each point is computed alone).
+#pragma once
+
+#include "gls/NeighborGrid.h"
+#include "gls/ParallelFor.h"
+#include "gls/ScaleSample.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace gls
+{
+
+/// Receives the samples of one point at all scales. Called concurrently from several threads, each call with a
+/// distinct pointId: an implementation writes only that point's outputs (or thread-local state).
+class ScaleSampleSink
+{
+public:
+  virtual ~ScaleSampleSink() = default;
+  virtual void consume(std::uint64_t pointId, const ScaleSample* samples, int threadIndex) = 0;
+};
+
+struct ScaleSpaceSettings
+{
+  std::vector<double> scales;   ///< strictly increasing absolute scales (see checkScaleList)
+  double minNeighbors = 6.0;    ///< fits with fewer neighbours in the ball are invalid (3 suits 2D curves)
+  ParallelOptions parallel;
+};
+
+enum class EvaluationMethod
+{
+  OnePass,   ///< all scales from one gather (the moment formulation); the default
+  PerScale   ///< one ball query and one weighted fit per scale (reference and benchmark baseline)
+};
+
+class ScaleSpaceEngine
+{
+public:
+  /// points, normals: count interleaved xyz triples (copied into the grid; the caller's buffers need not outlive
+  /// the constructor).
+  ScaleSpaceEngine(const double* points, const double* normals, std::size_t count, ScaleSpaceSettings settings);
+
+  std::size_t pointCount() const { return this->Positions.size(); }
+  const std::vector<double>& scales() const { return this->Settings.scales; }
+  int threadCount() const;
+
+  /// Evaluates the given points (all when ids is null) and feeds the sink. Returns false if aborted.
+  bool run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids = nullptr,
+    EvaluationMethod method = EvaluationMethod::OnePass) const;
+
+  /// Evaluates an arbitrary position (not necessarily a data point) at all scales, on the calling thread.
+  void evaluatePosition(const Vec3& p, std::vector<ScaleSample>& out) const;
+
+private:
+  ScaleSpaceSettings Settings;
+  std::vector<double> SquaredScales;
+  std::vector<Vec3> Positions;          ///< all input positions (NaN allowed)
+  std::vector<std::uint64_t> Order;     ///< evaluation order: grid order first (locality), then the rest
+  NeighborGrid Grid;
+};
+
+} // namespace gls

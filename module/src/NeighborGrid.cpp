@@ -1,0 +1,245 @@
+#include "gls/NeighborGrid.h"
+
+#include "gls/Numeric.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gls
+{
+namespace
+{
+
+bool finitePoint(const double* p)
+{
+  return isFinite(p[0]) && isFinite(p[1]) && isFinite(p[2]);
+}
+
+bool admitted(const double* xyz, const unsigned char* include, std::size_t i)
+{
+  return (include == nullptr || include[i] != 0) && finitePoint(xyz + 3 * i);
+}
+
+// Ordering of k-nearest candidates: distance first, then original index (deterministic ties).
+struct Candidate
+{
+  double d2;
+  std::uint64_t sorted;
+  std::uint64_t id;
+};
+
+bool closer(const Candidate& a, const Candidate& b)
+{
+  return a.d2 < b.d2 || (a.d2 == b.d2 && a.id < b.id);
+}
+
+} // namespace
+
+void NeighborGrid::build(
+  const double* xyz, const double* normals, std::size_t n, double cellSize, const unsigned char* include)
+{
+  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+  std::size_t admittedCount = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!admitted(xyz, include, i))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      const double v = xyz[3 * i + a];
+      lo[a] = admittedCount == 0 ? v : std::min(lo[a], v);
+      hi[a] = admittedCount == 0 ? v : std::max(hi[a], v);
+    }
+    ++admittedCount;
+  }
+
+  double extent = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    extent = std::max(extent, hi[a] - lo[a]);
+  }
+  if (!(cellSize > 0.0) || !isFinite(cellSize))
+  {
+    cellSize = extent > 0.0 ? extent : 1.0;
+  }
+  // Keep the cell array proportional to the point count.
+  const double maxCells = std::max(8.0 * static_cast<double>(admittedCount), 65536.0);
+  std::int64_t dims[3];
+  for (;;)
+  {
+    double cells = 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double d = std::floor((hi[a] - lo[a]) / cellSize) + 1.0;
+      cells *= d;
+      dims[a] = static_cast<std::int64_t>(std::min(d, 4.0e9));
+    }
+    if (cells <= maxCells)
+    {
+      break;
+    }
+    cellSize *= std::max(1.01, std::cbrt(cells / maxCells));
+  }
+
+  GridView& v = this->View;
+  v.origin = { lo[0], lo[1], lo[2] };
+  v.cellSize = cellSize;
+  v.invCellSize = 1.0 / cellSize;
+  for (int a = 0; a < 3; ++a)
+  {
+    v.dims[a] = dims[a];
+  }
+  const std::size_t cellCount = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
+
+  // Counting sort by cell, stable in the original index.
+  std::vector<std::uint64_t> cellOf(n, 0);
+  this->CellStart.assign(cellCount + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!admitted(xyz, include, i))
+    {
+      continue;
+    }
+    const double* p = xyz + 3 * i;
+    const std::int64_t cx = gridCellCoordinate(p[0], v.origin.x, v.invCellSize, dims[0]);
+    const std::int64_t cy = gridCellCoordinate(p[1], v.origin.y, v.invCellSize, dims[1]);
+    const std::int64_t cz = gridCellCoordinate(p[2], v.origin.z, v.invCellSize, dims[2]);
+    cellOf[i] = static_cast<std::uint64_t>((cz * dims[1] + cy) * dims[0] + cx);
+    ++this->CellStart[cellOf[i] + 1];
+  }
+  for (std::size_t c = 0; c < cellCount; ++c)
+  {
+    this->CellStart[c + 1] += this->CellStart[c];
+  }
+  std::vector<std::uint64_t> fill(this->CellStart.begin(), this->CellStart.end() - 1);
+  this->Points.resize(admittedCount);
+  this->Ids.resize(admittedCount);
+  this->Normals.resize(normals ? admittedCount : 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!admitted(xyz, include, i))
+    {
+      continue;
+    }
+    const std::uint64_t slot = fill[cellOf[i]]++;
+    this->Points[slot] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
+    this->Ids[slot] = i;
+    if (normals)
+    {
+      this->Normals[slot] = { normals[3 * i], normals[3 * i + 1], normals[3 * i + 2] };
+    }
+  }
+  v.cellStart = this->CellStart.data();
+  v.points = this->Points.data();
+  v.normals = normals ? this->Normals.data() : nullptr;
+  v.ids = this->Ids.data();
+  v.count = admittedCount;
+}
+
+double NeighborGrid::suggestCellSizeForKNearest(const double* xyz, std::size_t n, int k)
+{
+  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!finitePoint(xyz + 3 * i))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      const double v = xyz[3 * i + a];
+      lo[a] = count == 0 ? v : std::min(lo[a], v);
+      hi[a] = count == 0 ? v : std::max(hi[a], v);
+    }
+    ++count;
+  }
+  double e[3] = { hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2] };
+  std::sort(e, e + 3);
+  // A surface sample: the two largest extents span the area that holds the points.
+  const double area = std::max(e[2] * e[1], e[2] * e[2] * 1e-6);
+  const double spacing = std::sqrt(area / static_cast<double>(std::max<std::size_t>(count, 1)));
+  const double size = spacing * std::sqrt(static_cast<double>(std::max(k, 1)));
+  return size > 0.0 ? size : 1.0;
+}
+
+void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, std::uint64_t>>& out) const
+{
+  out.clear();
+  const GridView& g = this->View;
+  if (k <= 0 || g.count == 0)
+  {
+    return;
+  }
+  const std::size_t want = std::min<std::size_t>(static_cast<std::size_t>(k), g.count);
+  std::vector<Candidate> heap; // max-heap on `closer`: the worst kept candidate on top
+  heap.reserve(want + 1);
+  const std::int64_t cc[3] = { gridCellCoordinate(c.x, g.origin.x, g.invCellSize, g.dims[0]),
+    gridCellCoordinate(c.y, g.origin.y, g.invCellSize, g.dims[1]),
+    gridCellCoordinate(c.z, g.origin.z, g.invCellSize, g.dims[2]) };
+  const std::int64_t maxRing = std::max({ g.dims[0], g.dims[1], g.dims[2] });
+
+  auto visitRun = [&](std::int64_t row, std::int64_t xa, std::int64_t xb) {
+    for (std::uint64_t i = g.cellStart[row + xa]; i < g.cellStart[row + xb + 1]; ++i)
+    {
+      const Candidate cand{ squaredNorm(g.points[i] - c), i, g.ids[i] };
+      if (heap.size() < want)
+      {
+        heap.push_back(cand);
+        std::push_heap(heap.begin(), heap.end(), closer);
+      }
+      else if (closer(cand, heap.front()))
+      {
+        std::pop_heap(heap.begin(), heap.end(), closer);
+        heap.back() = cand;
+        std::push_heap(heap.begin(), heap.end(), closer);
+      }
+    }
+  };
+
+  for (std::int64_t ring = 0; ring <= maxRing; ++ring)
+  {
+    const std::int64_t z0 = std::max<std::int64_t>(cc[2] - ring, 0), z1 = std::min(cc[2] + ring, g.dims[2] - 1);
+    const std::int64_t y0 = std::max<std::int64_t>(cc[1] - ring, 0), y1 = std::min(cc[1] + ring, g.dims[1] - 1);
+    const std::int64_t xl = cc[0] - ring, xh = cc[0] + ring;
+    const std::int64_t x0 = std::max<std::int64_t>(xl, 0), x1 = std::min(xh, g.dims[0] - 1);
+    for (std::int64_t z = z0; z <= z1; ++z)
+    {
+      for (std::int64_t y = y0; y <= y1; ++y)
+      {
+        const std::int64_t row = (z * g.dims[1] + y) * g.dims[0];
+        const bool shell = std::abs(z - cc[2]) == ring || std::abs(y - cc[1]) == ring;
+        if (shell)
+        {
+          visitRun(row, x0, x1);
+        }
+        else
+        {
+          if (xl >= 0)
+          {
+            visitRun(row, xl, xl);
+          }
+          if (xh < g.dims[0] && xh != xl)
+          {
+            visitRun(row, xh, xh);
+          }
+        }
+      }
+    }
+    const double reach = static_cast<double>(ring) * g.cellSize;
+    if (heap.size() == want && heap.front().d2 <= reach * reach)
+    {
+      break;
+    }
+  }
+  std::sort(heap.begin(), heap.end(), closer);
+  out.reserve(heap.size());
+  for (const Candidate& cand : heap)
+  {
+    out.emplace_back(cand.d2, cand.sorted);
+  }
+}
+
+} // namespace gls

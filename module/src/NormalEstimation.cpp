@@ -1,0 +1,304 @@
+#include "gls/NormalEstimation.h"
+
+#include "gls/NeighborGrid.h"
+#include "gls/Numeric.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <queue>
+#include <tuple>
+
+namespace gls
+{
+namespace
+{
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool finite3(const double* v)
+{
+  return isFinite(v[0]) && isFinite(v[1]) && isFinite(v[2]);
+}
+
+/// Smallest-eigenvalue eigenvector of the covariance of the neighbours (local coordinates around p); false when
+/// fewer than 3 neighbours or when the neighbours are (numerically) on a line or at one place.
+bool pcaNormal(const GridView& g, const Vec3& p, const std::vector<std::uint64_t>& neighbors, Vec3& normal)
+{
+  if (neighbors.size() < 3)
+  {
+    return false;
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (std::uint64_t i : neighbors)
+  {
+    const Vec3 x = g.points[i] - p;
+    mean += Eigen::Vector3d(x.x, x.y, x.z);
+  }
+  mean /= static_cast<double>(neighbors.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (std::uint64_t i : neighbors)
+  {
+    const Vec3 x = g.points[i] - p;
+    const Eigen::Vector3d d = Eigen::Vector3d(x.x, x.y, x.z) - mean;
+    cov += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
+  if (solver.info() != Eigen::Success)
+  {
+    return false;
+  }
+  const Eigen::Vector3d lambda = solver.eigenvalues(); // ascending
+  if (!(lambda(1) > 1e-12 * lambda(2)) || !(lambda(2) > 0.0))
+  {
+    return false;
+  }
+  const Eigen::Vector3d v = solver.eigenvectors().col(0).normalized();
+  normal = { v(0), v(1), v(2) };
+  return finite3(&normal.x);
+}
+
+void flipIfNegative(double* n, double s)
+{
+  if (s < 0.0)
+  {
+    n[0] = -n[0];
+    n[1] = -n[1];
+    n[2] = -n[2];
+  }
+}
+
+} // namespace
+
+bool estimateNormals(
+  const double* xyz, std::size_t n, const NormalEstimationSettings& settings, NormalEstimationResult& result)
+{
+  result.normals.assign(3 * n, kNaN);
+  result.neighborCounts.assign(n, 0);
+  result.components = 0;
+
+  const bool byRadius = settings.neighborhood == NeighborhoodType::Radius;
+  const double cellSize =
+    byRadius ? settings.radius : NeighborGrid::suggestCellSizeForKNearest(xyz, n, settings.k);
+  NeighborGrid grid;
+  grid.build(xyz, nullptr, n, cellSize);
+  const GridView& g = grid.view();
+
+  const int threads = resolveThreadCount(settings.parallel.threads);
+  std::vector<std::vector<std::uint64_t>> scratch(static_cast<std::size_t>(threads));
+  std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
+
+  const bool completed = parallelFor(g.count, settings.parallel, [&](std::size_t begin, std::size_t end, int t) {
+    std::vector<std::uint64_t>& nb = scratch[t];
+    for (std::size_t s = begin; s < end; ++s)
+    {
+      const Vec3 p = g.points[s];
+      nb.clear();
+      if (byRadius)
+      {
+        forEachInBall(g, p, settings.radius, [&](std::uint64_t i, const Vec3&, double) { nb.push_back(i); });
+      }
+      else
+      {
+        grid.kNearest(p, settings.k, knn[t]);
+        for (const auto& c : knn[t])
+        {
+          nb.push_back(c.second);
+        }
+      }
+      const std::uint64_t id = g.ids[s];
+      result.neighborCounts[id] = static_cast<int>(nb.size());
+      Vec3 normal;
+      if (pcaNormal(g, p, nb, normal))
+      {
+        result.normals[3 * id] = normal.x;
+        result.normals[3 * id + 1] = normal.y;
+        result.normals[3 * id + 2] = normal.z;
+      }
+    }
+  });
+  if (!completed)
+  {
+    return false;
+  }
+
+  double* normals = result.normals.data();
+  switch (settings.orientation)
+  {
+    case NormalOrientation::None:
+      break;
+    case NormalOrientation::TowardsPoint:
+    case NormalOrientation::AwayFromPoint:
+    {
+      const double sign = settings.orientation == NormalOrientation::TowardsPoint ? 1.0 : -1.0;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double* p = xyz + 3 * i;
+        const double toView[3] = { settings.viewpoint.x - p[0], settings.viewpoint.y - p[1],
+          settings.viewpoint.z - p[2] };
+        double* ni = normals + 3 * i;
+        flipIfNegative(ni, sign * (ni[0] * toView[0] + ni[1] * toView[1] + ni[2] * toView[2]));
+      }
+      break;
+    }
+    case NormalOrientation::AgreeWithReference:
+      for (std::size_t i = 0; settings.reference && i < n; ++i)
+      {
+        const double* r = settings.reference + 3 * i;
+        double* ni = normals + 3 * i;
+        if (finite3(r))
+        {
+          flipIfNegative(ni, ni[0] * r[0] + ni[1] * r[1] + ni[2] * r[2]);
+        }
+      }
+      break;
+    case NormalOrientation::MinimumSpanningTree:
+      result.components = orientByMinimumSpanningTree(xyz, n, settings.graphNeighbors, normals);
+      break;
+  }
+  return true;
+}
+
+std::size_t orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals)
+{
+  // Graph nodes: points with a finite position and a finite normal.
+  std::vector<unsigned char> usable(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    usable[i] = finite3(xyz + 3 * i) && finite3(normals + 3 * i);
+  }
+  NeighborGrid grid;
+  grid.build(xyz, nullptr, n, NeighborGrid::suggestCellSizeForKNearest(xyz, n, graphNeighbors + 1), usable.data());
+  const GridView& g = grid.view();
+
+  // Symmetric k-NN adjacency in CSR form (original ids).
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> edges;
+  edges.reserve(2 * g.count * static_cast<std::size_t>(std::max(graphNeighbors, 1)));
+  std::vector<std::pair<double, std::uint64_t>> knn;
+  for (std::size_t s = 0; s < g.count; ++s)
+  {
+    grid.kNearest(g.points[s], graphNeighbors + 1, knn);
+    for (const auto& c : knn)
+    {
+      if (c.second != s)
+      {
+        edges.emplace_back(g.ids[s], g.ids[c.second]);
+        edges.emplace_back(g.ids[c.second], g.ids[s]);
+      }
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<std::size_t> start(n + 1, 0);
+  for (const auto& e : edges)
+  {
+    ++start[e.first + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    start[i + 1] += start[i];
+  }
+
+  auto normalOf = [normals](std::uint64_t i) { return normals + 3 * i; };
+  auto cost = [&](std::uint64_t a, std::uint64_t b) {
+    const double* na = normalOf(a);
+    const double* nb = normalOf(b);
+    return 1.0 - std::abs(na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2]);
+  };
+
+  std::vector<unsigned char> visited(n, 0);
+  std::vector<std::uint64_t> component;
+  std::size_t components = 0;
+  for (std::size_t seed = 0; seed < n; ++seed)
+  {
+    if (!usable[seed] || visited[seed])
+    {
+      continue;
+    }
+    // Collect the component (breadth first) and pick its root: the point farthest from its centroid.
+    component.assign(1, seed);
+    visited[seed] = 1;
+    for (std::size_t head = 0; head < component.size(); ++head)
+    {
+      const std::uint64_t u = component[head];
+      for (std::size_t e = start[u]; e < start[u + 1]; ++e)
+      {
+        const std::uint64_t v = edges[e].second;
+        if (!visited[v])
+        {
+          visited[v] = 1;
+          component.push_back(v);
+        }
+      }
+    }
+    double centroid[3] = { 0, 0, 0 };
+    for (std::uint64_t u : component)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        centroid[a] += xyz[3 * u + a] / static_cast<double>(component.size());
+      }
+    }
+    std::uint64_t root = component[0];
+    double farthest = -1.0;
+    for (std::uint64_t u : component)
+    {
+      double d2 = 0.0;
+      for (int a = 0; a < 3; ++a)
+      {
+        d2 += (xyz[3 * u + a] - centroid[a]) * (xyz[3 * u + a] - centroid[a]);
+      }
+      if (d2 > farthest)
+      {
+        farthest = d2;
+        root = u;
+      }
+    }
+    double* nr = normalOf(root);
+    double outward = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      outward += nr[a] * (xyz[3 * root + a] - centroid[a]);
+    }
+    flipIfNegative(nr, outward);
+
+    // Prim's algorithm from the root; each node takes the orientation of the tree node that reached it.
+    for (std::uint64_t u : component)
+    {
+      visited[u] = 0;
+    }
+    using Entry = std::tuple<double, std::uint64_t, std::uint64_t>; // cost, node, parent
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> frontier;
+    frontier.emplace(0.0, root, root);
+    while (!frontier.empty())
+    {
+      const auto [c, u, parent] = frontier.top();
+      frontier.pop();
+      if (visited[u])
+      {
+        continue;
+      }
+      visited[u] = 1;
+      if (u != parent)
+      {
+        const double* np = normalOf(parent);
+        double* nu = normalOf(u);
+        flipIfNegative(nu, nu[0] * np[0] + nu[1] * np[1] + nu[2] * np[2]);
+      }
+      for (std::size_t e = start[u]; e < start[u + 1]; ++e)
+      {
+        const std::uint64_t v = edges[e].second;
+        if (!visited[v])
+        {
+          frontier.emplace(cost(u, v), v, u);
+        }
+      }
+    }
+    ++components;
+  }
+  return components;
+}
+
+} // namespace gls

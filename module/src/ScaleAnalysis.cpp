@@ -1,0 +1,109 @@
+#include "gls/ScaleAnalysis.h"
+
+#include "gls/Descriptors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace gls
+{
+
+int pertinentScales(const double* nu, const double* scales, int count, int maxCount, double* out)
+{
+  std::vector<int> minima;
+  for (int k = 1; k + 1 < count; ++k)
+  {
+    if (nu[k] < nu[k - 1] && nu[k] <= nu[k + 1])
+    {
+      minima.push_back(k);
+    }
+  }
+  // Lowest nu first (ties: smaller scale), then keep maxCount and list them by increasing scale.
+  std::stable_sort(minima.begin(), minima.end(), [nu](int a, int b) { return nu[a] < nu[b]; });
+  if (static_cast<int>(minima.size()) > maxCount)
+  {
+    minima.resize(static_cast<std::size_t>(std::max(maxCount, 0)));
+  }
+  std::sort(minima.begin(), minima.end());
+  for (std::size_t i = 0; i < minima.size(); ++i)
+  {
+    out[i] = scales[minima[i]];
+  }
+  return static_cast<int>(minima.size());
+}
+
+double continuousFeature(const double* nu, const double* scales, int count, double sigma, FeatureMeasure measure)
+{
+  if (count == 1)
+  {
+    return std::tanh(nu[0] / sigma);
+  }
+  double integral = 0.0, length = 0.0;
+  for (int k = 0; k + 1 < count; ++k)
+  {
+    if (std::isnan(nu[k]) || std::isnan(nu[k + 1]))
+    {
+      continue;
+    }
+    const double h = measure == FeatureMeasure::Scale ? scales[k + 1] - scales[k]
+                                                      : std::log(scales[k + 1] / scales[k]);
+    integral += 0.5 * h * (std::tanh(nu[k] / sigma) + std::tanh(nu[k + 1] / sigma));
+    length += h;
+  }
+  return length > 0.0 ? integral / length : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<double> scalePrior(
+  const std::vector<double>& scales, ScalePriorShape shape, double minScale, double maxScale, std::string& why)
+{
+  std::vector<double> h(scales.size(), 0.0);
+  const double logMin = std::log(minScale), logMax = std::log(maxScale);
+  const double centre = 0.5 * (logMin + logMax);
+  const double deviation = 0.25 * (logMax - logMin);
+  double total = 0.0;
+  for (std::size_t i = 0; i < scales.size(); ++i)
+  {
+    const bool inBox = scales[i] >= minScale && scales[i] <= maxScale;
+    if (shape == ScalePriorShape::Box || !(deviation > 0.0) || !std::isfinite(deviation))
+    {
+      h[i] = inBox ? 1.0 : 0.0;
+    }
+    else
+    {
+      const double z = (std::log(scales[i]) - centre) / deviation;
+      h[i] = std::exp(-0.5 * z * z);
+    }
+    total += h[i];
+  }
+  if (!(total > 0.0))
+  {
+    std::ostringstream msg;
+    msg << "no sampled scale lies in the prior range [" << minScale << ", " << maxScale << "]";
+    why = msg.str();
+    return {};
+  }
+  for (double& v : h)
+  {
+    v /= total;
+  }
+  return h;
+}
+
+double multiScaleDissimilarity(
+  const ScaleSample* p, const ScaleSample* q, const std::vector<double>& scales, const std::vector<double>& prior)
+{
+  double sum = 0.0, weight = 0.0;
+  for (std::size_t i = 0; i < scales.size(); ++i)
+  {
+    if (prior[i] > 0.0 && p[i].valid && q[i].valid)
+    {
+      sum += prior[i] * pairDissimilarity(p[i], q[i], scales[i]);
+      weight += prior[i];
+    }
+  }
+  return weight > 0.0 ? sum / weight : std::numeric_limits<double>::quiet_NaN();
+}
+
+} // namespace gls

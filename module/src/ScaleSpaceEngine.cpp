@@ -1,0 +1,126 @@
+#include "gls/ScaleSpaceEngine.h"
+
+#include "gls/Numeric.h"
+#include "gls/PointScaleSpace.h"
+
+#include <utility>
+
+namespace gls
+{
+namespace
+{
+
+bool finiteVec(const double* v)
+{
+  return isFinite(v[0]) && isFinite(v[1]) && isFinite(v[2]);
+}
+
+} // namespace
+
+ScaleSpaceEngine::ScaleSpaceEngine(
+  const double* points, const double* normals, std::size_t count, ScaleSpaceSettings settings)
+  : Settings(std::move(settings))
+{
+  for (double t : this->Settings.scales)
+  {
+    this->SquaredScales.push_back(t * t);
+  }
+  // Unit normals; points whose normal cannot be normalized stay out of every neighbourhood.
+  std::vector<double> unitNormals(3 * count, 0.0);
+  std::vector<unsigned char> admit(count, 0);
+  this->Positions.resize(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const double* p = points + 3 * i;
+    const double* n = normals + 3 * i;
+    this->Positions[i] = { p[0], p[1], p[2] };
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (finiteVec(p) && finiteVec(n) && len > 0.0 && isFinite(len))
+    {
+      admit[i] = 1;
+      for (int a = 0; a < 3; ++a)
+      {
+        unitNormals[3 * i + a] = n[a] / len;
+      }
+    }
+  }
+  const double cellSize = this->Settings.scales.empty() ? 0.0 : 0.5 * this->Settings.scales.back();
+  this->Grid.build(points, unitNormals.data(), count, cellSize, admit.data());
+
+  const GridView& g = this->Grid.view();
+  this->Order.assign(g.ids, g.ids + g.count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (!admit[i])
+    {
+      this->Order.push_back(i);
+    }
+  }
+}
+
+int ScaleSpaceEngine::threadCount() const
+{
+  return resolveThreadCount(this->Settings.parallel.threads);
+}
+
+bool ScaleSpaceEngine::run(
+  ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, EvaluationMethod method) const
+{
+  const std::vector<std::uint64_t>& order = ids ? *ids : this->Order;
+  const int S = static_cast<int>(this->Settings.scales.size());
+  const int threads = this->threadCount();
+  std::vector<std::vector<Moments>> bins(static_cast<std::size_t>(threads));
+  std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(threads));
+  const GridView& g = this->Grid.view();
+
+  return parallelFor(order.size(), this->Settings.parallel, [&](std::size_t begin, std::size_t end, int thread) {
+    std::vector<Moments>& b = bins[thread];
+    std::vector<ScaleSample>& out = samples[thread];
+    b.resize(static_cast<std::size_t>(S));
+    out.resize(static_cast<std::size_t>(S));
+    for (std::size_t o = begin; o < end; ++o)
+    {
+      const std::uint64_t id = order[o];
+      const Vec3& p = this->Positions[id];
+      if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
+      {
+        for (int k = 0; k < S; ++k)
+        {
+          out[k] = invalidSample<double>(0.0);
+        }
+      }
+      else if (method == EvaluationMethod::OnePass)
+      {
+        evaluateAllScales(g, p, this->Settings.scales.data(), this->SquaredScales.data(), S,
+          this->Settings.minNeighbors, b.data(), out.data());
+      }
+      else
+      {
+        for (int k = 0; k < S; ++k)
+        {
+          out[k] = evaluateOneScale(g, p, this->Settings.scales[k], this->Settings.minNeighbors);
+        }
+      }
+      sink.consume(id, out.data(), thread);
+    }
+  });
+}
+
+void ScaleSpaceEngine::evaluatePosition(const Vec3& p, std::vector<ScaleSample>& out) const
+{
+  const int S = static_cast<int>(this->Settings.scales.size());
+  std::vector<Moments> b(static_cast<std::size_t>(S));
+  out.resize(static_cast<std::size_t>(S));
+  if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
+  {
+    for (int k = 0; k < S; ++k)
+    {
+      out[k] = invalidSample<double>(0.0);
+    }
+    return;
+  }
+  evaluateAllScales(this->Grid.view(), p, this->Settings.scales.data(), this->SquaredScales.data(), S,
+    this->Settings.minNeighbors, b.data(), out.data());
+}
+
+} // namespace gls
