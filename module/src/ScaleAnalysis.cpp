@@ -15,7 +15,7 @@ int pertinentScales(const double* nu, const double* scales, int count, int maxCo
   std::vector<int> minima;
   for (int k = 1; k + 1 < count; ++k)
   {
-    if (nu[k] < nu[k - 1] && nu[k] <= nu[k + 1])
+    if (nu[k] < nu[k - 1] - kVariationNoise && nu[k] <= nu[k + 1] + kVariationNoise)
     {
       minima.push_back(k);
     }

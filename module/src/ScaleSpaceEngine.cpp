@@ -63,17 +63,18 @@ int ScaleSpaceEngine::threadCount() const
   return resolveThreadCount(this->Settings.parallel.threads);
 }
 
-bool ScaleSpaceEngine::run(
-  ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, EvaluationMethod method) const
+bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, EvaluationMethod method,
+  const ParallelOptions* parallel) const
 {
   const std::vector<std::uint64_t>& order = ids ? *ids : this->Order;
   const int S = static_cast<int>(this->Settings.scales.size());
-  const int threads = this->threadCount();
+  const ParallelOptions& options = parallel ? *parallel : this->Settings.parallel;
+  const int threads = resolveThreadCount(options.threads);
   std::vector<std::vector<Moments>> bins(static_cast<std::size_t>(threads));
   std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(threads));
   const GridView& g = this->Grid.view();
 
-  return parallelFor(order.size(), this->Settings.parallel, [&](std::size_t begin, std::size_t end, int thread) {
+  return parallelFor(order.size(), options, [&](std::size_t begin, std::size_t end, int thread) {
     std::vector<Moments>& b = bins[thread];
     std::vector<ScaleSample>& out = samples[thread];
     b.resize(static_cast<std::size_t>(S));

@@ -10,8 +10,13 @@
 namespace gls
 {
 
-/// Scale indices k (0 < k < S-1) where nu has a strict local minimum: nu[k] < nu[k-1] and nu[k] <= nu[k+1] (a flat
-/// bottom counts once, at its first scale); NaN neighbours disqualify. Keeps the maxCount minima with the lowest nu,
+/// Differences of nu below this (dimensionless) are rounding noise, not variation: on a perfect sphere nu is about
+/// 1e-20 with random ups and downs.
+constexpr double kVariationNoise = 1e-12;
+
+/// Scale indices k (0 < k < S-1) where nu has a strict local minimum: nu[k] < nu[k-1] - noise and
+/// nu[k] <= nu[k+1] + noise (noise = kVariationNoise; a flat bottom counts once, at its first scale); NaN neighbours
+/// disqualify. Keeps the maxCount minima with the lowest nu,
 /// written in increasing scale order to `out` (the scales, not indices). Returns how many were written.
 int pertinentScales(const double* nu, const double* scales, int count, int maxCount, double* out);
 

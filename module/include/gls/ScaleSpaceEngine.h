@@ -48,9 +48,10 @@ public:
   const std::vector<double>& scales() const { return this->Settings.scales; }
   int threadCount() const;
 
-  /// Evaluates the given points (all when ids is null) and feeds the sink. Returns false if aborted.
+  /// Evaluates the given points (all when ids is null) and feeds the sink. `parallel` overrides the settings'
+  /// threads and progress callback for this run. Returns false if aborted.
   bool run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids = nullptr,
-    EvaluationMethod method = EvaluationMethod::OnePass) const;
+    EvaluationMethod method = EvaluationMethod::OnePass, const ParallelOptions* parallel = nullptr) const;
 
   /// Evaluates an arbitrary position (not necessarily a data point) at all scales, on the calling thread.
   void evaluatePosition(const Vec3& p, std::vector<ScaleSample>& out) const;

@@ -1,0 +1,26 @@
+// Names of the arrays the GLS filters read and write (one place, so that filters can find each other's outputs).
+#ifndef vtkGLSArrayNames_h
+#define vtkGLSArrayNames_h
+
+namespace vtkGLSArrayNames
+{
+constexpr const char* Normals = "Normals";
+constexpr const char* Scales = "GLSScales";              // field data: the absolute scales (length)
+constexpr const char* Tau = "GLSTau";
+constexpr const char* Eta = "GLSEta";
+constexpr const char* Kappa = "GLSKappa";
+constexpr const char* Fitness = "GLSFitness";
+constexpr const char* DTau = "GLSdTau";
+constexpr const char* DEta = "GLSdEta";
+constexpr const char* DKappa = "GLSdKappa";
+constexpr const char* NeighborCount = "GLSNeighborCount";
+constexpr const char* Variation = "GLSGeometricVariation";
+constexpr const char* PertinentScaleCount = "GLSPertinentScaleCount";
+constexpr const char* PertinentScales = "GLSPertinentScales";
+constexpr const char* Feature = "GLSFeature";
+constexpr const char* Dissimilarity = "GLSDissimilarity";
+constexpr const char* Similar = "GLSSimilar";
+constexpr const char* QueryPointId = "GLSQueryPointId";   // field data of the dissimilarity output
+}
+
+#endif

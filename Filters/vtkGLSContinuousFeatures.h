@@ -1,0 +1,64 @@
+/**
+ * @class   vtkGLSContinuousFeatures
+ * @brief   GLS continuous feature f(p): how much the shape around each point varies across the scales.
+ *
+ * f(p) = (1/|I|) integral over the sampled scale interval I of tanh(nu(p, t) / Sigma) (Mellado et al. 2012,
+ * sec. 5), by the trapezoid rule over the sampled scales, in t (FeatureMeasure = SCALE, default) or in ln t
+ * (LOG_SCALE: every octave of scales weighs the same). tanh caps strong variations; f is dimensionless, in [0, 1]:
+ * 0 on a sphere or a plane (no variation at any scale), near 1 where the shape changes at every scale.
+ *
+ * nu comes from an upstream GLSGeometricVariation array when present, else from upstream GLSdTau/GLSdEta/GLSdKappa
+ * arrays, else it is computed here from points and normals in a fused pass that stores nothing per scale (memory
+ * O(N), not O(N x scales)); see ReuseInputScaleSpace.
+ *
+ * Point-data output: GLSFeature (dimensionless, [0, 1]); NaN where no pair of consecutive scales has a defined nu.
+ * Field data: GLSScales (length).
+ */
+#ifndef vtkGLSContinuousFeatures_h
+#define vtkGLSContinuousFeatures_h
+
+#include "vtkGLSFiltersModule.h"
+#include "vtkGLSScaleFilterBase.h"
+
+class VTKGLSFILTERS_EXPORT vtkGLSContinuousFeatures : public vtkGLSScaleFilterBase
+{
+public:
+  static vtkGLSContinuousFeatures* New();
+  vtkTypeMacro(vtkGLSContinuousFeatures, vtkGLSScaleFilterBase);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum FeatureMeasureType
+  {
+    SCALE = 0,    ///< integrate in t
+    LOG_SCALE = 1 ///< integrate in ln t
+  };
+
+  ///@{
+  /// Scale of the tanh remapping of nu (dimensionless, > 0). Default 0.1.
+  vtkSetClampMacro(Sigma, double, 1e-300, VTK_DOUBLE_MAX);
+  vtkGetMacro(Sigma, double);
+  ///@}
+
+  ///@{
+  /// Measure of the scale integral (default SCALE).
+  vtkSetClampMacro(FeatureMeasure, int, SCALE, LOG_SCALE);
+  vtkGetMacro(FeatureMeasure, int);
+  void SetFeatureMeasureToScale() { this->SetFeatureMeasure(SCALE); }
+  void SetFeatureMeasureToLogScale() { this->SetFeatureMeasure(LOG_SCALE); }
+  ///@}
+
+protected:
+  vtkGLSContinuousFeatures();
+  ~vtkGLSContinuousFeatures() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double Sigma;
+  int FeatureMeasure;
+
+private:
+  vtkGLSContinuousFeatures(const vtkGLSContinuousFeatures&) = delete;
+  void operator=(const vtkGLSContinuousFeatures&) = delete;
+};
+
+#endif

@@ -1,0 +1,193 @@
+#include "vtkGLSMultiScaleDissimilarity.h"
+
+#include "vtkGLSArrayNames.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "gls/ScaleAnalysis.h"
+#include "gls/ScaleSpaceEngine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+vtkStandardNewMacro(vtkGLSMultiScaleDissimilarity);
+
+namespace
+{
+
+class CaptureSink : public gls::ScaleSampleSink
+{
+public:
+  std::vector<gls::ScaleSample> Samples;
+  void consume(std::uint64_t, const gls::ScaleSample* s, int) override
+  {
+    this->Samples.assign(s, s + this->Samples.size());
+  }
+};
+
+class DissimilaritySink : public gls::ScaleSampleSink
+{
+public:
+  const std::vector<double>* Scales = nullptr;
+  const std::vector<double>* Prior = nullptr;
+  const gls::ScaleSample* Query = nullptr;
+  double Threshold = 0.0;
+  double* Delta = nullptr;
+  unsigned char* Similar = nullptr;
+
+  void consume(std::uint64_t id, const gls::ScaleSample* s, int) override
+  {
+    const double d = gls::multiScaleDissimilarity(this->Query, s, *this->Scales, *this->Prior);
+    this->Delta[id] = d;
+    this->Similar[id] = d < this->Threshold ? 1 : 0;
+  }
+};
+
+} // namespace
+
+vtkGLSMultiScaleDissimilarity::vtkGLSMultiScaleDissimilarity()
+  : QueryPointId(0)
+  , QueryPoint{ 0.0, 0.0, 0.0 }
+  , UseQueryPointCoordinates(false)
+  , PriorMinScale(0.0)
+  , PriorMaxScale(VTK_DOUBLE_MAX)
+  , PriorShape(BOX)
+  , Threshold(0.01)
+{
+}
+
+vtkGLSMultiScaleDissimilarity::~vtkGLSMultiScaleDissimilarity() = default;
+
+int vtkGLSMultiScaleDissimilarity::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  PrepareOutput(input, output);
+  const vtkIdType n = input->GetNumberOfPoints();
+  if (n < 1)
+  {
+    vtkErrorMacro("The input has no points.");
+    return 0;
+  }
+
+  // The query point.
+  vtkIdType query = this->QueryPointId;
+  if (this->UseQueryPointCoordinates)
+  {
+    double best = VTK_DOUBLE_MAX;
+    query = -1;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double p[3];
+      input->GetPoint(i, p);
+      const double d2 = vtkMath::Distance2BetweenPoints(p, this->QueryPoint);
+      if (d2 < best)
+      {
+        best = d2;
+        query = i;
+      }
+    }
+    if (query < 0)
+    {
+      vtkErrorMacro("No input point with finite coordinates to snap the query point to.");
+      return 0;
+    }
+  }
+  if (query >= n)
+  {
+    vtkErrorMacro("QueryPointId " << query << " is out of range: the input has " << n << " points.");
+    return 0;
+  }
+
+  std::vector<double> scales;
+  if (!this->PrepareScaleSamples(input, true, false, scales))
+  {
+    return 0;
+  }
+  // The prior, clipped to the sampled range so that a Gaussian is centred where there are scales.
+  const double pmin = std::max(this->ToAbsoluteLength(input, this->PriorMinScale), scales.front());
+  const double pmax = std::min(this->PriorMaxScale >= VTK_DOUBLE_MAX ? VTK_DOUBLE_MAX
+                                                                     : this->ToAbsoluteLength(input, this->PriorMaxScale),
+    scales.back());
+  std::string why;
+  const std::vector<double> prior =
+    gls::scalePrior(scales, static_cast<gls::ScalePriorShape>(this->PriorShape), pmin, pmax, why);
+  if (prior.empty())
+  {
+    vtkErrorMacro("Invalid scale prior: " << why << " (sampled scales span [" << scales.front() << ", "
+                                          << scales.back() << "]).");
+    return 0;
+  }
+
+  CaptureSink querySink;
+  querySink.Samples.resize(scales.size());
+  const std::vector<std::uint64_t> queryIds{ static_cast<std::uint64_t>(query) };
+  if (!this->RunScaleSamples(querySink, &queryIds, 0.0, 0.02))
+  {
+    return 1; // aborted
+  }
+  bool anyValid = false;
+  for (std::size_t k = 0; k < scales.size(); ++k)
+  {
+    anyValid = anyValid || (prior[k] > 0.0 && querySink.Samples[k].valid);
+  }
+  if (!anyValid)
+  {
+    vtkErrorMacro("The query point " << query
+                                     << " has no defined fit at any scale of the prior (non-finite coordinates, or "
+                                        "too few neighbours): pick another point or larger scales.");
+    return 0;
+  }
+
+  vtkNew<vtkDoubleArray> delta;
+  delta->SetName(vtkGLSArrayNames::Dissimilarity);
+  delta->SetNumberOfTuples(n);
+  vtkNew<vtkUnsignedCharArray> similar;
+  similar->SetName(vtkGLSArrayNames::Similar);
+  similar->SetNumberOfTuples(n);
+  DissimilaritySink sink;
+  sink.Scales = &scales;
+  sink.Prior = &prior;
+  sink.Query = querySink.Samples.data();
+  sink.Threshold = this->Threshold;
+  sink.Delta = delta->GetPointer(0);
+  sink.Similar = similar->GetPointer(0);
+  if (!this->RunScaleSamples(sink, nullptr, 0.02, 1.0))
+  {
+    return 1; // aborted: no partial arrays
+  }
+  output->GetPointData()->AddArray(delta);
+  output->GetPointData()->AddArray(similar);
+  output->GetPointData()->SetActiveScalars(vtkGLSArrayNames::Dissimilarity);
+  vtkNew<vtkIdTypeArray> queryArray;
+  queryArray->SetName(vtkGLSArrayNames::QueryPointId);
+  queryArray->InsertNextValue(query);
+  output->GetFieldData()->AddArray(queryArray);
+  StoreScales(output->GetFieldData(), scales);
+  return 1;
+}
+
+void vtkGLSMultiScaleDissimilarity::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "QueryPointId: " << this->QueryPointId << "\n";
+  os << indent << "QueryPoint: " << this->QueryPoint[0] << ", " << this->QueryPoint[1] << ", " << this->QueryPoint[2]
+     << "\n";
+  os << indent << "UseQueryPointCoordinates: " << this->UseQueryPointCoordinates << "\n";
+  os << indent << "PriorMinScale: " << this->PriorMinScale << "\n";
+  os << indent << "PriorMaxScale: " << this->PriorMaxScale << "\n";
+  os << indent << "PriorShape: " << (this->PriorShape == BOX ? "Box" : "LogGaussian") << "\n";
+  os << indent << "Threshold: " << this->Threshold << "\n";
+}

@@ -1,0 +1,315 @@
+#include "vtkGLSScaleFilterBase.h"
+
+#include "vtkGLSArrayNames.h"
+#include "vtkGLSStoredScaleSpace.h"
+
+#include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkInformation.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include "gls/ScaleSampling.h"
+#include "gls/ScaleSpaceEngine.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+struct vtkGLSScaleFilterBase::Internals
+{
+  bool UseStored = false;
+  vtkGLSStoredScaleSpace Stored;
+  std::size_t PointCount = 0;
+  std::size_t ScaleCount = 0;
+  std::unique_ptr<gls::ScaleSpaceEngine> Engine;
+};
+
+vtkGLSScaleFilterBase::vtkGLSScaleFilterBase()
+  : ScaleUnits(RELATIVE_TO_DIAGONAL)
+  , MinScale(0.008)
+  , MaxScale(0.08)
+  , NumberOfScales(20)
+  , ScaleSampling(QUADRATIC)
+  , MinimumNeighbors(0)
+  , WTau(1.0)
+  , WEta(1.0)
+  , WKappa(1.0)
+  , ReuseInputScaleSpace(true)
+  , NumberOfThreads(0)
+{
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::NORMALS);
+}
+
+vtkGLSScaleFilterBase::~vtkGLSScaleFilterBase() = default;
+
+void vtkGLSScaleFilterBase::AddScale(double scale)
+{
+  this->ExplicitScales.push_back(scale);
+  this->Modified();
+}
+
+void vtkGLSScaleFilterBase::RemoveAllScales()
+{
+  if (!this->ExplicitScales.empty())
+  {
+    this->ExplicitScales.clear();
+    this->Modified();
+  }
+}
+
+int vtkGLSScaleFilterBase::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+double vtkGLSScaleFilterBase::ToAbsoluteLength(vtkPolyData* input, double value) const
+{
+  if (this->ScaleUnits == ABSOLUTE)
+  {
+    return value;
+  }
+  double bounds[6];
+  input->GetBounds(bounds);
+  const double dx = bounds[1] - bounds[0], dy = bounds[3] - bounds[2], dz = bounds[5] - bounds[4];
+  return value * std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+std::vector<double> vtkGLSScaleFilterBase::ComputeAbsoluteScales(vtkPolyData* input)
+{
+  std::vector<double> scales;
+  if (!this->ExplicitScales.empty())
+  {
+    for (double s : this->ExplicitScales)
+    {
+      scales.push_back(this->ToAbsoluteLength(input, s));
+    }
+    const std::string why = gls::checkScaleList(scales);
+    if (!why.empty())
+    {
+      vtkErrorMacro("Invalid scales: " << why << ".");
+      return {};
+    }
+    return scales;
+  }
+  const double tmin = this->ToAbsoluteLength(input, this->MinScale);
+  const double tmax = this->ToAbsoluteLength(input, this->MaxScale);
+  std::string why = gls::checkScaleRange(this->MinScale, this->MaxScale, this->NumberOfScales);
+  if (why.empty())
+  {
+    why = gls::checkScaleRange(tmin, tmax, this->NumberOfScales);
+  }
+  if (!why.empty())
+  {
+    vtkErrorMacro("Invalid scales: " << why
+                                     << (this->ScaleUnits == RELATIVE_TO_DIAGONAL
+                                            ? " (scales are relative to the bounding-box diagonal)."
+                                            : "."));
+    return {};
+  }
+  return gls::sampleScales(
+    tmin, tmax, this->NumberOfScales, static_cast<gls::ScaleSampling>(this->ScaleSampling));
+}
+
+bool vtkGLSScaleFilterBase::GatherPointsAndNormals(
+  vtkPolyData* input, std::vector<double>& points, std::vector<double>& normals)
+{
+  const vtkIdType n = input->GetNumberOfPoints();
+  if (n < 1)
+  {
+    vtkErrorMacro("The input has no points.");
+    return false;
+  }
+  vtkDataArray* nrm = this->GetInputArrayToProcess(0, input);
+  if (!nrm)
+  {
+    vtkErrorMacro("The input has no normals: select a 3-component point array, set active normals, or run "
+                  "vtkGLSNormalEstimation (GLS Normal Estimation) first.");
+    return false;
+  }
+  if (nrm->GetNumberOfComponents() != 3 || nrm->GetNumberOfTuples() != n)
+  {
+    vtkErrorMacro("The normals array '" << (nrm->GetName() ? nrm->GetName() : "(unnamed)") << "' has "
+                                        << nrm->GetNumberOfComponents() << " components and "
+                                        << nrm->GetNumberOfTuples() << " tuples; expected 3 components and " << n
+                                        << " tuples (one per point).");
+    return false;
+  }
+  points.resize(3 * static_cast<std::size_t>(n));
+  normals.resize(3 * static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    input->GetPoint(i, &points[3 * i]);
+    nrm->GetTuple(i, &normals[3 * i]);
+  }
+  return true;
+}
+
+double vtkGLSScaleFilterBase::ResolveMinimumNeighbors(
+  const std::vector<double>& points, const std::vector<double>& normals) const
+{
+  if (this->MinimumNeighbors > 0)
+  {
+    return this->MinimumNeighbors;
+  }
+  const std::size_t n = points.size() / 3;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (points[3 * i + 2] != points[2] || normals[3 * i + 2] != 0.0)
+    {
+      return 6.0;
+    }
+  }
+  return 3.0; // a 2D curve
+}
+
+bool vtkGLSScaleFilterBase::ReportProgress(double fraction, double begin, double end)
+{
+  this->UpdateProgress(begin + fraction * (end - begin));
+  return this->GetAbortExecute() != 0;
+}
+
+bool vtkGLSScaleFilterBase::PrepareScaleSamples(
+  vtkPolyData* input, bool needDescriptors, bool needDerivatives, std::vector<double>& scales)
+{
+  this->Source = std::make_unique<Internals>();
+  Internals& src = *this->Source;
+  src.PointCount = static_cast<std::size_t>(input->GetNumberOfPoints());
+  if (src.PointCount == 0)
+  {
+    vtkErrorMacro("The input has no points.");
+    return false;
+  }
+  scales.clear();
+  if (this->ReuseInputScaleSpace)
+  {
+    scales = ReadStoredScales(input->GetFieldData());
+  }
+  if (!scales.empty() && src.Stored.Bind(input, scales.size(), needDescriptors, needDerivatives))
+  {
+    src.UseStored = true;
+    src.ScaleCount = scales.size();
+    return true;
+  }
+
+  scales = this->ComputeAbsoluteScales(input);
+  std::vector<double> points, normals;
+  if (scales.empty() || !this->GatherPointsAndNormals(input, points, normals))
+  {
+    return false;
+  }
+  gls::ScaleSpaceSettings settings;
+  settings.scales = scales;
+  settings.minNeighbors = this->ResolveMinimumNeighbors(points, normals);
+  settings.parallel.threads = this->NumberOfThreads;
+  src.ScaleCount = scales.size();
+  src.Engine = std::make_unique<gls::ScaleSpaceEngine>(points.data(), normals.data(), src.PointCount, settings);
+  return true;
+}
+
+bool vtkGLSScaleFilterBase::UsesStoredScaleSpace() const
+{
+  return this->Source && this->Source->UseStored;
+}
+
+bool vtkGLSScaleFilterBase::RunScaleSamples(
+  gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, double progressBegin, double progressEnd)
+{
+  Internals& src = *this->Source;
+  gls::ParallelOptions parallel;
+  parallel.threads = this->NumberOfThreads;
+  parallel.progress = [this, progressBegin, progressEnd](double f) {
+    return this->ReportProgress(f, progressBegin, progressEnd);
+  };
+  if (!src.UseStored)
+  {
+    return src.Engine->run(sink, ids, gls::EvaluationMethod::OnePass, &parallel);
+  }
+  const std::size_t n = ids ? ids->size() : src.PointCount;
+  const int threads = gls::resolveThreadCount(this->NumberOfThreads);
+  std::vector<std::vector<gls::ScaleSample>> buffers(static_cast<std::size_t>(threads));
+  return gls::parallelFor(n, parallel, [&](std::size_t begin, std::size_t end, int thread) {
+    std::vector<gls::ScaleSample>& b = buffers[thread];
+    b.resize(src.ScaleCount);
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const std::uint64_t id = ids ? (*ids)[i] : i;
+      src.Stored.Read(id, b.data());
+      sink.consume(id, b.data(), thread);
+    }
+  });
+}
+
+void vtkGLSScaleFilterBase::PrepareOutput(vtkPolyData* input, vtkPolyData* output)
+{
+  output->ShallowCopy(input);
+  vtkNew<vtkFieldData> fd;
+  fd->ShallowCopy(input->GetFieldData());
+  output->SetFieldData(fd);
+}
+
+void vtkGLSScaleFilterBase::StoreScales(vtkFieldData* fd, const std::vector<double>& scales)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(vtkGLSArrayNames::Scales);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(scales.size()));
+  for (std::size_t k = 0; k < scales.size(); ++k)
+  {
+    a->SetValue(static_cast<vtkIdType>(k), scales[k]);
+  }
+  fd->AddArray(a);
+}
+
+std::vector<double> vtkGLSScaleFilterBase::ReadStoredScales(vtkFieldData* fd)
+{
+  std::vector<double> scales;
+  vtkDataArray* a = fd ? fd->GetArray(vtkGLSArrayNames::Scales) : nullptr;
+  if (!a || a->GetNumberOfComponents() != 1)
+  {
+    return scales;
+  }
+  for (vtkIdType k = 0; k < a->GetNumberOfTuples(); ++k)
+  {
+    scales.push_back(a->GetComponent(k, 0));
+  }
+  if (!gls::checkScaleList(scales).empty())
+  {
+    scales.clear();
+  }
+  return scales;
+}
+
+void vtkGLSScaleFilterBase::NameScaleComponents(vtkDataArray* array, const std::vector<double>& scales, int perScale)
+{
+  static const char* axes[] = { " x", " y", " z" };
+  for (std::size_t k = 0; k < scales.size(); ++k)
+  {
+    for (int c = 0; c < perScale; ++c)
+    {
+      char name[64];
+      std::snprintf(name, sizeof(name), "t=%.4g%s", scales[k], perScale == 3 ? axes[c] : "");
+      array->SetComponentName(static_cast<vtkIdType>(k) * perScale + c, name);
+    }
+  }
+}
+
+void vtkGLSScaleFilterBase::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ScaleUnits: " << (this->ScaleUnits == ABSOLUTE ? "Absolute" : "RelativeToDiagonal") << "\n";
+  os << indent << "MinScale: " << this->MinScale << "\n";
+  os << indent << "MaxScale: " << this->MaxScale << "\n";
+  os << indent << "NumberOfScales: " << this->NumberOfScales << "\n";
+  os << indent << "ScaleSampling: " << this->ScaleSampling << "\n";
+  os << indent << "ExplicitScales: " << this->ExplicitScales.size() << "\n";
+  os << indent << "MinimumNeighbors: " << this->MinimumNeighbors << "\n";
+  os << indent << "WTau, WEta, WKappa: " << this->WTau << ", " << this->WEta << ", " << this->WKappa << "\n";
+  os << indent << "ReuseInputScaleSpace: " << this->ReuseInputScaleSpace << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+}

@@ -1,0 +1,201 @@
+/**
+ * @class   vtkGLSScaleFilterBase
+ * @brief   Common parameters and plumbing of the Growing Least Squares filters that work over a range of scales.
+ *
+ * A scale t is the radius of the compact weight (d^2/t^2 - 1)^2 of the GLS fit, a length. The scales are either an
+ * explicit list (AddScale) or NumberOfScales values from MinScale to MaxScale with the chosen ScaleSampling. With
+ * ScaleUnits = RELATIVE_TO_DIAGONAL (the default) every scale given to the filter is a fraction of the input's
+ * bounding-box diagonal; with ABSOLUTE it is a length in the input's units. The absolute scales actually used are
+ * always written to the output's field data array `GLSScales`.
+ *
+ * Inputs: a vtkPolyData (only its points are used) with oriented normals: the array selected with
+ * SetInputArrayToProcess(0, ...), by default the active point normals (run vtkGLSNormalEstimation first if there are
+ * none). Normals need not be unit (they are normalized); points with non-finite coordinates or with zero or
+ * non-finite normals are left out of every neighbourhood; points with non-finite coordinates get NaN results.
+ *
+ * Bad parameters (MinScale <= 0, MinScale > MaxScale, NumberOfScales < 1, a non-increasing explicit list), missing
+ * or mis-sized normals and empty input give a vtkErrorMacro and RequestData returns 0. The filters report progress
+ * and stop early when aborted (the output then carries the input only, no partial arrays).
+ */
+#ifndef vtkGLSScaleFilterBase_h
+#define vtkGLSScaleFilterBase_h
+
+#include "vtkGLSFiltersModule.h"
+#include "vtkPolyDataAlgorithm.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+class vtkFieldData;
+class vtkPolyData;
+
+namespace gls
+{
+class ScaleSampleSink;
+}
+
+class VTKGLSFILTERS_EXPORT vtkGLSScaleFilterBase : public vtkPolyDataAlgorithm
+{
+public:
+  vtkTypeMacro(vtkGLSScaleFilterBase, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum ScaleUnitsType
+  {
+    ABSOLUTE = 0,            ///< scales are lengths in the input's units
+    RELATIVE_TO_DIAGONAL = 1 ///< scales are fractions of the input bounding-box diagonal
+  };
+  enum ScaleSamplingType
+  {
+    LINEAR = 0,     ///< t_k = min + (max - min) k / (S - 1)
+    QUADRATIC = 1,  ///< t_k = min + (max - min) (k / (S - 1))^2, the paper's sampling
+    LOGARITHMIC = 2 ///< t_k = min (max / min)^(k / (S - 1))
+  };
+
+  ///@{
+  /// How MinScale, MaxScale, the explicit scales and (for the dissimilarity) the prior range are read.
+  /// Default RELATIVE_TO_DIAGONAL.
+  vtkSetClampMacro(ScaleUnits, int, ABSOLUTE, RELATIVE_TO_DIAGONAL);
+  vtkGetMacro(ScaleUnits, int);
+  void SetScaleUnitsToAbsolute() { this->SetScaleUnits(ABSOLUTE); }
+  void SetScaleUnitsToRelativeToDiagonal() { this->SetScaleUnits(RELATIVE_TO_DIAGONAL); }
+  ///@}
+
+  ///@{
+  /// Smallest and largest scale (see ScaleUnits). Defaults 0.008 and 0.08 (0.8% and 8% of the diagonal).
+  vtkSetMacro(MinScale, double);
+  vtkGetMacro(MinScale, double);
+  vtkSetMacro(MaxScale, double);
+  vtkGetMacro(MaxScale, double);
+  ///@}
+
+  ///@{
+  /// Number of sampled scales (default 20). With 1, the single scale is MinScale.
+  vtkSetMacro(NumberOfScales, int);
+  vtkGetMacro(NumberOfScales, int);
+  ///@}
+
+  ///@{
+  /// Spacing of the sampled scales (default QUADRATIC).
+  vtkSetClampMacro(ScaleSampling, int, LINEAR, LOGARITHMIC);
+  vtkGetMacro(ScaleSampling, int);
+  void SetScaleSamplingToLinear() { this->SetScaleSampling(LINEAR); }
+  void SetScaleSamplingToQuadratic() { this->SetScaleSampling(QUADRATIC); }
+  void SetScaleSamplingToLogarithmic() { this->SetScaleSampling(LOGARITHMIC); }
+  ///@}
+
+  ///@{
+  /// An explicit list of scales (see ScaleUnits), used instead of Min/Max/Number/Sampling when not empty. Must be
+  /// strictly increasing.
+  void AddScale(double scale);
+  void RemoveAllScales();
+  int GetNumberOfExplicitScales() const { return static_cast<int>(this->ExplicitScales.size()); }
+  double GetExplicitScale(int i) const { return this->ExplicitScales.at(static_cast<std::size_t>(i)); }
+  ///@}
+
+  ///@{
+  /// Fits with fewer neighbours strictly inside the ball are NaN. 0 (default) = automatic: 6 for 3D input, 3 for a
+  /// 2D curve (all points in the plane z = const with normals in that plane).
+  vtkSetClampMacro(MinimumNeighbors, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MinimumNeighbors, int);
+  ///@}
+
+  ///@{
+  /// Weights of the three terms of the geometric variation nu (dimensionless, default 1). Used by the filters that
+  /// compute nu (vtkGLSGeometricVariation, vtkGLSContinuousFeatures); ignored by the others.
+  vtkSetClampMacro(WTau, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(WTau, double);
+  vtkSetClampMacro(WEta, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(WEta, double);
+  vtkSetClampMacro(WKappa, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(WKappa, double);
+  ///@}
+
+  ///@{
+  /// When on (default), a filter that finds the per-scale arrays of an upstream vtkGLSScaleSpace (and its
+  /// GLSScales field data) uses them and their scales instead of refitting; this filter's own scale parameters are
+  /// then ignored. Turn off to always refit at this filter's scales.
+  vtkSetMacro(ReuseInputScaleSpace, bool);
+  vtkGetMacro(ReuseInputScaleSpace, bool);
+  vtkBooleanMacro(ReuseInputScaleSpace, bool);
+  ///@}
+
+  ///@{
+  /// Worker threads (0 = all hardware threads, the default). Results are bitwise identical for any value.
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  /// The absolute scales this filter would use for the given input, or an empty vector (and an error) when the
+  /// parameters are invalid.
+  std::vector<double> ComputeAbsoluteScales(vtkPolyData* input);
+
+protected:
+  vtkGLSScaleFilterBase();
+  ~vtkGLSScaleFilterBase() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /// Converts a length given in ScaleUnits into an absolute length for this input.
+  double ToAbsoluteLength(vtkPolyData* input, double value) const;
+
+  /// Copies the points and the selected normals into double buffers; false (with an error) when the input is empty
+  /// or the normals are missing or mis-sized.
+  bool GatherPointsAndNormals(vtkPolyData* input, std::vector<double>& points, std::vector<double>& normals);
+
+  /// MinimumNeighbors, resolved for this input (see MinimumNeighbors).
+  double ResolveMinimumNeighbors(const std::vector<double>& points, const std::vector<double>& normals) const;
+
+  /// Chooses where the samples of RunScaleSamples come from: the arrays a vtkGLSScaleSpace upstream stored (when
+  /// ReuseInputScaleSpace is on and GLSScales plus every array named by needDescriptors -- GLSTau, GLSKappa,
+  /// GLSFitness -- and needDerivatives -- GLSdTau, GLSdKappa, GLSdEta -- are present), else a fit of points and
+  /// normals at this filter's scales. `scales` receives the absolute scales. False (with an error) on bad input.
+  bool PrepareScaleSamples(
+    vtkPolyData* input, bool needDescriptors, bool needDerivatives, std::vector<double>& scales);
+
+  /// Feeds the sink with the samples of the given points (all when ids is null), on all threads, reporting progress
+  /// from progressBegin to progressEnd. Returns false if aborted. Call PrepareScaleSamples first.
+  bool RunScaleSamples(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids = nullptr,
+    double progressBegin = 0.0, double progressEnd = 1.0);
+
+  /// Whether the last PrepareScaleSamples chose the stored arrays.
+  bool UsesStoredScaleSpace() const;
+
+  /// Output = input (shallow) with its own field data, ready for new arrays.
+  static void PrepareOutput(vtkPolyData* input, vtkPolyData* output);
+
+  /// Writes `scales` as the field-data array GLSScales.
+  static void StoreScales(vtkFieldData* fd, const std::vector<double>& scales);
+
+  /// Reads GLSScales from the field data; empty if absent or invalid.
+  static std::vector<double> ReadStoredScales(vtkFieldData* fd);
+
+  /// Names the components "t=<scale>" (several components per scale get "t=<scale> x|y|z").
+  static void NameScaleComponents(vtkDataArray* array, const std::vector<double>& scales, int perScale);
+
+  /// Progress and abort glue for the core: maps [0, 1] to [begin, end] of this filter's progress.
+  bool ReportProgress(double fraction, double begin, double end);
+
+  int ScaleUnits;
+  double MinScale;
+  double MaxScale;
+  int NumberOfScales;
+  int ScaleSampling;
+  std::vector<double> ExplicitScales;
+  int MinimumNeighbors;
+  double WTau;
+  double WEta;
+  double WKappa;
+  bool ReuseInputScaleSpace;
+  int NumberOfThreads;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Source;
+
+  vtkGLSScaleFilterBase(const vtkGLSScaleFilterBase&) = delete;
+  void operator=(const vtkGLSScaleFilterBase&) = delete;
+};
+
+#endif

@@ -1,0 +1,76 @@
+/**
+ * @class   vtkGLSScaleSpace
+ * @brief   Growing Least Squares scale space: the algebraic sphere fitted at every point and every scale.
+ *
+ * For each input point p and each scale t (see vtkGLSScaleFilterBase for the scales, units and normals), fits an
+ * oriented algebraic sphere to the neighbours within distance t with the weight (d^2/t^2 - 1)^2 (Mellado et al.,
+ * SGP 2012), Pratt-normalized, and its exact analytic derivatives in t. All scales of a point come from one gather
+ * of its neighbours (moment formulation), in double precision and local coordinates.
+ *
+ * Point-data outputs (one component per scale, named "t=<scale>"; 3-vector arrays scale-major: x, y, z of t_0,
+ * then of t_1, ...):
+ * - GLSTau (length): signed offset from p to the fitted surface, positive on the side the normals point to.
+ * - GLSEta (3 per scale, unit): normal of the fitted field at p.
+ * - GLSKappa (1/length): signed curvature, 1/radius, positive for a sphere with outward normals, 0 for a plane.
+ * - GLSFitness (dimensionless, [0, 1]): the paper's phi (Ponca's fitness() is 1 - phi).
+ * - GLSdTau (dimensionless), GLSdEta (1/length, 3 per scale), GLSdKappa (1/length^2): derivatives in t.
+ * - GLSNeighborCount (integer): neighbours strictly inside the ball of radius t.
+ * Field data: GLSScales, the absolute scales (length).
+ * A fit that is undefined (fewer than MinimumNeighbors neighbours, all normals cancelling, non-finite point) is NaN
+ * in every output for that point and scale.
+ */
+#ifndef vtkGLSScaleSpace_h
+#define vtkGLSScaleSpace_h
+
+#include "vtkGLSFiltersModule.h"
+#include "vtkGLSScaleFilterBase.h"
+
+class VTKGLSFILTERS_EXPORT vtkGLSScaleSpace : public vtkGLSScaleFilterBase
+{
+public:
+  static vtkGLSScaleSpace* New();
+  vtkTypeMacro(vtkGLSScaleSpace, vtkGLSScaleFilterBase);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Which arrays to write (all on by default); turn off those you do not need to save memory.
+  /// StoreDerivatives covers GLSdTau, GLSdEta and GLSdKappa.
+  vtkSetMacro(StoreTau, bool);
+  vtkGetMacro(StoreTau, bool);
+  vtkBooleanMacro(StoreTau, bool);
+  vtkSetMacro(StoreEta, bool);
+  vtkGetMacro(StoreEta, bool);
+  vtkBooleanMacro(StoreEta, bool);
+  vtkSetMacro(StoreKappa, bool);
+  vtkGetMacro(StoreKappa, bool);
+  vtkBooleanMacro(StoreKappa, bool);
+  vtkSetMacro(StoreFitness, bool);
+  vtkGetMacro(StoreFitness, bool);
+  vtkBooleanMacro(StoreFitness, bool);
+  vtkSetMacro(StoreDerivatives, bool);
+  vtkGetMacro(StoreDerivatives, bool);
+  vtkBooleanMacro(StoreDerivatives, bool);
+  vtkSetMacro(StoreNeighborCount, bool);
+  vtkGetMacro(StoreNeighborCount, bool);
+  vtkBooleanMacro(StoreNeighborCount, bool);
+  ///@}
+
+protected:
+  vtkGLSScaleSpace();
+  ~vtkGLSScaleSpace() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  bool StoreTau;
+  bool StoreEta;
+  bool StoreKappa;
+  bool StoreFitness;
+  bool StoreDerivatives;
+  bool StoreNeighborCount;
+
+private:
+  vtkGLSScaleSpace(const vtkGLSScaleSpace&) = delete;
+  void operator=(const vtkGLSScaleSpace&) = delete;
+};
+
+#endif

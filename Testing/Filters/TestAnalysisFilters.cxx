@@ -1,0 +1,343 @@
+// vtkGLSGeometricVariation, vtkGLSContinuousFeatures, vtkGLSMultiScaleDissimilarity: analytic sphere, the bunny
+// scan, agreement between the fused path and the path through stored arrays, formulas recomputed from the stored
+// descriptors, bad input.
+#include "FilterTestUtilities.h"
+
+#include "vtkGLSContinuousFeatures.h"
+#include "vtkGLSGeometricVariation.h"
+#include "vtkGLSMultiScaleDissimilarity.h"
+#include "vtkGLSNormalEstimation.h"
+#include "vtkGLSScaleSpace.h"
+
+#include "vtkIdTypeArray.h"
+#include "vtkPointData.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace glstest;
+
+namespace
+{
+
+/// The bunny with estimated normals, computed once.
+vtkPolyData* bunnyWithNormals()
+{
+  static vtkSmartPointer<vtkPolyData> cached;
+  if (!cached)
+  {
+    vtkNew<vtkGLSNormalEstimation> n;
+    n->SetInputData(bunnyCloud());
+    n->Update();
+    cached = vtkSmartPointer<vtkPolyData>::New();
+    cached->ShallowCopy(n->GetOutput());
+  }
+  return cached;
+}
+
+/// The bunny scale space (default scales: 20 quadratic, 0.8% to 8% of the diagonal), computed once.
+vtkPolyData* bunnyScaleSpace()
+{
+  static vtkSmartPointer<vtkPolyData> cached;
+  if (!cached)
+  {
+    vtkNew<vtkGLSScaleSpace> s;
+    s->SetInputData(bunnyWithNormals());
+    s->Update();
+    cached = vtkSmartPointer<vtkPolyData>::New();
+    cached->ShallowCopy(s->GetOutput());
+  }
+  return cached;
+}
+
+template <typename Filter>
+vtkSmartPointer<vtkPolyData> run(Filter* f, vtkPolyData* input)
+{
+  f->SetInputData(input);
+  f->Update();
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(f->GetOutput());
+  return out;
+}
+
+bool sameOrBothNaN(double a, double b)
+{
+  return (std::isnan(a) && std::isnan(b)) || a == b;
+}
+
+} // namespace
+
+TEST(GeometricVariationFilter, SphereHasZeroVariationAndNoPertinentScale)
+{
+  const Cloud c = sphere(3000, 1.0);
+  vtkNew<vtkGLSGeometricVariation> f;
+  f->SetScaleUnitsToAbsolute();
+  f->SetMinScale(0.2);
+  f->SetMaxScale(1.2);
+  f->SetNumberOfScales(8);
+  auto out = run(f.Get(), makePolyData(c));
+  const auto nu = pointArray(out, "GLSGeometricVariation");
+  ASSERT_EQ(nu.size(), 3000u * 8);
+  for (double v : nu)
+  {
+    ASSERT_NEAR(v, 0.0, 1e-12);
+  }
+  const auto count = pointArray(out, "GLSPertinentScaleCount");
+  EXPECT_EQ(*std::max_element(count.begin(), count.end()), 0.0);
+  const auto pertinent = pointArray(out, "GLSPertinentScales");
+  EXPECT_TRUE(std::all_of(pertinent.begin(), pertinent.end(), [](double v) { return std::isnan(v); }));
+}
+
+TEST(GeometricVariationFilter, BunnyVariationFromStoredArraysEqualsFusedAndFollowsEquation5)
+{
+  vtkNew<vtkGLSGeometricVariation> fused;
+  auto a = run(fused.Get(), bunnyWithNormals());
+  vtkNew<vtkGLSGeometricVariation> stored;
+  auto b = run(stored.Get(), bunnyScaleSpace());
+  const auto nuA = pointArray(a, "GLSGeometricVariation");
+  const auto nuB = pointArray(b, "GLSGeometricVariation");
+  ASSERT_EQ(nuA.size(), nuB.size());
+  for (std::size_t i = 0; i < nuA.size(); ++i)
+  {
+    ASSERT_TRUE(sameOrBothNaN(nuA[i], nuB[i])) << i;
+  }
+  // Recompute nu from the stored derivatives with other weights.
+  vtkNew<vtkGLSGeometricVariation> weighted;
+  weighted->SetWTau(2.0);
+  weighted->SetWEta(0.5);
+  weighted->SetWKappa(3.0);
+  auto w = run(weighted.Get(), bunnyScaleSpace());
+  const auto nuW = pointArray(w, "GLSGeometricVariation");
+  const auto scales = fieldArray(bunnyScaleSpace(), "GLSScales");
+  const auto dtau = pointArray(bunnyScaleSpace(), "GLSdTau");
+  const auto deta = pointArray(bunnyScaleSpace(), "GLSdEta");
+  const auto dkappa = pointArray(bunnyScaleSpace(), "GLSdKappa");
+  const std::size_t S = scales.size();
+  std::size_t finite = 0;
+  for (std::size_t i = 0; i < nuW.size() / S; i += 7)
+  {
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      const double t = scales[k];
+      const double* e = &deta[3 * (i * S + k)];
+      const double expected = 2.0 * dtau[i * S + k] * dtau[i * S + k] +
+        0.5 * t * t * (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) +
+        3.0 * t * t * t * t * dkappa[i * S + k] * dkappa[i * S + k];
+      if (std::isnan(expected))
+      {
+        ASSERT_TRUE(std::isnan(nuW[i * S + k]));
+        continue;
+      }
+      ++finite;
+      ASSERT_NEAR(nuW[i * S + k], expected, 1e-13 * (1 + expected));
+    }
+  }
+  EXPECT_GT(finite, 90000u);
+
+  // Every reported pertinent scale is a strict local minimum of the output nu.
+  const auto count = pointArray(a, "GLSPertinentScaleCount");
+  const auto pertinent = pointArray(a, "GLSPertinentScales");
+  std::size_t reported = 0;
+  for (std::size_t i = 0; i < count.size(); ++i)
+  {
+    for (int j = 0; j < static_cast<int>(count[i]); ++j)
+    {
+      const auto it = std::find(scales.begin(), scales.end(), pertinent[3 * i + j]);
+      ASSERT_NE(it, scales.end());
+      const std::size_t k = static_cast<std::size_t>(it - scales.begin());
+      ASSERT_TRUE(k > 0 && k + 1 < S);
+      ASSERT_LT(nuA[i * S + k], nuA[i * S + k - 1]);
+      ASSERT_LE(nuA[i * S + k], nuA[i * S + k + 1]);
+      ++reported;
+    }
+  }
+  EXPECT_GT(reported, count.size() / 2); // most points of a real scan have a pertinent scale
+}
+
+TEST(ContinuousFeaturesFilter, SphereIsZeroAndBunnySpreadsOverTheUnitInterval)
+{
+  const Cloud c = sphere(3000, 1.0);
+  vtkNew<vtkGLSContinuousFeatures> f;
+  f->SetNumberOfScales(6);
+  f->SetMinScale(0.05);
+  f->SetMaxScale(0.4);
+  auto s = run(f.Get(), makePolyData(c));
+  for (double v : pointArray(s, "GLSFeature"))
+  {
+    ASSERT_NEAR(v, 0.0, 1e-12);
+  }
+
+  vtkNew<vtkGLSContinuousFeatures> fused;
+  auto a = run(fused.Get(), bunnyWithNormals());
+  const auto fa = pointArray(a, "GLSFeature");
+  vtkNew<vtkGLSContinuousFeatures> fromDerivatives;
+  auto b = run(fromDerivatives.Get(), bunnyScaleSpace());
+  vtkNew<vtkGLSGeometricVariation> variation;
+  auto nu = run(variation.Get(), bunnyScaleSpace());
+  vtkNew<vtkGLSContinuousFeatures> fromNu;
+  auto c2 = run(fromNu.Get(), nu);
+  const auto fb = pointArray(b, "GLSFeature");
+  const auto fc = pointArray(c2, "GLSFeature");
+  ASSERT_EQ(fa.size(), 35947u);
+  double lo = 1.0, hi = 0.0;
+  for (std::size_t i = 0; i < fa.size(); ++i)
+  {
+    ASSERT_TRUE(sameOrBothNaN(fa[i], fb[i])) << i;
+    ASSERT_TRUE(sameOrBothNaN(fa[i], fc[i])) << i;
+    if (!std::isnan(fa[i]))
+    {
+      ASSERT_GE(fa[i], 0.0);
+      ASSERT_LE(fa[i], 1.0);
+      lo = std::min(lo, fa[i]);
+      hi = std::max(hi, fa[i]);
+    }
+  }
+  EXPECT_LT(lo, 0.05);
+  EXPECT_GT(hi, 0.8);
+
+  // Log measure on the stored nu: recompute one point by hand (trapezoid in ln t).
+  vtkNew<vtkGLSContinuousFeatures> logf;
+  logf->SetFeatureMeasureToLogScale();
+  logf->SetSigma(0.5);
+  auto l = run(logf.Get(), nu);
+  const auto scales = fieldArray(nu, "GLSScales");
+  const auto nuv = pointArray(nu, "GLSGeometricVariation");
+  const std::size_t S = scales.size(), p = 1234;
+  double integral = 0, length = 0;
+  for (std::size_t k = 0; k + 1 < S; ++k)
+  {
+    const double h = std::log(scales[k + 1] / scales[k]);
+    integral += 0.5 * h * (std::tanh(nuv[p * S + k] / 0.5) + std::tanh(nuv[p * S + k + 1] / 0.5));
+    length += h;
+  }
+  EXPECT_NEAR(pointArray(l, "GLSFeature")[p], integral / length, 1e-14);
+}
+
+TEST(DissimilarityFilter, SphereIsUniformAndTheQueryIsSimilarToItself)
+{
+  const Cloud c = sphere(3000, 1.0);
+  vtkNew<vtkGLSMultiScaleDissimilarity> f;
+  f->SetQueryPointId(17);
+  auto out = run(f.Get(), makePolyData(c));
+  const auto d = pointArray(out, "GLSDissimilarity");
+  const auto similar = pointArray(out, "GLSSimilar");
+  for (std::size_t i = 0; i < d.size(); ++i)
+  {
+    ASSERT_NEAR(d[i], 0.0, 1e-18);
+    ASSERT_EQ(similar[i], 1.0);
+  }
+  EXPECT_EQ(fieldArray(out, "GLSQueryPointId"), std::vector<double>{ 17.0 });
+}
+
+TEST(DissimilarityFilter, BunnyFusedEqualsStoredAndFollowsEquation6)
+{
+  const vtkIdType query = 4242;
+  vtkNew<vtkGLSMultiScaleDissimilarity> fused;
+  fused->SetQueryPointId(query);
+  fused->SetPriorMinScale(0.02);
+  fused->SetPriorMaxScale(0.06);
+  auto a = run(fused.Get(), bunnyWithNormals());
+  vtkNew<vtkGLSMultiScaleDissimilarity> stored;
+  stored->SetQueryPointId(query);
+  stored->SetPriorMinScale(0.02);
+  stored->SetPriorMaxScale(0.06);
+  auto b = run(stored.Get(), bunnyScaleSpace());
+  const auto da = pointArray(a, "GLSDissimilarity");
+  const auto db = pointArray(b, "GLSDissimilarity");
+  ASSERT_EQ(da.size(), 35947u);
+  EXPECT_EQ(da[query], 0.0);
+  for (std::size_t i = 0; i < da.size(); ++i)
+  {
+    ASSERT_TRUE(sameOrBothNaN(da[i], db[i])) << i;
+  }
+
+  // Recompute Delta(q, p) for a few points from the stored tau, kappa, phi with the box prior.
+  vtkPolyData* ss = bunnyScaleSpace();
+  const auto scales = fieldArray(ss, "GLSScales");
+  const auto tau = pointArray(ss, "GLSTau");
+  const auto kappa = pointArray(ss, "GLSKappa");
+  const auto phi = pointArray(ss, "GLSFitness");
+  double bounds[6];
+  ss->GetBounds(bounds);
+  const double diag = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  const std::size_t S = scales.size();
+  std::size_t similar = 0;
+  const auto flags = pointArray(a, "GLSSimilar");
+  for (std::size_t p = 0; p < da.size(); p += 97)
+  {
+    double sum = 0, weight = 0;
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      if (scales[k] < 0.02 * diag || scales[k] > 0.06 * diag)
+      {
+        continue;
+      }
+      const double t = scales[k];
+      const std::size_t q = static_cast<std::size_t>(query) * S + k, o = p * S + k;
+      const double d = std::pow(tau[q] / t - tau[o] / t, 2) + std::pow(t * kappa[q] - t * kappa[o], 2) +
+        std::pow(phi[q] - phi[o], 2);
+      if (!std::isnan(d))
+      {
+        sum += d;
+        weight += 1.0;
+      }
+    }
+    ASSERT_NEAR(da[p], sum / weight, 1e-12 * (1 + sum / weight)) << p;
+    ASSERT_EQ(flags[p], da[p] < 0.01 ? 1.0 : 0.0);
+    similar += flags[p] > 0 ? 1 : 0;
+  }
+  EXPECT_GT(similar, 0u);
+  EXPECT_LT(similar, da.size() / 97);
+}
+
+TEST(DissimilarityFilter, QueryByCoordinatesSnapsToTheNearestPoint)
+{
+  vtkPolyData* ss = bunnyScaleSpace();
+  double p[3];
+  ss->GetPoint(1000, p);
+  vtkNew<vtkGLSMultiScaleDissimilarity> f;
+  f->UseQueryPointCoordinatesOn();
+  f->SetQueryPoint(p[0] + 1e-6, p[1], p[2]);
+  f->SetPriorShapeToLogGaussian();
+  auto out = run(f.Get(), ss);
+  EXPECT_EQ(fieldArray(out, "GLSQueryPointId"), std::vector<double>{ 1000.0 });
+  EXPECT_EQ(pointArray(out, "GLSDissimilarity")[1000], 0.0);
+}
+
+TEST(DissimilarityFilter, BadQueryAndPriorGiveClearErrors)
+{
+  const Cloud c = sphere(500, 1.0);
+  vtkNew<vtkGLSMultiScaleDissimilarity> f;
+  auto errors = catchErrors(f);
+  f->SetInputData(makePolyData(c));
+  f->SetQueryPointId(500);
+  f->Update();
+  EXPECT_NE(errors->Message.find("out of range"), std::string::npos) << errors->Message;
+  f->SetQueryPointId(0);
+  f->SetPriorMinScale(2.0);
+  f->SetPriorMaxScale(3.0);
+  f->Update();
+  EXPECT_NE(errors->Message.find("prior"), std::string::npos) << errors->Message;
+  EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray("GLSDissimilarity"), nullptr);
+}
+
+TEST(AnalysisFilters, MissingNormalsAndEmptyInputGiveClearErrors)
+{
+  const Cloud c = sphere(200, 1.0);
+  vtkNew<vtkGLSGeometricVariation> v;
+  auto ev = catchErrors(v);
+  run(v.Get(), makePolyData(c.points, {}));
+  EXPECT_NE(ev->Message.find("no normals"), std::string::npos) << ev->Message;
+  vtkNew<vtkGLSContinuousFeatures> f;
+  auto ef = catchErrors(f);
+  run(f.Get(), makePolyData(std::vector<double>{}, {}));
+  EXPECT_NE(ef->Message.find("no points"), std::string::npos) << ef->Message;
+  vtkNew<vtkGLSMultiScaleDissimilarity> d;
+  auto ed = catchErrors(d);
+  d->SetMinScale(-1.0);
+  run(d.Get(), makePolyData(c));
+  EXPECT_NE(ed->Message.find("MinScale"), std::string::npos) << ed->Message;
+}

@@ -1,0 +1,123 @@
+// vtkGLSNormalEstimation: analytic sphere, the bunny scan against its mesh normals, bad input.
+#include "FilterTestUtilities.h"
+
+#include "vtkGLSNormalEstimation.h"
+
+#include "vtkPointData.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace glstest;
+
+TEST(NormalEstimationFilter, SphereNormalsPointOutward)
+{
+  const Cloud c = sphere(3000, 1.5, false, 0.3, 0.2, -0.1);
+  vtkNew<vtkGLSNormalEstimation> f;
+  f->SetInputData(makePolyData(c.points, {}));
+  f->Update();
+  vtkDataArray* n = f->GetOutput()->GetPointData()->GetNormals();
+  ASSERT_NE(n, nullptr);
+  EXPECT_STREQ(n->GetName(), "Normals");
+  for (vtkIdType i = 0; i < n->GetNumberOfTuples(); ++i)
+  {
+    double v[3];
+    n->GetTuple(i, v);
+    ASSERT_GT(v[0] * c.normals[3 * i] + v[1] * c.normals[3 * i + 1] + v[2] * c.normals[3 * i + 2], 0.999) << i;
+  }
+}
+
+TEST(NormalEstimationFilter, BunnyAgreesWithMeshNormals)
+{
+  auto mesh = bunnyMeshWithNormals();
+  vtkDataArray* reference = mesh->GetPointData()->GetNormals();
+  ASSERT_NE(reference, nullptr);
+  for (int mode : { vtkGLSNormalEstimation::K_NEAREST, vtkGLSNormalEstimation::RADIUS })
+  {
+    vtkNew<vtkGLSNormalEstimation> f;
+    f->SetInputData(bunnyCloud());
+    f->SetNeighborhoodType(mode);
+    f->SetRadius(0.004); // about 20 neighbours on this scan
+    f->Update();
+    vtkDataArray* n = f->GetOutput()->GetPointData()->GetNormals();
+    ASSERT_EQ(n->GetNumberOfTuples(), reference->GetNumberOfTuples());
+    vtkIdType agree = 0, defined = 0;
+    for (vtkIdType i = 0; i < n->GetNumberOfTuples(); ++i)
+    {
+      double a[3], b[3];
+      n->GetTuple(i, a);
+      reference->GetTuple(i, b);
+      if (std::isnan(a[0]) || b[0] * b[0] + b[1] * b[1] + b[2] * b[2] < 0.5)
+      {
+        continue; // undefined here, or a vertex no face uses (it has no mesh normal)
+      }
+      ++defined;
+      agree += (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) > 0.0 ? 1 : 0;
+    }
+    EXPECT_GT(defined, n->GetNumberOfTuples() * 0.95) << "mode " << mode;
+    EXPECT_GT(static_cast<double>(agree) / static_cast<double>(defined), 0.99) << "mode " << mode;
+  }
+}
+
+TEST(NormalEstimationFilter, AgreeWithExistingAndViewpoint)
+{
+  const Cloud c = sphere(2000, 1.0);
+  std::vector<double> inward(c.normals);
+  for (double& v : inward)
+  {
+    v = -v;
+  }
+  vtkNew<vtkGLSNormalEstimation> f;
+  f->SetInputData(makePolyData(c.points, inward));
+  f->SetOrientationToAgreeWithExisting();
+  f->Update();
+  vtkDataArray* n = f->GetOutput()->GetPointData()->GetNormals();
+  for (vtkIdType i = 0; i < n->GetNumberOfTuples(); i += 7)
+  {
+    double v[3];
+    n->GetTuple(i, v);
+    ASSERT_LT(v[0] * c.normals[3 * i] + v[1] * c.normals[3 * i + 1] + v[2] * c.normals[3 * i + 2], -0.999);
+  }
+  f->SetOrientationToTowardsPoint();
+  f->SetOrientationPoint(0, 0, 0);
+  f->Update();
+  n = f->GetOutput()->GetPointData()->GetNormals();
+  for (vtkIdType i = 0; i < n->GetNumberOfTuples(); i += 7)
+  {
+    double v[3];
+    n->GetTuple(i, v);
+    ASSERT_LT(v[0] * c.normals[3 * i] + v[1] * c.normals[3 * i + 1] + v[2] * c.normals[3 * i + 2], -0.999);
+  }
+}
+
+TEST(NormalEstimationFilter, BadInputGivesClearErrors)
+{
+  vtkNew<vtkGLSNormalEstimation> f;
+  auto errors = catchErrors(f);
+  f->SetInputData(makePolyData(std::vector<double>{}, {}));
+  f->Update();
+  EXPECT_EQ(errors->Count, 1);
+  EXPECT_NE(errors->Message.find("no points"), std::string::npos) << errors->Message;
+
+  const Cloud c = sphere(100, 1.0);
+  f->SetInputData(makePolyData(c.points, {}));
+  f->SetNeighborhoodTypeToRadius();
+  f->SetRadius(0.0);
+  f->Update();
+  EXPECT_EQ(errors->Count, 2);
+  EXPECT_NE(errors->Message.find("Radius"), std::string::npos) << errors->Message;
+
+  f->SetNeighborhoodTypeToKNearest();
+  f->SetOrientationToAgreeWithExisting();
+  f->Update();
+  EXPECT_EQ(errors->Count, 3);
+  EXPECT_NE(errors->Message.find("AGREE_WITH_EXISTING"), std::string::npos) << errors->Message;
+
+  // Two points: too few neighbours, NaN normals, no error.
+  f->SetOrientationToNone();
+  f->SetInputData(makePolyData(std::vector<double>{ 0, 0, 0, 1, 0, 0 }, {}));
+  f->Update();
+  EXPECT_EQ(errors->Count, 3);
+  EXPECT_TRUE(std::isnan(f->GetOutput()->GetPointData()->GetNormals()->GetComponent(0, 0)));
+}
