@@ -10,41 +10,10 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
-#include "gls/Descriptors.h"
-#include "gls/ScaleAnalysis.h"
-#include "gls/ScaleSpaceEngine.h"
+#include "gls/FeatureSink.h"
 
 vtkStandardNewMacro(vtkGLSContinuousFeatures);
 
-namespace
-{
-
-/// nu of one point from its samples, then f; nu lives in a per-thread buffer only.
-class FeatureSink : public gls::ScaleSampleSink
-{
-public:
-  const std::vector<double>* Scales = nullptr;
-  gls::VariationWeights Weights;
-  double Sigma = 0.1;
-  gls::FeatureMeasure Measure = gls::FeatureMeasure::Scale;
-  double* Feature = nullptr;
-  std::vector<std::vector<double>> Nu; // one buffer per thread
-
-  void consume(std::uint64_t id, const gls::ScaleSample* s, int thread) override
-  {
-    const std::size_t S = this->Scales->size();
-    std::vector<double>& nu = this->Nu[thread];
-    nu.resize(S);
-    for (std::size_t k = 0; k < S; ++k)
-    {
-      nu[k] = gls::geometricVariation(s[k], (*this->Scales)[k], this->Weights);
-    }
-    this->Feature[id] =
-      gls::continuousFeature(nu.data(), this->Scales->data(), static_cast<int>(S), this->Sigma, this->Measure);
-  }
-};
-
-} // namespace
 
 vtkGLSContinuousFeatures::vtkGLSContinuousFeatures()
   : Sigma(0.1)
@@ -96,13 +65,8 @@ int vtkGLSContinuousFeatures::RequestData(
     {
       return 0;
     }
-    FeatureSink sink;
-    sink.Scales = &scales;
-    sink.Weights = { this->WTau, this->WEta, this->WKappa };
-    sink.Sigma = this->Sigma;
-    sink.Measure = measure;
-    sink.Feature = feature->GetPointer(0);
-    sink.Nu.resize(static_cast<std::size_t>(gls::resolveThreadCount(this->NumberOfThreads)));
+    gls::ContinuousFeatureSink sink(scales, gls::resolveThreadCount(this->NumberOfThreads),
+      { this->WTau, this->WEta, this->WKappa }, this->Sigma, measure, feature->GetPointer(0));
     if (!this->RunScaleSamples(sink))
     {
       return 1; // aborted: no partial arrays
