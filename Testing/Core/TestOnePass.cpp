@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <random>
 
 using namespace glstest;
 
@@ -97,6 +98,47 @@ TEST(OnePass, ResultsAreBitwiseIdenticalForAnyThreadCount)
       const double vb[] = { b.tau, b.kappa, b.phi, b.dtau, b.dkappa, b.eta.x, b.eta.y, b.eta.z, b.deta.x,
         b.deta.y, b.deta.z, b.neighbors };
       ASSERT_EQ(0, std::memcmp(va, vb, sizeof(va))) << "sample " << i << " with " << threads << " threads";
+    }
+  }
+}
+
+TEST(OnePass, BinningTableAgreesWithBinarySearch)
+{
+  // Quadratic, logarithmic and irregular scale lists; random squared distances inside the largest ball.
+  const std::vector<std::vector<double>> lists = { gls::sampleScales(0.01, 1.0, 20, gls::ScaleSampling::Quadratic),
+    gls::sampleScales(1e-4, 1.0, 300, gls::ScaleSampling::Logarithmic), { 0.5, 0.50000001, 0.9, 3.0 }, { 2.0 } };
+  std::mt19937_64 rng(3);
+  for (const auto& scales : lists)
+  {
+    gls::ScaleSpaceSettings settings;
+    settings.scales = scales;
+    const std::vector<double> xyz = { 0, 0, 0 }, nrm = { 0, 0, 1 };
+    std::vector<double> squared;
+    for (double t : scales)
+    {
+      squared.push_back(t * t);
+    }
+    std::vector<int> table(std::max<std::size_t>(1024, 64 * scales.size()));
+    const double width = squared.back() / table.size();
+    for (std::size_t j = 0; j < table.size(); ++j)
+    {
+      table[j] = gls::firstScaleHoldingBySearch(squared.data(), static_cast<int>(squared.size()), j * width);
+    }
+    gls::ScaleBinning b;
+    b.scales = scales.data();
+    b.squaredScales = squared.data();
+    b.count = static_cast<int>(scales.size());
+    b.table = table.data();
+    b.tableSize = static_cast<int>(table.size());
+    b.inverseCellWidth = table.size() / squared.back();
+    std::uniform_real_distribution<double> u(0.0, squared.back());
+    for (int i = 0; i < 100000; ++i)
+    {
+      const double d2 = i < static_cast<int>(squared.size()) ? squared[i] * (1 - 1e-16) : u(rng);
+      const int k = gls::firstScaleHolding(b, d2);
+      ASSERT_EQ(k, gls::firstScaleHoldingBySearch(squared.data(), b.count, d2)) << d2;
+      ASSERT_LT(d2, squared[k]);
+      ASSERT_TRUE(k == 0 || d2 >= squared[k - 1]);
     }
   }
 }

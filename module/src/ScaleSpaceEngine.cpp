@@ -3,6 +3,7 @@
 #include "gls/Numeric.h"
 #include "gls/PointScaleSpace.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace gls
@@ -24,6 +25,18 @@ ScaleSpaceEngine::ScaleSpaceEngine(
   for (double t : this->Settings.scales)
   {
     this->SquaredScales.push_back(t * t);
+  }
+  // Binning table: 64 cells per scale (at least 1024), each holding the first scale at or beyond its left edge.
+  const int S = static_cast<int>(this->SquaredScales.size());
+  if (S > 0)
+  {
+    const int size = std::max(1024, 64 * S);
+    const double width = this->SquaredScales.back() / size;
+    this->BinTable.resize(static_cast<std::size_t>(size));
+    for (int j = 0; j < size; ++j)
+    {
+      this->BinTable[j] = firstScaleHoldingBySearch(this->SquaredScales.data(), S, j * width);
+    }
   }
   // Unit normals; points whose normal cannot be normalized stay out of every neighbourhood.
   std::vector<double> unitNormals(3 * count, 0.0);
@@ -58,6 +71,18 @@ ScaleSpaceEngine::ScaleSpaceEngine(
   }
 }
 
+ScaleBinning ScaleSpaceEngine::binning() const
+{
+  ScaleBinning b;
+  b.scales = this->Settings.scales.data();
+  b.squaredScales = this->SquaredScales.data();
+  b.count = static_cast<int>(this->SquaredScales.size());
+  b.table = this->BinTable.data();
+  b.tableSize = static_cast<int>(this->BinTable.size());
+  b.inverseCellWidth = b.count > 0 ? b.tableSize / this->SquaredScales.back() : 0.0;
+  return b;
+}
+
 int ScaleSpaceEngine::threadCount() const
 {
   return resolveThreadCount(this->Settings.parallel.threads);
@@ -73,6 +98,7 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
   std::vector<std::vector<Moments>> bins(static_cast<std::size_t>(threads));
   std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(threads));
   const GridView& g = this->Grid.view();
+  const ScaleBinning binning = this->binning();
 
   return parallelFor(order.size(), options, [&](std::size_t begin, std::size_t end, int thread) {
     std::vector<Moments>& b = bins[thread];
@@ -92,8 +118,7 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
       }
       else if (method == EvaluationMethod::OnePass)
       {
-        evaluateAllScales(g, p, this->Settings.scales.data(), this->SquaredScales.data(), S,
-          this->Settings.minNeighbors, b.data(), out.data());
+        evaluateAllScales(g, p, binning, this->Settings.minNeighbors, b.data(), out.data());
       }
       else
       {
@@ -120,8 +145,7 @@ void ScaleSpaceEngine::evaluatePosition(const Vec3& p, std::vector<ScaleSample>&
     }
     return;
   }
-  evaluateAllScales(this->Grid.view(), p, this->Settings.scales.data(), this->SquaredScales.data(), S,
-    this->Settings.minNeighbors, b.data(), out.data());
+  evaluateAllScales(this->Grid.view(), p, this->binning(), this->Settings.minNeighbors, b.data(), out.data());
 }
 
 } // namespace gls

@@ -10,8 +10,34 @@
 namespace gls
 {
 
+/// The sampled scales and a lookup table that bins a squared distance without a data-dependent binary search:
+/// table[j] is the first scale k with squaredScales[k] > j * cellWidth, so the scale of d2 is found from
+/// table[floor(d2 / cellWidth)] by a short forward scan (usually zero or one step).
+struct ScaleBinning
+{
+  const double* scales = nullptr;
+  const double* squaredScales = nullptr;
+  int count = 0;
+  const int* table = nullptr;
+  int tableSize = 0;
+  double inverseCellWidth = 0.0; ///< tableSize / squaredScales[count - 1]
+};
+
 /// Index of the first scale whose open ball holds a neighbour at squared distance d2 (d2 < squaredScales[S-1]).
-GLS_INLINE int firstScaleHolding(const double* squaredScales, int count, double d2)
+GLS_INLINE int firstScaleHolding(const ScaleBinning& b, double d2)
+{
+  int j = static_cast<int>(d2 * b.inverseCellWidth);
+  j = j < b.tableSize ? j : b.tableSize - 1;
+  int k = b.table[j];
+  while (k < b.count - 1 && !(d2 < b.squaredScales[k]))
+  {
+    ++k;
+  }
+  return k;
+}
+
+/// Reference form of firstScaleHolding: binary search (used to build and test the table).
+GLS_INLINE int firstScaleHoldingBySearch(const double* squaredScales, int count, double d2)
 {
   int lo = 0, hi = count - 1; // invariant: the answer is in [lo, hi]
   while (lo < hi)
@@ -30,16 +56,18 @@ GLS_INLINE int firstScaleHolding(const double* squaredScales, int count, double 
 }
 
 /// Fits every scale of the evaluation point p (any position; normally a data point) in one pass.
-/// scales / squaredScales: S increasing scales and their squares; bins: S scratch moment sets; out: S samples.
-GLS_INLINE void evaluateAllScales(const GridView& g, const Vec3& p, const double* scales, const double* squaredScales,
-  int count, double minNeighbors, Moments* bins, ScaleSample* out)
+/// b: the S increasing scales and their binning table; bins: S scratch moment sets; out: S samples.
+GLS_INLINE void evaluateAllScales(
+  const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors, Moments* bins, ScaleSample* out)
 {
+  const int count = b.count;
+  const double* scales = b.scales;
   for (int k = 0; k < count; ++k)
   {
     clearMoments(bins[k]);
   }
   forEachInBall(g, p, scales[count - 1], [&](std::uint64_t i, const Vec3& x, double d2) {
-    addToMoments(bins[firstScaleHolding(squaredScales, count, d2)], x, g.normals[i]);
+    addToMoments(bins[firstScaleHolding(b, d2)], x, g.normals[i]);
   });
   for (int k = 0; k < count; ++k)
   {

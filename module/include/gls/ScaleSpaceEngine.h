@@ -6,6 +6,7 @@
 
 #include "gls/NeighborGrid.h"
 #include "gls/ParallelFor.h"
+#include "gls/PointScaleSpace.h"
 #include "gls/ScaleSample.h"
 
 #include <cstddef>
@@ -57,8 +58,11 @@ public:
   void evaluatePosition(const Vec3& p, std::vector<ScaleSample>& out) const;
 
 private:
+  ScaleBinning binning() const;
+
   ScaleSpaceSettings Settings;
   std::vector<double> SquaredScales;
+  std::vector<int> BinTable;
   std::vector<Vec3> Positions;          ///< all input positions (NaN allowed)
   std::vector<std::uint64_t> Order;     ///< evaluation order: grid order first (locality), then the rest
   NeighborGrid Grid;
