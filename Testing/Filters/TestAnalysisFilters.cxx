@@ -341,3 +341,103 @@ TEST(AnalysisFilters, MissingNormalsAndEmptyInputGiveClearErrors)
   run(d.Get(), makePolyData(c));
   EXPECT_NE(ed->Message.find("MinScale"), std::string::npos) << ed->Message;
 }
+
+TEST(AllFilters, PlaneGivesFlatDescriptorsThroughTheWholePipeline)
+{
+  // A jittered-free grid in z = 0.5: normals +z (towards a point above), kappa 0, tau 0, nu 0, f 0, Delta 0.
+  Cloud c = plane(60, 2.0);
+  for (std::size_t i = 0; i < c.size(); ++i)
+  {
+    c.points[3 * i + 2] = 0.5;
+  }
+  vtkNew<vtkGLSNormalEstimation> normals;
+  normals->SetInputData(makePolyData(c.points, {}));
+  normals->SetOrientationToTowardsPoint();
+  normals->SetOrientationPoint(0, 0, 10);
+  vtkNew<vtkGLSScaleSpace> scales;
+  scales->SetInputConnection(normals->GetOutputPort());
+  scales->SetNumberOfScales(5);
+  scales->SetMinScale(0.03);
+  scales->SetMaxScale(0.15);
+  vtkNew<vtkGLSGeometricVariation> variation;
+  variation->SetInputConnection(scales->GetOutputPort());
+  vtkNew<vtkGLSContinuousFeatures> features;
+  features->SetInputConnection(variation->GetOutputPort());
+  vtkNew<vtkGLSMultiScaleDissimilarity> dissimilarity;
+  dissimilarity->SetInputConnection(features->GetOutputPort());
+  dissimilarity->SetQueryPointId(1234);
+  dissimilarity->Update();
+  vtkPolyData* out = dissimilarity->GetOutput();
+  const auto n = values(out->GetPointData()->GetNormals());
+  for (std::size_t i = 0; i < c.size(); ++i)
+  {
+    ASSERT_NEAR(n[3 * i + 2], 1.0, 1e-12);
+  }
+  for (const char* name : { "GLSKappa", "GLSTau", "GLSGeometricVariation", "GLSFeature", "GLSDissimilarity" })
+  {
+    const auto v = pointArray(out, name);
+    ASSERT_FALSE(v.empty()) << name;
+    for (double x : v)
+    {
+      ASSERT_NEAR(x, 0.0, 1e-10) << name;
+    }
+  }
+  for (double phi : pointArray(out, "GLSFitness"))
+  {
+    ASSERT_NEAR(phi, 1.0, 1e-12);
+  }
+  const auto similar = pointArray(out, "GLSSimilar");
+  EXPECT_EQ(std::count(similar.begin(), similar.end(), 1.0), static_cast<long>(c.size()));
+}
+
+namespace
+{
+
+/// Aborts the filter it observes once progress passes 5%, and counts progress events.
+struct Aborter : vtkCommand
+{
+  static Aborter* New() { return new Aborter; }
+  void Execute(vtkObject* caller, unsigned long, void* data) override
+  {
+    ++this->Calls;
+    if (*static_cast<double*>(data) > 0.05)
+    {
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    }
+  }
+  int Calls = 0;
+};
+
+template <typename Filter>
+void expectAbortLeavesInputOnly(vtkPolyData* input, const char* producedArray)
+{
+  vtkNew<Filter> f;
+  vtkNew<Aborter> aborter;
+  f->AddObserver(vtkCommand::ProgressEvent, aborter);
+  f->SetNumberOfThreads(2);
+  f->SetInputData(input);
+  f->Update();
+  EXPECT_GT(aborter->Calls, 1) << producedArray;
+  EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray(producedArray), nullptr) << producedArray;
+  EXPECT_EQ(f->GetOutput()->GetNumberOfPoints(), input->GetNumberOfPoints());
+}
+
+} // namespace
+
+TEST(AllFilters, AbortLeavesTheInputWithoutPartialArrays)
+{
+  const Cloud c = sphere(60000, 1.0);
+  auto withNormals = makePolyData(c);
+  expectAbortLeavesInputOnly<vtkGLSScaleSpace>(withNormals, "GLSKappa");
+  expectAbortLeavesInputOnly<vtkGLSGeometricVariation>(withNormals, "GLSGeometricVariation");
+  expectAbortLeavesInputOnly<vtkGLSContinuousFeatures>(withNormals, "GLSFeature");
+  expectAbortLeavesInputOnly<vtkGLSMultiScaleDissimilarity>(withNormals, "GLSDissimilarity");
+  // Normal estimation: the input's normals stay, no new array replaces them.
+  vtkNew<vtkGLSNormalEstimation> f;
+  vtkNew<Aborter> aborter;
+  f->AddObserver(vtkCommand::ProgressEvent, aborter);
+  f->SetInputData(makePolyData(c.points, {}));
+  f->Update();
+  EXPECT_GT(aborter->Calls, 1);
+  EXPECT_EQ(f->GetOutput()->GetPointData()->GetNormals(), nullptr);
+}
