@@ -61,7 +61,7 @@ vtkGLSMultiScaleDissimilarity::vtkGLSMultiScaleDissimilarity()
   , QueryPoint{ 0.0, 0.0, 0.0 }
   , UseQueryPointCoordinates(false)
   , PriorMinScale(0.0)
-  , PriorMaxScale(VTK_DOUBLE_MAX)
+  , PriorMaxScale(0.0)
   , PriorShape(BOX)
   , Threshold(0.01)
 {
@@ -118,9 +118,9 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
   }
   // The prior, clipped to the sampled range so that a Gaussian is centred where there are scales.
   const double pmin = std::max(this->ToAbsoluteLength(input, this->PriorMinScale), scales.front());
-  const double pmax = std::min(this->PriorMaxScale >= VTK_DOUBLE_MAX ? VTK_DOUBLE_MAX
-                                                                     : this->ToAbsoluteLength(input, this->PriorMaxScale),
-    scales.back());
+  const double pmax = this->PriorMaxScale > 0.0
+    ? std::min(this->ToAbsoluteLength(input, this->PriorMaxScale), scales.back())
+    : scales.back();
   std::string why;
   const std::vector<double> prior =
     gls::scalePrior(scales, static_cast<gls::ScalePriorShape>(this->PriorShape), pmin, pmax, why);

@@ -5,8 +5,8 @@
  * Delta(p, q) = sum_i delta_{p,q}(t_i) h_i (Mellado et al. 2012, sec. 5) with the per-scale dissimilarity
  * delta = (tau_p/t - tau_q/t)^2 + (t kappa_p - t kappa_q)^2 + (phi_p - phi_q)^2 (eq. 6; eta is left out on purpose,
  * so the measure is invariant to rotation) and h the scale prior: a box over [PriorMinScale, PriorMaxScale] (default
- * every scale) or a Gaussian in ln t centred in that range (standard deviation a quarter of its log width), both
- * normalized to sum 1. Scales where either fit is undefined are left out and h is renormalized over the rest.
+ * every scale; PriorMaxScale 0 = no upper limit) or a Gaussian in ln t centred in that range (standard deviation a
+ * quarter of its log width), both normalized to sum 1. Scales where either fit is undefined are left out and h is renormalized over the rest.
  *
  * tau, kappa and phi come from upstream GLSTau/GLSKappa/GLSFitness arrays when present (see ReuseInputScaleSpace),
  * else they are computed here in a fused pass (memory O(N)). The query point is QueryPointId, or, with
@@ -54,7 +54,8 @@ public:
   ///@}
 
   ///@{
-  /// Range of the scale prior, in ScaleUnits (defaults 0 and VTK_DOUBLE_MAX: every sampled scale).
+  /// Range of the scale prior, in ScaleUnits (defaults 0 and 0; PriorMaxScale = 0 means no upper limit: every
+  /// sampled scale). Clipped to the sampled range.
   vtkSetMacro(PriorMinScale, double);
   vtkGetMacro(PriorMinScale, double);
   vtkSetMacro(PriorMaxScale, double);

@@ -1,6 +1,7 @@
 #include "vtkGLSNormalEstimation.h"
 
 #include "vtkGLSArrayNames.h"
+#include "vtkGLSScaleFilterBase.h"
 
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
@@ -80,7 +81,7 @@ int vtkGLSNormalEstimation::RequestData(
   std::vector<double> reference;
   if (this->Orientation == AGREE_WITH_EXISTING)
   {
-    vtkDataArray* existing = this->GetInputArrayToProcess(0, input);
+    vtkDataArray* existing = vtkGLSScaleFilterBase::FindSelectedNormals(this, 0, input);
     if (!existing || existing->GetNumberOfComponents() != 3 || existing->GetNumberOfTuples() != n)
     {
       vtkErrorMacro("AGREE_WITH_EXISTING needs an existing 3-component point normals array with one tuple per "

@@ -126,7 +126,7 @@ bool vtkGLSScaleFilterBase::GatherPointsAndNormals(
     vtkErrorMacro("The input has no points.");
     return false;
   }
-  vtkDataArray* nrm = this->GetInputArrayToProcess(0, input);
+  vtkDataArray* nrm = this->FindSelectedNormals(input);
   if (!nrm)
   {
     vtkErrorMacro("The input has no normals: select a 3-component point array, set active normals, or run "
@@ -149,6 +149,24 @@ bool vtkGLSScaleFilterBase::GatherPointsAndNormals(
     nrm->GetTuple(i, &normals[3 * i]);
   }
   return true;
+}
+
+vtkDataArray* vtkGLSScaleFilterBase::FindSelectedNormals(vtkPolyData* input)
+{
+  return vtkGLSScaleFilterBase::FindSelectedNormals(this, 0, input);
+}
+
+vtkDataArray* vtkGLSScaleFilterBase::FindSelectedNormals(vtkAlgorithm* self, int index, vtkPolyData* input)
+{
+  // A selection by name must be honoured; no selection, or an empty name (as ParaView sets before it knows the
+  // input's arrays), means the active normals.
+  vtkInformation* info = self->GetInputArrayInformation(index);
+  const char* name = info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : nullptr;
+  if (name && name[0] != '\0')
+  {
+    return input->GetPointData()->GetArray(name);
+  }
+  return input->GetPointData()->GetNormals();
 }
 
 double vtkGLSScaleFilterBase::ResolveMinimumNeighbors(

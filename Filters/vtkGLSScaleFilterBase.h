@@ -27,6 +27,7 @@
 #include <memory>
 #include <vector>
 
+class vtkDataArray;
 class vtkFieldData;
 class vtkPolyData;
 
@@ -131,6 +132,10 @@ public:
   /// parameters are invalid.
   std::vector<double> ComputeAbsoluteScales(vtkPolyData* input);
 
+  /// The point array an algorithm selected with SetInputArrayToProcess(index, ...): the named array, or the active
+  /// normals when no name (or an empty one, as ParaView sets before it knows the input's arrays) is selected.
+  static vtkDataArray* FindSelectedNormals(vtkAlgorithm* self, int index, vtkPolyData* input);
+
 protected:
   vtkGLSScaleFilterBase();
   ~vtkGLSScaleFilterBase() override;
@@ -143,6 +148,10 @@ protected:
   /// Copies the points and the selected normals into double buffers; false (with an error) when the input is empty
   /// or the normals are missing or mis-sized.
   bool GatherPointsAndNormals(vtkPolyData* input, std::vector<double>& points, std::vector<double>& normals);
+
+  /// The normals selected with SetInputArrayToProcess(0, ...): the named point array, or the active normals when
+  /// no name (or an empty one) is selected. Null when absent.
+  vtkDataArray* FindSelectedNormals(vtkPolyData* input);
 
   /// MinimumNeighbors, resolved for this input (see MinimumNeighbors).
   double ResolveMinimumNeighbors(const std::vector<double>& points, const std::vector<double>& normals) const;
