@@ -1,0 +1,120 @@
+"""The main job end to end (pvpython): gls-analyze on the bundled scan, on XYZ/CSV files, and on bad input.
+
+    pvpython test_main_job.py <build/bin/gls-analyze> <work dir>"""
+import math
+import os
+import shutil
+import subprocess
+import sys
+import unittest
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+
+ANALYZE, WORK = sys.argv[1], sys.argv[2]
+
+
+def run(*args):
+    return subprocess.run([ANALYZE, *args], capture_output=True, text=True, timeout=300)
+
+
+def read_vtp(path):
+    reader = vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
+
+
+def image_stats(path):
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    pixels = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(-1, image.GetNumberOfScalarComponents())
+    rgb = pixels[:, :3]
+    background = np.all(rgb == rgb[0], axis=1).mean()
+    return background, len(np.unique(rgb, axis=0))
+
+
+def write_sphere(path, n, radius, with_normals, separator, header=None):
+    i = np.arange(n) + 0.5
+    z = 1 - 2 * i / n
+    r = np.sqrt(1 - z * z)
+    a = math.pi * (3 - math.sqrt(5)) * np.arange(n)
+    nrm = np.stack([r * np.cos(a), r * np.sin(a), z], axis=1)
+    data = np.hstack([radius * nrm, nrm]) if with_normals else radius * nrm
+    np.savetxt(path, data, delimiter=separator, header=header or '', comments='')
+
+
+class MainJob(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        shutil.rmtree(WORK, ignore_errors=True)
+        os.makedirs(WORK)
+
+    def test_bundled_scan_outputs_are_complete_and_non_trivial(self):
+        out = os.path.join(WORK, 'bunny')
+        result = run('--output-dir', out)
+        self.assertEqual(result.returncode, 0, result.stderr[-3000:])
+        self.assertIn('scale space', result.stderr)  # the progress lines
+        files = {s: os.path.join(out, 'stanford-bunny' + s) for s in
+                 ('-gls.vtp', '-features.png', '-profiles.png', '-gls.pvsm')}
+        for f in files.values():
+            self.assertTrue(os.path.isfile(f), f)
+        pd = read_vtp(files['-gls.vtp'])
+        self.assertEqual(pd.GetNumberOfPoints(), 35947)
+        for name in ('Normals', 'GLSTau', 'GLSEta', 'GLSKappa', 'GLSFitness', 'GLSdTau', 'GLSdEta', 'GLSdKappa',
+                     'GLSNeighborCount', 'GLSGeometricVariation', 'GLSPertinentScales', 'GLSPertinentScaleCount',
+                     'GLSFeature'):
+            self.assertIsNotNone(pd.GetPointData().GetArray(name), name)
+        feature = vtk_to_numpy(pd.GetPointData().GetArray('GLSFeature'))
+        self.assertTrue(np.all((feature >= 0) & (feature <= 1)))
+        self.assertLess(np.percentile(feature, 5), 0.15)
+        self.assertGreater(np.percentile(feature, 95), 0.85)
+        self.assertGreater(feature.std(), 0.15)
+        for png in (files['-features.png'], files['-profiles.png']):
+            background, colours = image_stats(png)
+            self.assertLess(background, 0.95, png)
+            self.assertGreater(colours, 200, png)
+        state = open(files['-gls.pvsm']).read()
+        self.assertIn('XMLPolyDataReader', state)
+        self.assertIn(os.path.abspath(files['-gls.vtp']), state)
+
+    def test_xyz_with_normals_and_csv_without(self):
+        xyz = os.path.join(WORK, 'sphere.xyz')
+        write_sphere(xyz, 4000, 2.0, True, ' ')
+        result = run(xyz, '--output-dir', WORK, '--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2')
+        self.assertEqual(result.returncode, 0, result.stderr[-3000:])
+        pd = read_vtp(os.path.join(WORK, 'sphere-gls.vtp'))
+        np.testing.assert_allclose(vtk_to_numpy(pd.GetPointData().GetArray('GLSKappa')), 0.5, atol=1e-8)
+        np.testing.assert_allclose(vtk_to_numpy(pd.GetPointData().GetArray('GLSFeature')), 0.0, atol=1e-9)
+
+        csv = os.path.join(WORK, 'ball.csv')
+        write_sphere(csv, 4000, 1.0, False, ',', header='x,y,z')
+        result = run(csv, '--output-dir', WORK, '--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2')
+        self.assertEqual(result.returncode, 0, result.stderr[-3000:])
+        pd = read_vtp(os.path.join(WORK, 'ball-gls.vtp'))
+        kappa = vtk_to_numpy(pd.GetPointData().GetArray('GLSKappa'))
+        self.assertLess(abs(np.median(kappa) - 1.0), 0.02)  # estimated, MST-oriented normals: outward
+
+    def test_missing_unreadable_and_malformed_files_get_clear_messages(self):
+        result = run(os.path.join(WORK, 'nope.ply'))
+        self.assertEqual(result.returncode, 2)
+        self.assertIn('no such file', result.stderr)
+        bad = os.path.join(WORK, 'bad.xyz')
+        with open(bad, 'w') as f:
+            f.write('1 2 3\n4 5\n')
+        result = run(bad)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn('expected 3 columns', result.stderr)
+        other = os.path.join(WORK, 'cloud.las')
+        open(other, 'w').close()
+        result = run(other)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn('unsupported type', result.stderr)
+
+
+if __name__ == '__main__':
+    unittest.main(argv=[sys.argv[0]], verbosity=2)

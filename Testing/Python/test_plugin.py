@@ -1,0 +1,223 @@
+"""pvpython tests of the GrowingLeastSquares plugin and of the Python-wrapped VTK classes.
+
+Run by CTest as: pvpython test_plugin.py <plugin.so> <bunny.obj>, with PYTHONPATH holding the glsvtk package.
+Every proxy runs on analytic shapes (asserted against the analytic values) and on the bundled scan (asserted equal,
+bit for bit, to the wrapped C++ filter run directly with the same parameters)."""
+import math
+import sys
+import unittest
+
+import numpy as np
+from paraview import simple
+from paraview import servermanager
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+from vtkmodules.vtkIOGeometry import vtkOBJReader
+
+import glsvtk
+
+PLUGIN, BUNNY = sys.argv[1], sys.argv[2]
+NS = {}
+
+
+def polydata(points, normals=None):
+    pd = vtkPolyData()
+    pts = vtkPoints()
+    pts.SetData(numpy_to_vtk(np.ascontiguousarray(points, dtype=np.float64), deep=True))
+    pd.SetPoints(pts)
+    n = len(points)
+    cells = vtkCellArray()
+    cells.SetData(numpy_to_vtkIdTypeArray(np.arange(n + 1, dtype=np.int64), deep=True),
+                  numpy_to_vtkIdTypeArray(np.arange(n, dtype=np.int64), deep=True))
+    pd.SetVerts(cells)
+    if normals is not None:
+        a = numpy_to_vtk(np.ascontiguousarray(normals, dtype=np.float64), deep=True)
+        a.SetName('Normals')
+        pd.GetPointData().SetNormals(a)
+    return pd
+
+
+def sphere(n, radius):
+    i = np.arange(n) + 0.5
+    z = 1 - 2 * i / n
+    r = np.sqrt(1 - z * z)
+    a = math.pi * (3 - math.sqrt(5)) * np.arange(n)
+    normals = np.stack([r * np.cos(a), r * np.sin(a), z], axis=1)
+    return radius * normals, normals
+
+
+def producer(pd):
+    source = simple.TrivialProducer()
+    source.GetClientSideObject().SetOutput(pd)
+    return source
+
+
+def fetch(proxy):
+    proxy.UpdatePipeline()
+    return servermanager.Fetch(proxy)
+
+
+def array(pd, name):
+    a = pd.GetPointData().GetArray(name)
+    assert a is not None, 'missing array %s' % name
+    return vtk_to_numpy(a)
+
+
+def run_vtk(filter_object, pd):
+    filter_object.SetInputData(pd)
+    filter_object.Update()
+    return filter_object.GetOutput()
+
+
+def bunny_points():
+    reader = vtkOBJReader()
+    reader.SetFileName(BUNNY)
+    reader.Update()
+    return polydata(vtk_to_numpy(reader.GetOutput().GetPoints().GetData()))
+
+
+class PluginProxies(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        simple.LoadPlugin(PLUGIN, remote=False, ns=globals())  # a fresh dict passed as ns stays empty
+        for name in ('GLSNormalEstimation', 'GLSScaleSpace', 'GLSGeometricVariation', 'GLSContinuousFeatures',
+                     'GLSMultiScaleDissimilarity'):
+            NS[name] = globals()[name]
+        cls.points, cls.normals = sphere(3000, 2.0)
+
+    def test_every_proxy_is_registered_with_its_properties(self):
+        s = NS['GLSScaleSpace']()
+        for prop in ('MinScale', 'MaxScale', 'NumberOfScales', 'ScaleSampling', 'Scales', 'ScaleUnits', 'Normals'):
+            self.assertIn(prop, s.ListProperties())
+        self.assertEqual(s.ScaleUnits, 'Relative to bounding box diagonal')
+        self.assertEqual(s.ScaleSampling, 'Quadratic')
+        d = NS['GLSMultiScaleDissimilarity']()
+        for prop in ('QueryPointId', 'PriorMinScale', 'PriorMaxScale', 'PriorShape', 'Threshold', 'QueryPoint'):
+            self.assertIn(prop, d.ListProperties())
+        n = NS['GLSNormalEstimation']()
+        for prop in ('NeighborhoodType', 'NumberOfNeighbors', 'Radius', 'Orientation', 'OrientationPoint'):
+            self.assertIn(prop, n.ListProperties())
+        for p in (s, d, n):
+            simple.Delete(p)
+
+    def test_scale_space_on_a_sphere(self):
+        src = producer(polydata(self.points, self.normals))
+        s = NS['GLSScaleSpace'](Input=src, ScaleUnits='Absolute', MinScale=0.4, MaxScale=2.0, NumberOfScales=5,
+                                ScaleSampling='Logarithmic')
+        out = fetch(s)
+        scales = vtk_to_numpy(out.GetFieldData().GetArray('GLSScales'))
+        np.testing.assert_allclose(scales, 0.4 * 5.0 ** (np.arange(5) / 4.0), rtol=1e-14)
+        np.testing.assert_allclose(array(out, 'GLSKappa'), 0.5, atol=1e-9)
+        np.testing.assert_allclose(array(out, 'GLSTau'), 0.0, atol=1e-10)
+        np.testing.assert_allclose(array(out, 'GLSFitness'), 1.0, atol=1e-9)
+        self.assertEqual(array(out, 'GLSEta').shape, (3000, 15))
+        s.Scales = [0.5, 1.0]
+        out = fetch(s)
+        np.testing.assert_array_equal(vtk_to_numpy(out.GetFieldData().GetArray('GLSScales')), [0.5, 1.0])
+        simple.Delete(s)
+        simple.Delete(src)
+
+    def test_variation_features_dissimilarity_on_a_sphere(self):
+        src = producer(polydata(self.points, self.normals))
+        v = NS['GLSGeometricVariation'](Input=src, NumberOfScales=6, MinScale=0.05, MaxScale=0.3)
+        f = NS['GLSContinuousFeatures'](Input=v, FeatureMeasure='Log scale')
+        d = NS['GLSMultiScaleDissimilarity'](Input=f, QueryPointId=10, PriorShape='LogGaussian')
+        out = fetch(d)
+        np.testing.assert_allclose(array(out, 'GLSGeometricVariation'), 0.0, atol=1e-12)
+        np.testing.assert_allclose(array(out, 'GLSFeature'), 0.0, atol=1e-12)
+        np.testing.assert_allclose(array(out, 'GLSDissimilarity'), 0.0, atol=1e-18)
+        self.assertTrue(np.all(array(out, 'GLSSimilar') == 1))
+        self.assertTrue(np.all(array(out, 'GLSPertinentScaleCount') == 0))
+        for p in (d, f, v, src):
+            simple.Delete(p)
+
+    def test_normals_on_a_sphere_point_outward(self):
+        src = producer(polydata(self.points))
+        n = NS['GLSNormalEstimation'](Input=src, Orientation='Minimum spanning tree')
+        out = fetch(n)
+        dots = np.einsum('ij,ij->i', vtk_to_numpy(out.GetPointData().GetNormals()), self.normals)
+        self.assertGreater(dots.min(), 0.999)
+        n.Orientation = 'Towards point'
+        n.OrientationPoint = [0, 0, 0]
+        dots = np.einsum('ij,ij->i', vtk_to_numpy(fetch(n).GetPointData().GetNormals()), self.normals)
+        self.assertLess(dots.max(), -0.999)
+        simple.Delete(n)
+        simple.Delete(src)
+
+    def test_bunny_pipeline_equals_the_wrapped_cpp_filters(self):
+        cloud = bunny_points()
+        src = producer(cloud)
+        n = NS['GLSNormalEstimation'](Input=src, NumberOfNeighbors=12)
+        s = NS['GLSScaleSpace'](Input=n, NumberOfScales=8, ScaleSampling='Linear', MinScale=0.01, MaxScale=0.05)
+        v = NS['GLSGeometricVariation'](Input=s, WTau=2.0)
+        f = NS['GLSContinuousFeatures'](Input=v, Sigma=0.2)
+        d = NS['GLSMultiScaleDissimilarity'](Input=f, QueryPointId=777, PriorMinScale=0.02, PriorMaxScale=0.04,
+                                             Threshold=0.02)
+        proxy_out = fetch(d)
+
+        normals = glsvtk.vtkGLSNormalEstimation()
+        normals.SetNumberOfNeighbors(12)
+        scale_space = glsvtk.vtkGLSScaleSpace()
+        scale_space.SetNumberOfScales(8)
+        scale_space.SetScaleSamplingToLinear()
+        scale_space.SetMinScale(0.01)
+        scale_space.SetMaxScale(0.05)
+        variation = glsvtk.vtkGLSGeometricVariation()
+        variation.SetWTau(2.0)
+        features = glsvtk.vtkGLSContinuousFeatures()
+        features.SetSigma(0.2)
+        dissimilarity = glsvtk.vtkGLSMultiScaleDissimilarity()
+        dissimilarity.SetQueryPointId(777)
+        dissimilarity.SetPriorMinScale(0.02)
+        dissimilarity.SetPriorMaxScale(0.04)
+        dissimilarity.SetThreshold(0.02)
+        data = cloud
+        for algorithm in (normals, scale_space, variation, features, dissimilarity):
+            data = run_vtk(algorithm, data)
+        self.assertEqual(data.GetNumberOfPoints(), 35947)
+        names = ('Normals', 'GLSTau', 'GLSEta', 'GLSKappa', 'GLSFitness', 'GLSdTau', 'GLSdEta', 'GLSdKappa',
+                 'GLSNeighborCount', 'GLSGeometricVariation', 'GLSPertinentScales', 'GLSPertinentScaleCount',
+                 'GLSFeature', 'GLSDissimilarity', 'GLSSimilar')
+        for name in names:
+            np.testing.assert_array_equal(array(proxy_out, name), array(data, name), err_msg=name)
+        feature = array(data, 'GLSFeature')
+        self.assertLess(np.nanmin(feature), 0.1)
+        self.assertGreater(np.nanmax(feature), 0.9)
+        self.assertEqual(array(data, 'GLSDissimilarity')[777], 0.0)
+        for p in (d, f, v, s, n, src):
+            simple.Delete(p)
+
+    def test_errors_are_reported_not_fatal(self):
+        src = producer(polydata(self.points))  # no normals
+        s = NS['GLSScaleSpace'](Input=src)
+        out = fetch(s)
+        self.assertIsNone(out.GetPointData().GetArray('GLSKappa'))
+        simple.Delete(s)
+        simple.Delete(src)
+
+
+class WrappedClasses(unittest.TestCase):
+    def test_wrapped_scale_space_on_a_sphere(self):
+        points, normals = sphere(2000, 0.5)
+        s = glsvtk.vtkGLSScaleSpace()
+        s.SetScaleUnitsToAbsolute()
+        s.AddScale(0.1)
+        s.AddScale(0.3)
+        out = run_vtk(s, polydata(points, normals))
+        np.testing.assert_allclose(array(out, 'GLSKappa'), 2.0, atol=1e-9)
+        self.assertEqual(out.GetPointData().GetArray('GLSKappa').GetComponentName(1), 't=0.3')
+
+    def test_wrapped_enumerations_and_errors(self):
+        s = glsvtk.vtkGLSScaleSpace()
+        s.SetScaleSamplingToLogarithmic()
+        self.assertEqual(s.GetScaleSampling(), glsvtk.vtkGLSScaleSpace.LOGARITHMIC)
+        s.SetMinScale(-1)
+        s.GlobalWarningDisplayOff()
+        points, normals = sphere(200, 1.0)
+        out = run_vtk(s, polydata(points, normals))
+        self.assertIsNone(out.GetPointData().GetArray('GLSKappa'))
+
+
+if __name__ == '__main__':
+    unittest.main(argv=[sys.argv[0]], verbosity=2)

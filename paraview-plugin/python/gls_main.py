@@ -1,0 +1,227 @@
+"""The GLS main job, for pvpython (under Xvfb when there is no display: see the gls-analyze wrapper).
+
+    gls-analyze [input] [--output-dir DIR] [--scales N] [--min-scale F] [--max-scale F] [--sigma S]
+
+Reads a point cloud or mesh (PLY, OBJ, VTP, XYZ/CSV with or without normals; default: the bundled bunny scan),
+estimates oriented normals when the file has none, computes the GLS scale space (N quadratic scales from
+--min-scale to --max-scale, fractions of the bounding-box diagonal), the geometric variation and the continuous
+features, and writes to the output directory:
+  <name>-gls.vtp        every array (inline binary VTK XML)
+  <name>-features.png   the continuous features on the cloud (colour map, scalar bar, title)
+  <name>-profiles.png   kappa and nu against scale for a few selected points (the paper's Figures 2-3 style)
+  <name>-gls.pvsm       a ParaView state that opens the .vtp coloured by the features
+"""
+import argparse
+import os
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+import numpy as np  # noqa: E402
+
+import gls_io  # noqa: E402
+
+
+def parse_arguments(argv):
+    p = argparse.ArgumentParser(prog='gls-analyze', description=__doc__.split('\n\n')[1],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument('input', nargs='?', default=os.environ.get('GLS_DEFAULT_INPUT'),
+                   help='point cloud or mesh (default: the bundled bunny)')
+    p.add_argument('--output-dir', default='gls-output', help='where the results go (default ./gls-output)')
+    p.add_argument('--plugin', default=os.environ.get('GLS_PLUGIN'), help='path of GrowingLeastSquares.so')
+    p.add_argument('--scales', type=int, default=20, help='number of scales (default 20)')
+    p.add_argument('--min-scale', type=float, default=0.008, help='smallest scale / diagonal (default 0.008)')
+    p.add_argument('--max-scale', type=float, default=0.08, help='largest scale / diagonal (default 0.08)')
+    p.add_argument('--sigma', type=float, default=0.1, help='tanh scale of the features (default 0.1)')
+    return p.parse_args(argv)
+
+
+class Progress:
+    """A progress line on the terminal (redrawn in place), one line per quarter when not a terminal."""
+
+    def __init__(self):
+        self.tty = sys.stderr.isatty()
+        self.last = None
+
+    def watch(self, proxy, label):
+        algorithm = proxy.GetClientSideObject()
+
+        def report(obj, _event):
+            step = int(obj.GetProgress() * (100 if self.tty else 4))
+            if (label, step) == self.last:
+                return
+            self.last = (label, step)
+            pct = 100.0 * obj.GetProgress()
+            if self.tty:
+                sys.stderr.write('\r  %-24s %3.0f%%%s' % (label, pct, '\n' if pct >= 100 else ''))
+            else:
+                sys.stderr.write('  %-24s %3.0f%%\n' % (label, pct))
+            sys.stderr.flush()
+
+        algorithm.AddObserver('ProgressEvent', report)
+
+
+def gls_filter(name, **properties):
+    """Creates a GLS proxy by its paraview.simple name (LoadPlugin put the constructors in this module)."""
+    return globals()[name](**properties)
+
+
+def has_normals(source):
+    info = source.GetDataInformation().GetPointDataInformation()
+    for i in range(info.GetNumberOfArrays()):
+        a = info.GetArrayInformation(i)
+        if a.GetName() == 'Normals' and a.GetNumberOfComponents() == 3:
+            return True
+    return False
+
+
+def select_profile_points(feature, pertinent_count):
+    """A few telling points: the flattest, the most featured, a median one, one with several pertinent scales."""
+    valid = np.where(np.isfinite(feature))[0]
+    order = valid[np.argsort(feature[valid], kind='stable')]
+    picks = {'lowest feature': int(order[0]), 'median feature': int(order[len(order) // 2]),
+             'highest feature': int(order[-1])}
+    several = np.where(pertinent_count >= 2)[0]
+    if len(several):
+        picks['2+ pertinent scales'] = int(several[len(several) // 2])
+    return picks
+
+
+def plot_profiles(path, title, scales, kappa, nu, picks, pertinent):
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    for label, pid in picks.items():
+        line, = ax1.plot(scales, kappa[pid], marker='o', ms=3, label='%s (point %d)' % (label, pid))
+        ax2.semilogy(scales, np.maximum(nu[pid], 1e-12), marker='o', ms=3, color=line.get_color())
+        for t in pertinent[pid]:
+            if np.isfinite(t):
+                ax2.axvline(t, color=line.get_color(), ls=':', lw=1)
+    ax1.set_ylabel('kappa (1/length)')
+    ax1.axhline(0, color='gray', lw=0.5)
+    ax1.legend(fontsize=8)
+    ax1.set_title(title)
+    ax2.set_ylabel('nu (dimensionless, log)')
+    ax2.set_xlabel('scale t (length); dotted: pertinent scales')
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def render_features(path, source, title):
+    from paraview import simple
+    view = simple.CreateRenderView()
+    view.ViewSize = [1200, 900]
+    view.OrientationAxesVisibility = 0
+    display = simple.Show(source, view)
+    if source.GetDataInformation().GetNumberOfCells() == source.GetDataInformation().GetNumberOfPoints():
+        display.SetRepresentationType('Points')
+        display.PointSize = 3
+    simple.ColorBy(display, ('POINTS', 'GLSFeature'))
+    lut = simple.GetColorTransferFunction('GLSFeature')
+    lut.ApplyPreset('Inferno (matplotlib)', True)
+    lut.RescaleTransferFunction(0.0, 1.0)
+    display.SetScalarBarVisibility(view, True)
+    bar = simple.GetScalarBar(lut, view)
+    bar.Title = 'GLS feature f'
+    bar.ComponentTitle = ''
+    text = simple.Text(registrationName='Title', Text=title)
+    text_display = simple.Show(text, view)
+    text_display.WindowLocation = 'Upper Center'
+    text_display.FontSize = 22
+    view.ResetCamera()
+    simple.Render(view)
+    simple.SaveScreenshot(path, view, ImageResolution=[1200, 900])
+    simple.Delete(text)
+    simple.Delete(view)
+
+
+def save_state(path, vtp):
+    """A state that opens the written .vtp coloured by the features (no plugin needed to open it)."""
+    from paraview import simple
+    simple.ResetSession()
+    reader = simple.XMLPolyDataReader(registrationName=os.path.basename(vtp), FileName=[os.path.abspath(vtp)])
+    view = simple.GetActiveViewOrCreate('RenderView')
+    display = simple.Show(reader, view)
+    simple.ColorBy(display, ('POINTS', 'GLSFeature'))
+    lut = simple.GetColorTransferFunction('GLSFeature')
+    lut.ApplyPreset('Inferno (matplotlib)', True)
+    lut.RescaleTransferFunction(0.0, 1.0)
+    display.SetScalarBarVisibility(view, True)
+    view.ResetCamera()
+    simple.SaveState(path)
+
+
+def main(argv):
+    args = parse_arguments(argv)
+    if not args.input:
+        print('gls-analyze: no input given and GLS_DEFAULT_INPUT is not set', file=sys.stderr)
+        return 2
+    if not args.plugin or not os.path.isfile(args.plugin):
+        print('gls-analyze: plugin not found (%s); build the project first' % args.plugin, file=sys.stderr)
+        return 2
+    from paraview import simple
+    simple.LoadPlugin(args.plugin, remote=False, ns=globals())
+    try:
+        source = gls_io.open_cloud(args.input)
+    except gls_io.InputError as e:
+        print('gls-analyze: %s' % e, file=sys.stderr)
+        return 2
+    os.makedirs(args.output_dir, exist_ok=True)
+    name = os.path.splitext(os.path.basename(args.input))[0]
+    out = lambda suffix: os.path.join(args.output_dir, name + suffix)  # noqa: E731
+    count = source.GetDataInformation().GetNumberOfPoints()
+    print('input: %s (%d points)' % (args.input, count))
+
+    progress = Progress()
+    start = time.time()
+    upstream = source
+    if not has_normals(source):
+        upstream = gls_filter('GLSNormalEstimation', registrationName='Normals', Input=source)
+        progress.watch(upstream, 'normals')
+    scale_space = gls_filter('GLSScaleSpace', registrationName='ScaleSpace', Input=upstream, NumberOfScales=args.scales,
+                                       MinScale=args.min_scale, MaxScale=args.max_scale,
+                                       ScaleSampling='Quadratic')
+    progress.watch(scale_space, 'scale space')
+    variation = gls_filter('GLSGeometricVariation', registrationName='Variation', Input=scale_space)
+    progress.watch(variation, 'geometric variation')
+    features = gls_filter('GLSContinuousFeatures', registrationName='Features', Input=variation, Sigma=args.sigma)
+    progress.watch(features, 'continuous features')
+    features.UpdatePipeline()
+    result = simple.servermanager.Fetch(features)
+    if result.GetPointData().GetArray('GLSFeature') is None:
+        print('gls-analyze: the pipeline failed (see the messages above)', file=sys.stderr)
+        return 1
+    elapsed = time.time() - start
+
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    pd = result.GetPointData()
+    feature = vtk_to_numpy(pd.GetArray('GLSFeature'))
+    scales = vtk_to_numpy(result.GetFieldData().GetArray('GLSScales'))
+    print('GLS pipeline: %.2f s; %d scales from %.4g to %.4g; feature in [%.3f, %.3f], median %.3f'
+          % (elapsed, len(scales), scales[0], scales[-1], np.nanmin(feature), np.nanmax(feature),
+             np.nanmedian(feature)))
+
+    vtp = out('-gls.vtp')
+    simple.SaveData(vtp, proxy=features, DataMode='Binary', CompressorType='ZLib')
+    print('wrote %s' % vtp)
+    png = out('-features.png')
+    render_features(png, features, 'GLS continuous features: %s (%d points)' % (name, count))
+    print('wrote %s' % png)
+    picks = select_profile_points(feature, vtk_to_numpy(pd.GetArray('GLSPertinentScaleCount')))
+    chart = out('-profiles.png')
+    plot_profiles(chart, 'GLS scale profiles: %s' % name, scales, vtk_to_numpy(pd.GetArray('GLSKappa')),
+                  vtk_to_numpy(pd.GetArray('GLSGeometricVariation')), picks,
+                  vtk_to_numpy(pd.GetArray('GLSPertinentScales')))
+    print('wrote %s' % chart)
+    state = out('-gls.pvsm')
+    save_state(state, vtp)
+    print('wrote %s' % state)
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main(sys.argv[1:]))
