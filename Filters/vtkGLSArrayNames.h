@@ -20,6 +20,7 @@ constexpr const char* PertinentScales = "GLSPertinentScales";
 constexpr const char* Feature = "GLSFeature";
 constexpr const char* Dissimilarity = "GLSDissimilarity";
 constexpr const char* Similar = "GLSSimilar";
+constexpr const char* Backend = "GLSBackend";            // field data: "CPU" or "CUDA", where the fits ran
 constexpr const char* QueryPointId = "GLSQueryPointId";   // field data of the dissimilarity output
 }
 

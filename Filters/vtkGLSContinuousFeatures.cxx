@@ -75,6 +75,7 @@ int vtkGLSContinuousFeatures::RequestData(
   output->GetPointData()->AddArray(feature);
   output->GetPointData()->SetActiveScalars(vtkGLSArrayNames::Feature);
   StoreScales(output->GetFieldData(), scales);
+  this->StoreBackend(output->GetFieldData());
   return 1;
 }
 

@@ -100,6 +100,7 @@ int vtkGLSGeometricVariation::RequestData(
   output->GetPointData()->AddArray(pertinent);
   output->GetPointData()->AddArray(count);
   StoreScales(output->GetFieldData(), scales);
+  this->StoreBackend(output->GetFieldData());
   return 1;
 }
 

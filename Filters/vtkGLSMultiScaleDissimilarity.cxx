@@ -176,6 +176,7 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
   queryArray->InsertNextValue(query);
   output->GetFieldData()->AddArray(queryArray);
   StoreScales(output->GetFieldData(), scales);
+  this->StoreBackend(output->GetFieldData());
   return 1;
 }
 

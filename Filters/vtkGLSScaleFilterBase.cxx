@@ -12,6 +12,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 
 #include "gls/ScaleSampling.h"
 #include "gls/ScaleSpaceEngine.h"
@@ -40,6 +41,7 @@ vtkGLSScaleFilterBase::vtkGLSScaleFilterBase()
   , WEta(1.0)
   , WKappa(1.0)
   , ReuseInputScaleSpace(true)
+  , Backend(BACKEND_AUTO)
   , NumberOfThreads(0)
 {
   this->SetInputArrayToProcess(
@@ -247,7 +249,7 @@ bool vtkGLSScaleFilterBase::RunScaleSamples(
   };
   if (!src.UseStored)
   {
-    return src.Engine->run(sink, ids, gls::EvaluationMethod::OnePass, &parallel);
+    return this->RunEngine(*src.Engine, sink, ids, parallel);
   }
   const std::size_t n = ids ? ids->size() : src.PointCount;
   const int threads = gls::resolveThreadCount(this->NumberOfThreads);
@@ -264,8 +266,37 @@ bool vtkGLSScaleFilterBase::RunScaleSamples(
   });
 }
 
+bool vtkGLSScaleFilterBase::RunEngine(const gls::ScaleSpaceEngine& engine, gls::ScaleSampleSink& sink,
+  const std::vector<std::uint64_t>* ids, const gls::ParallelOptions& parallel)
+{
+  gls::RunReport report;
+  const bool completed = engine.run(
+    sink, ids, gls::EvaluationMethod::OnePass, &parallel, static_cast<gls::Backend>(this->Backend), &report);
+  this->LastBackendUsed = gls::backendName(report.used);
+  if (this->Backend == BACKEND_CUDA && report.used != gls::Backend::CUDA && !this->WarnedAboutBackend)
+  {
+    this->WarnedAboutBackend = true;
+    vtkWarningMacro("Backend CUDA requested but not available (" << report.fallbackReason
+                                                                  << "); computing on the CPU instead.");
+  }
+  return completed;
+}
+
+void vtkGLSScaleFilterBase::StoreBackend(vtkFieldData* fd) const
+{
+  if (this->LastBackendUsed.empty())
+  {
+    return;
+  }
+  vtkNew<vtkStringArray> a;
+  a->SetName(vtkGLSArrayNames::Backend);
+  a->InsertNextValue(this->LastBackendUsed);
+  fd->AddArray(a);
+}
+
 void vtkGLSScaleFilterBase::PrepareOutput(vtkPolyData* input, vtkPolyData* output)
 {
+  this->LastBackendUsed.clear();
   output->ShallowCopy(input);
   vtkNew<vtkFieldData> fd;
   fd->ShallowCopy(input->GetFieldData());
@@ -329,5 +360,6 @@ void vtkGLSScaleFilterBase::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinimumNeighbors: " << this->MinimumNeighbors << "\n";
   os << indent << "WTau, WEta, WKappa: " << this->WTau << ", " << this->WEta << ", " << this->WKappa << "\n";
   os << indent << "ReuseInputScaleSpace: " << this->ReuseInputScaleSpace << "\n";
+  os << indent << "Backend: " << this->Backend << " (last used: " << this->LastBackendUsed << ")\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

@@ -25,6 +25,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 class vtkDataArray;
@@ -34,6 +35,8 @@ class vtkPolyData;
 namespace gls
 {
 class ScaleSampleSink;
+class ScaleSpaceEngine;
+struct ParallelOptions;
 }
 
 class VTKGLSFILTERS_EXPORT vtkGLSScaleFilterBase : public vtkPolyDataAlgorithm
@@ -122,6 +125,27 @@ public:
   vtkBooleanMacro(ReuseInputScaleSpace, bool);
   ///@}
 
+  enum BackendType
+  {
+    BACKEND_AUTO = 0, ///< CUDA when this build has it and a working device is present, else the CPU
+    BACKEND_CPU = 1,  ///< the multi-threaded CPU engine
+    BACKEND_CUDA = 2  ///< the CUDA engine; without a usable device: one warning naming the reason, then the CPU
+  };
+
+  ///@{
+  /// Where the fits run (default BACKEND_AUTO). Both backends run the same per-point code in double precision and
+  /// agree to about 1e-12 relative. The backend that actually ran is written to the output's field data array
+  /// GLSBackend ("CPU" or "CUDA").
+  vtkSetClampMacro(Backend, int, BACKEND_AUTO, BACKEND_CUDA);
+  vtkGetMacro(Backend, int);
+  void SetBackendToAuto() { this->SetBackend(BACKEND_AUTO); }
+  void SetBackendToCPU() { this->SetBackend(BACKEND_CPU); }
+  void SetBackendToCUDA() { this->SetBackend(BACKEND_CUDA); }
+  ///@}
+
+  /// The backend the last fit of this filter ran on ("CPU", "CUDA"), or "" if it reused stored arrays.
+  const char* GetLastBackendUsed() const { return this->LastBackendUsed.c_str(); }
+
   ///@{
   /// Worker threads (0 = all hardware threads, the default). Results are bitwise identical for any value.
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
@@ -171,8 +195,16 @@ protected:
   /// Whether the last PrepareScaleSamples chose the stored arrays.
   bool UsesStoredScaleSpace() const;
 
-  /// Output = input (shallow) with its own field data, ready for new arrays.
-  static void PrepareOutput(vtkPolyData* input, vtkPolyData* output);
+  /// Output = input (shallow) with its own field data, ready for new arrays; forgets the last backend used.
+  void PrepareOutput(vtkPolyData* input, vtkPolyData* output);
+
+  /// Runs the engine on this filter's Backend, records the backend used (and warns once per filter when a CUDA
+  /// request falls back to the CPU). Returns false if aborted.
+  bool RunEngine(const gls::ScaleSpaceEngine& engine, gls::ScaleSampleSink& sink,
+    const std::vector<std::uint64_t>* ids, const gls::ParallelOptions& parallel);
+
+  /// Writes the backend of the last fit as the field-data string array GLSBackend (nothing if none ran).
+  void StoreBackend(vtkFieldData* fd) const;
 
   /// Writes `scales` as the field-data array GLSScales.
   static void StoreScales(vtkFieldData* fd, const std::vector<double>& scales);
@@ -197,7 +229,10 @@ protected:
   double WEta;
   double WKappa;
   bool ReuseInputScaleSpace;
+  int Backend;
   int NumberOfThreads;
+  std::string LastBackendUsed;
+  bool WarnedAboutBackend = false;
 
 private:
   struct Internals;

@@ -153,7 +153,7 @@ int vtkGLSScaleSpace::RequestData(
   settings.parallel.threads = this->NumberOfThreads;
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 1.0); };
   gls::ScaleSpaceEngine engine(points.data(), normals.data(), points.size() / 3, settings);
-  if (!engine.run(sink))
+  if (!this->RunEngine(engine, sink, nullptr, settings.parallel))
   {
     return 1; // aborted: the output is the input, without partial arrays
   }
@@ -167,6 +167,7 @@ int vtkGLSScaleSpace::RequestData(
     }
   }
   StoreScales(output->GetFieldData(), scales);
+  this->StoreBackend(output->GetFieldData());
   return 1;
 }
 

@@ -2,6 +2,9 @@
 // straightforward per-scale evaluation (one neighbour query and one fit per scale) measured in the same run.
 //
 //   glsPipelineBenchmark [--points N (173000)] [--scales S (20)] [--threads T (0 = all)] [--skip-per-scale]
+//                        [--backend cpu|cuda|auto (cpu)] [--repeat R (1)]
+//
+// --backend cuda runs the fused one-pass measurement on the GPU (R runs, ms per run reported).
 //
 // Scales: S quadratic scales from 0.8% to 8% of the bounding-box diagonal. Prints wall time per stage, points x
 // scales per second, CPU utilisation ((user + sys) / wall) and peak memory, and the ratio per-scale / one-pass for
@@ -18,11 +21,13 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
+#include "gls/Backend.h"
 #include "gls/FeatureSink.h"
 #include "gls/ScaleSampling.h"
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -71,6 +76,8 @@ int main(int argc, char* argv[])
   long long count = 173000;
   int S = 20, threads = 0;
   bool perScale = true;
+  int repeat = 1;
+  gls::Backend backend = gls::Backend::CPU;
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--points") && i + 1 < argc)
@@ -85,13 +92,23 @@ int main(int argc, char* argv[])
     {
       threads = std::atoi(argv[++i]);
     }
+    else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc)
+    {
+      repeat = std::max(1, std::atoi(argv[++i]));
+    }
+    else if (!std::strcmp(argv[i], "--backend") && i + 1 < argc)
+    {
+      const std::string b = argv[++i];
+      backend = b == "cuda" ? gls::Backend::CUDA : b == "auto" ? gls::Backend::Auto : gls::Backend::CPU;
+    }
     else if (!std::strcmp(argv[i], "--skip-per-scale"))
     {
       perScale = false;
     }
     else
     {
-      std::fprintf(stderr, "usage: %s [--points N] [--scales S] [--threads T] [--skip-per-scale]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--points N] [--scales S] [--threads T] [--skip-per-scale] "
+                           "[--backend cpu|cuda|auto] [--repeat R]\n", argv[0]);
       return 2;
     }
   }
@@ -154,11 +171,20 @@ int main(int argc, char* argv[])
   gls::ScaleSpaceEngine engine(xyz.data(), nrm.data(), static_cast<std::size_t>(count), settings);
   const int T = gls::resolveThreadCount(threads);
   std::vector<double> fOnePass(count), fPerScale(count);
-  c = Clock();
   gls::ContinuousFeatureSink a(settings.scales, T, {}, 0.1, gls::FeatureMeasure::Scale, fOnePass.data());
-  engine.run(a);
-  const double onePass = c.seconds();
-  report("one-pass scales+nu+features (fused)", c, n * S);
+  gls::RunReport used;
+  double onePass = 0.0;
+  for (int r = 0; r < repeat; ++r)
+  {
+    c = Clock();
+    engine.run(a, nullptr, gls::EvaluationMethod::OnePass, nullptr, backend, &used);
+    onePass = c.seconds();
+    report(used.used == gls::Backend::CUDA ? "one-pass scales+nu+features (fused, CUDA)"
+                                           : "one-pass scales+nu+features (fused, CPU)",
+      c, n * S);
+  }
+  std::printf("one-pass on %s: %.1f ms per run%s%s\n", gls::backendName(used.used), 1e3 * onePass,
+    used.fallbackReason.empty() ? "" : "; CUDA fell back: ", used.fallbackReason.c_str());
   if (perScale)
   {
     c = Clock();

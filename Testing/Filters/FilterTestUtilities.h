@@ -108,6 +108,23 @@ inline std::vector<double> fieldArray(vtkPolyData* pd, const char* name)
   return values(pd->GetFieldData()->GetArray(name));
 }
 
+/// True when both vectors have the same length and every pair is equal or both NaN (bitwise comparison of results).
+inline bool identical(const std::vector<double>& a, const std::vector<double>& b)
+{
+  if (a.size() != b.size())
+  {
+    return false;
+  }
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    if (!(a[i] == b[i] || (a[i] != a[i] && b[i] != b[i])))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// The bundled bunny scan as a vertex cloud (no normals).
 vtkSmartPointer<vtkPolyData> bunnyCloud();
 

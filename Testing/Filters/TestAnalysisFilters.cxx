@@ -64,7 +64,7 @@ vtkSmartPointer<vtkPolyData> run(Filter* f, vtkPolyData* input)
 
 bool sameOrBothNaN(double a, double b)
 {
-  return (std::isnan(a) && std::isnan(b)) || a == b;
+  return identical({ a }, { b });
 }
 
 } // namespace

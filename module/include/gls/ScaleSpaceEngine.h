@@ -4,6 +4,7 @@
 // invalid (NaN) samples. Results do not depend on the thread count (each point is computed alone).
 #pragma once
 
+#include "gls/Backend.h"
 #include "gls/NeighborGrid.h"
 #include "gls/ParallelFor.h"
 #include "gls/PointScaleSpace.h"
@@ -11,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace gls
@@ -30,6 +32,14 @@ struct ScaleSpaceSettings
   std::vector<double> scales;   ///< strictly increasing absolute scales (see checkScaleList)
   double minNeighbors = 6.0;    ///< fits with fewer neighbours in the ball are invalid (3 suits 2D curves)
   ParallelOptions parallel;
+  std::size_t deviceChunkLimit = 0; ///< CUDA: at most this many points per device pass (0 = as memory allows)
+};
+
+/// What a run did: the backend that computed the samples and, when a CUDA run fell back to the CPU, why.
+struct RunReport
+{
+  Backend used = Backend::CPU;
+  std::string fallbackReason;
 };
 
 enum class EvaluationMethod
@@ -50,15 +60,22 @@ public:
   int threadCount() const;
 
   /// Evaluates the given points (all when ids is null) and feeds the sink. `parallel` overrides the settings'
-  /// threads and progress callback for this run. Returns false if aborted.
+  /// threads and progress callback for this run. `backend` Auto or CUDA runs the one-pass method on the CUDA
+  /// device when one is usable and falls back to the CPU otherwise (or on any CUDA error), saying why in `report`.
+  /// Returns false if aborted.
   bool run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids = nullptr,
-    EvaluationMethod method = EvaluationMethod::OnePass, const ParallelOptions* parallel = nullptr) const;
+    EvaluationMethod method = EvaluationMethod::OnePass, const ParallelOptions* parallel = nullptr,
+    Backend backend = Backend::CPU, RunReport* report = nullptr) const;
 
   /// Evaluates an arbitrary position (not necessarily a data point) at all scales, on the calling thread.
   void evaluatePosition(const Vec3& p, std::vector<ScaleSample>& out) const;
 
 private:
   ScaleBinning binning() const;
+  /// The CUDA run: false with `reason` on a CUDA failure (nothing was fed to the sink), false with `aborted` set
+  /// when the progress callback asked to stop.
+  bool runOnDevice(ScaleSampleSink& sink, const std::vector<std::uint64_t>& order, const ParallelOptions& options,
+    std::string& reason, bool& aborted) const;
 
   ScaleSpaceSettings Settings;
   std::vector<double> SquaredScales;
