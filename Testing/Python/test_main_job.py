@@ -48,6 +48,25 @@ def write_sphere(path, n, radius, with_normals, separator, header=None):
     np.savetxt(path, data, delimiter=separator, header=header or '', comments='')
 
 
+def polydata_from(points, normals):
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    pd = vtkPolyData()
+    pts = vtkPoints()
+    pts.SetData(numpy_to_vtk(np.ascontiguousarray(points), deep=True))
+    pd.SetPoints(pts)
+    verts = vtkCellArray()
+    for i in range(len(points)):
+        verts.InsertNextCell(1)
+        verts.InsertCellPoint(i)
+    pd.SetVerts(verts)
+    n = numpy_to_vtk(np.ascontiguousarray(normals), deep=True)
+    n.SetName('Normals')
+    pd.GetPointData().SetNormals(n)
+    return pd
+
+
 class MainJob(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -98,6 +117,31 @@ class MainJob(unittest.TestCase):
         pd = read_vtp(os.path.join(WORK, 'ball-gls.vtp'))
         kappa = vtk_to_numpy(pd.GetPointData().GetArray('GLSKappa'))
         self.assertLess(abs(np.median(kappa) - 1.0), 0.02)  # estimated, MST-oriented normals: outward
+
+    def test_ply_and_vtp_inputs(self):
+        from vtkmodules.vtkIOPLY import vtkPLYWriter
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+        points_file = os.path.join(WORK, 'sphere-src.xyz')
+        write_sphere(points_file, 3000, 1.0, True, ' ')
+        data = np.loadtxt(points_file)
+        pd = polydata_from(data[:, :3], data[:, 3:])
+        ply = os.path.join(WORK, 'ply-sphere.ply')
+        w = vtkPLYWriter()
+        w.SetFileName(ply)
+        w.SetInputData(pd)
+        w.Write()
+        vtp = os.path.join(WORK, 'vtp-sphere.vtp')
+        w2 = vtkXMLPolyDataWriter()
+        w2.SetFileName(vtp)
+        w2.SetInputData(pd)
+        w2.SetDataModeToBinary()
+        w2.Write()
+        for path, stem in ((ply, 'ply-sphere'), (vtp, 'vtp-sphere')):
+            result = run(path, '--output-dir', WORK, '--scales', '4', '--min-scale', '0.08', '--max-scale', '0.3')
+            self.assertEqual(result.returncode, 0, result.stderr[-3000:])
+            out = read_vtp(os.path.join(WORK, stem + '-gls.vtp'))
+            kappa = vtk_to_numpy(out.GetPointData().GetArray('GLSKappa'))
+            self.assertLess(abs(np.nanmedian(kappa) - 1.0), 0.02, path)
 
     def test_missing_unreadable_and_malformed_files_get_clear_messages(self):
         result = run(os.path.join(WORK, 'nope.ply'))
