@@ -17,6 +17,9 @@
 #include "gls/ScaleSampling.h"
 #include "gls/ScaleSpaceEngine.h"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -42,6 +45,7 @@ vtkGLSScaleFilterBase::vtkGLSScaleFilterBase()
   , WKappa(1.0)
   , ReuseInputScaleSpace(true)
   , Backend(BACKEND_AUTO)
+  , MemoryBudget(0.0)
   , NumberOfThreads(0)
 {
   this->SetInputArrayToProcess(
@@ -77,15 +81,42 @@ double vtkGLSScaleFilterBase::ToAbsoluteLength(vtkPolyData* input, double value)
   {
     return value;
   }
-  double bounds[6];
-  input->GetBounds(bounds);
-  const double dx = bounds[1] - bounds[0], dy = bounds[3] - bounds[2], dz = bounds[5] - bounds[4];
-  return value * std::sqrt(dx * dx + dy * dy + dz * dz);
+  return value * FiniteDiagonal(input);
+}
+
+double vtkGLSScaleFilterBase::FiniteDiagonal(vtkPolyData* input)
+{
+  // Over the points with finite coordinates only: one NaN or Inf point must not change everyone's scales.
+  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+  bool any = false;
+  for (vtkIdType i = 0; i < input->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    input->GetPoint(i, p);
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = any ? std::min(lo[a], p[a]) : p[a];
+      hi[a] = any ? std::max(hi[a], p[a]) : p[a];
+    }
+    any = true;
+  }
+  const double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
 std::vector<double> vtkGLSScaleFilterBase::ComputeAbsoluteScales(vtkPolyData* input)
 {
   std::vector<double> scales;
+  if (this->ScaleUnits == RELATIVE_TO_DIAGONAL && !(FiniteDiagonal(input) > 0.0))
+  {
+    vtkErrorMacro("Invalid scales: they are relative to the bounding-box diagonal, and it is zero (all points with "
+                  "finite coordinates coincide, or there are none): set ScaleUnits to ABSOLUTE.");
+    return {};
+  }
   if (!this->ExplicitScales.empty())
   {
     for (double s : this->ExplicitScales)
@@ -219,8 +250,14 @@ bool vtkGLSScaleFilterBase::PrepareScaleSamples(
   }
 
   scales = this->ComputeAbsoluteScales(input);
+  if (scales.empty() ||
+    !this->CheckMemoryBudget(this->EngineBytes(input->GetNumberOfPoints(), scales.size()), "the fused GLS fit",
+      "Use fewer points or scales."))
+  {
+    return false;
+  }
   std::vector<double> points, normals;
-  if (scales.empty() || !this->GatherPointsAndNormals(input, points, normals))
+  if (!this->GatherPointsAndNormals(input, points, normals))
   {
     return false;
   }
@@ -280,6 +317,32 @@ bool vtkGLSScaleFilterBase::RunEngine(const gls::ScaleSpaceEngine& engine, gls::
                                                                   << "); computing on the CPU instead.");
   }
   return completed;
+}
+
+bool vtkGLSScaleFilterBase::CheckMemoryBudget(double needed, const char* what, const char* advice)
+{
+  double budget = this->MemoryBudget * 1024.0 * 1024.0;
+  if (!(budget > 0.0))
+  {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    budget = pages > 0 && pageSize > 0 ? 0.5 * static_cast<double>(pages) * static_cast<double>(pageSize) : 4e9;
+  }
+  if (needed <= budget)
+  {
+    return true;
+  }
+  vtkErrorMacro("Not enough memory budget: " << what << " needs about " << needed / (1024.0 * 1024.0)
+                                             << " MiB, above the budget of " << budget / (1024.0 * 1024.0)
+                                             << " MiB (MemoryBudget; 0 = half of the physical memory). " << advice);
+  return false;
+}
+
+double vtkGLSScaleFilterBase::EngineBytes(vtkIdType n, std::size_t S) const
+{
+  const double threads = gls::resolveThreadCount(this->NumberOfThreads);
+  const double perPoint = 6 * 8 + 2 * 3 * 8 + 3 * 8 + 8; // input copies, grid copies, positions, order
+  const double perThread = static_cast<double>(S) * (sizeof(gls::Moments) + sizeof(gls::ScaleSample) + 8);
+  return static_cast<double>(n) * perPoint + threads * perThread;
 }
 
 void vtkGLSScaleFilterBase::StoreBackend(vtkFieldData* fd) const
@@ -361,5 +424,6 @@ void vtkGLSScaleFilterBase::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "WTau, WEta, WKappa: " << this->WTau << ", " << this->WEta << ", " << this->WKappa << "\n";
   os << indent << "ReuseInputScaleSpace: " << this->ReuseInputScaleSpace << "\n";
   os << indent << "Backend: " << this->Backend << " (last used: " << this->LastBackendUsed << ")\n";
+  os << indent << "MemoryBudget (MiB): " << this->MemoryBudget << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

@@ -143,6 +143,15 @@ public:
   void SetBackendToCUDA() { this->SetBackend(BACKEND_CUDA); }
   ///@}
 
+  ///@{
+  /// Memory this filter may allocate for its outputs and scratch, in MiB (0, the default: half of the physical
+  /// memory). Before allocating, the filter estimates what it needs; above the budget it stops with an error that
+  /// says how much it needs and what to change (fewer scales, OutputPrecision FLOAT, skipping arrays, or the fused
+  /// filters that store nothing per scale).
+  vtkSetClampMacro(MemoryBudget, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MemoryBudget, double);
+  ///@}
+
   /// The backend the last fit of this filter ran on ("CPU", "CUDA"), or "" if it reused stored arrays.
   const char* GetLastBackendUsed() const { return this->LastBackendUsed.c_str(); }
 
@@ -165,6 +174,9 @@ protected:
   ~vtkGLSScaleFilterBase() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /// Bounding-box diagonal of the points with finite coordinates (0 when none or all coincide).
+  static double FiniteDiagonal(vtkPolyData* input);
 
   /// Converts a length given in ScaleUnits into an absolute length for this input.
   double ToAbsoluteLength(vtkPolyData* input, double value) const;
@@ -203,6 +215,12 @@ protected:
   bool RunEngine(const gls::ScaleSpaceEngine& engine, gls::ScaleSampleSink& sink,
     const std::vector<std::uint64_t>* ids, const gls::ParallelOptions& parallel);
 
+  /// False (with an error naming `needed` and `advice`) when `needed` bytes exceed the MemoryBudget.
+  bool CheckMemoryBudget(double needed, const char* what, const char* advice);
+
+  /// Bytes of the engine's own buffers for n points and S scales (coordinates, normals, grid, per-thread scratch).
+  double EngineBytes(vtkIdType n, std::size_t S) const;
+
   /// Writes the backend of the last fit as the field-data string array GLSBackend (nothing if none ran).
   void StoreBackend(vtkFieldData* fd) const;
 
@@ -230,6 +248,7 @@ protected:
   double WKappa;
   bool ReuseInputScaleSpace;
   int Backend;
+  double MemoryBudget;
   int NumberOfThreads;
   std::string LastBackendUsed;
   bool WarnedAboutBackend = false;

@@ -3,6 +3,7 @@
 #include "vtkGLSArrayNames.h"
 
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
@@ -14,25 +15,35 @@
 #include "gls/ScaleSpaceEngine.h"
 
 #include <cmath>
+#include <type_traits>
 
 vtkStandardNewMacro(vtkGLSScaleSpace);
 
 namespace
 {
 
-/// Writes every sample straight into the output arrays (each point owns its own tuples: thread safe).
+/// Writes every sample straight into the output arrays (each point owns its own tuples: thread safe), in the
+/// output precision T (double, or float when OutputPrecision is FLOAT).
+template <typename T>
 class ArraySink : public gls::ScaleSampleSink
 {
 public:
   std::size_t S = 0;
-  double* Tau = nullptr;
-  double* Eta = nullptr;
-  double* Kappa = nullptr;
-  double* Fitness = nullptr;
-  double* DTau = nullptr;
-  double* DEta = nullptr;
-  double* DKappa = nullptr;
+  T* Tau = nullptr;
+  T* Eta = nullptr;
+  T* Kappa = nullptr;
+  T* Fitness = nullptr;
+  T* DTau = nullptr;
+  T* DEta = nullptr;
+  T* DKappa = nullptr;
   int* Count = nullptr;
+
+  static void put3(T* out, const gls::Vec3& v)
+  {
+    out[0] = static_cast<T>(v.x);
+    out[1] = static_cast<T>(v.y);
+    out[2] = static_cast<T>(v.z);
+  }
 
   void consume(std::uint64_t id, const gls::ScaleSample* s, int) override
   {
@@ -41,33 +52,62 @@ public:
       const std::size_t o = id * this->S + k;
       if (this->Tau)
       {
-        this->Tau[o] = s[k].tau;
+        this->Tau[o] = static_cast<T>(s[k].tau);
       }
       if (this->Kappa)
       {
-        this->Kappa[o] = s[k].kappa;
+        this->Kappa[o] = static_cast<T>(s[k].kappa);
       }
       if (this->Fitness)
       {
-        this->Fitness[o] = s[k].phi;
+        this->Fitness[o] = static_cast<T>(s[k].phi);
       }
       if (this->DTau)
       {
-        this->DTau[o] = s[k].dtau;
-        this->DKappa[o] = s[k].dkappa;
-        this->DEta[3 * o] = s[k].deta.x;
-        this->DEta[3 * o + 1] = s[k].deta.y;
-        this->DEta[3 * o + 2] = s[k].deta.z;
+        this->DTau[o] = static_cast<T>(s[k].dtau);
+        this->DKappa[o] = static_cast<T>(s[k].dkappa);
+        put3(this->DEta + 3 * o, s[k].deta);
       }
       if (this->Eta)
       {
-        this->Eta[3 * o] = s[k].eta.x;
-        this->Eta[3 * o + 1] = s[k].eta.y;
-        this->Eta[3 * o + 2] = s[k].eta.z;
+        put3(this->Eta + 3 * o, s[k].eta);
       }
       if (this->Count)
       {
         this->Count[o] = static_cast<int>(s[k].neighbors);
+      }
+    }
+  }
+};
+
+/// Allocates the wanted arrays in precision T, binds them to a sink, runs it, and hands the arrays back.
+template <typename T, typename ArrayType>
+struct Outputs
+{
+  vtkSmartPointer<ArrayType> Tau, Eta, Kappa, Fitness, DTau, DEta, DKappa;
+  ArraySink<T> Sink;
+
+  static T* pointer(ArrayType* a) { return a ? a->GetPointer(0) : nullptr; }
+
+  void bind()
+  {
+    this->Sink.Tau = pointer(this->Tau);
+    this->Sink.Eta = pointer(this->Eta);
+    this->Sink.Kappa = pointer(this->Kappa);
+    this->Sink.Fitness = pointer(this->Fitness);
+    this->Sink.DTau = pointer(this->DTau);
+    this->Sink.DEta = pointer(this->DEta);
+    this->Sink.DKappa = pointer(this->DKappa);
+  }
+
+  void addTo(vtkPointData* pd) const
+  {
+    for (ArrayType* a : { this->Tau.Get(), this->Eta.Get(), this->Kappa.Get(), this->Fitness.Get(),
+           this->DTau.Get(), this->DEta.Get(), this->DKappa.Get() })
+    {
+      if (a)
+      {
+        pd->AddArray(a);
       }
     }
   }
@@ -82,6 +122,7 @@ vtkGLSScaleSpace::vtkGLSScaleSpace()
   , StoreFitness(true)
   , StoreDerivatives(true)
   , StoreNeighborCount(true)
+  , OutputPrecision(DOUBLE)
 {
 }
 
@@ -107,25 +148,20 @@ int vtkGLSScaleSpace::RequestData(
   const vtkIdType n = input->GetNumberOfPoints();
   const int S = static_cast<int>(scales.size());
 
-  auto makeArray = [&](bool wanted, const char* name, int perScale) -> vtkSmartPointer<vtkDoubleArray> {
-    if (!wanted)
-    {
-      return nullptr;
-    }
-    auto a = vtkSmartPointer<vtkDoubleArray>::New();
-    a->SetName(name);
-    a->SetNumberOfComponents(S * perScale);
-    a->SetNumberOfTuples(n);
-    NameScaleComponents(a, scales, perScale);
-    return a;
-  };
-  auto tau = makeArray(this->StoreTau, vtkGLSArrayNames::Tau, 1);
-  auto eta = makeArray(this->StoreEta, vtkGLSArrayNames::Eta, 3);
-  auto kappa = makeArray(this->StoreKappa, vtkGLSArrayNames::Kappa, 1);
-  auto fitness = makeArray(this->StoreFitness, vtkGLSArrayNames::Fitness, 1);
-  auto dtau = makeArray(this->StoreDerivatives, vtkGLSArrayNames::DTau, 1);
-  auto deta = makeArray(this->StoreDerivatives, vtkGLSArrayNames::DEta, 3);
-  auto dkappa = makeArray(this->StoreDerivatives, vtkGLSArrayNames::DKappa, 1);
+  // Memory: every stored array is n x S (x 3 for the vectors) values of the output precision.
+  const double valueBytes = this->OutputPrecision == FLOAT ? 4.0 : 8.0;
+  const double valuesPerScale = (this->StoreTau ? 1 : 0) + (this->StoreKappa ? 1 : 0) + (this->StoreFitness ? 1 : 0) +
+    (this->StoreEta ? 3 : 0) + (this->StoreDerivatives ? 5 : 0);
+  const double needed = static_cast<double>(n) * S * (valuesPerScale * valueBytes + (this->StoreNeighborCount ? 4 : 0)) +
+    this->EngineBytes(n, scales.size());
+  if (!this->CheckMemoryBudget(needed, "storing every scale",
+        "Use fewer scales, OutputPrecision FLOAT (half the memory), turn off arrays you do not need (Store*), or "
+        "use vtkGLSGeometricVariation / vtkGLSContinuousFeatures / vtkGLSMultiScaleDissimilarity directly on the "
+        "points and normals: they compute in a fused pass that stores nothing per scale."))
+  {
+    return 0;
+  }
+
   vtkSmartPointer<vtkIntArray> count;
   if (this->StoreNeighborCount)
   {
@@ -136,35 +172,64 @@ int vtkGLSScaleSpace::RequestData(
     NameScaleComponents(count, scales, 1);
   }
 
-  ArraySink sink;
-  sink.S = scales.size();
-  sink.Tau = tau ? tau->GetPointer(0) : nullptr;
-  sink.Eta = eta ? eta->GetPointer(0) : nullptr;
-  sink.Kappa = kappa ? kappa->GetPointer(0) : nullptr;
-  sink.Fitness = fitness ? fitness->GetPointer(0) : nullptr;
-  sink.DTau = dtau ? dtau->GetPointer(0) : nullptr;
-  sink.DEta = deta ? deta->GetPointer(0) : nullptr;
-  sink.DKappa = dkappa ? dkappa->GetPointer(0) : nullptr;
-  sink.Count = count ? count->GetPointer(0) : nullptr;
-
   gls::ScaleSpaceSettings settings;
   settings.scales = scales;
   settings.minNeighbors = this->ResolveMinimumNeighbors(points, normals);
   settings.parallel.threads = this->NumberOfThreads;
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 1.0); };
   gls::ScaleSpaceEngine engine(points.data(), normals.data(), points.size() / 3, settings);
-  if (!this->RunEngine(engine, sink, nullptr, settings.parallel))
-  {
-    return 1; // aborted: the output is the input, without partial arrays
-  }
 
-  vtkPointData* pd = output->GetPointData();
-  for (vtkDataArray* a : std::initializer_list<vtkDataArray*>{ tau, eta, kappa, fitness, dtau, deta, dkappa, count })
-  {
-    if (a)
+  auto fill = [&](auto& outputs, auto makeArray) -> bool {
+    outputs.Tau = makeArray(this->StoreTau, vtkGLSArrayNames::Tau, 1);
+    outputs.Eta = makeArray(this->StoreEta, vtkGLSArrayNames::Eta, 3);
+    outputs.Kappa = makeArray(this->StoreKappa, vtkGLSArrayNames::Kappa, 1);
+    outputs.Fitness = makeArray(this->StoreFitness, vtkGLSArrayNames::Fitness, 1);
+    outputs.DTau = makeArray(this->StoreDerivatives, vtkGLSArrayNames::DTau, 1);
+    outputs.DEta = makeArray(this->StoreDerivatives, vtkGLSArrayNames::DEta, 3);
+    outputs.DKappa = makeArray(this->StoreDerivatives, vtkGLSArrayNames::DKappa, 1);
+    outputs.bind();
+    outputs.Sink.S = scales.size();
+    outputs.Sink.Count = count ? count->GetPointer(0) : nullptr;
+    if (!this->RunEngine(engine, outputs.Sink, nullptr, settings.parallel))
     {
-      pd->AddArray(a);
+      return false; // aborted: the output is the input, without partial arrays
     }
+    outputs.addTo(output->GetPointData());
+    return true;
+  };
+  auto arrayMaker = [&](auto prototype) {
+    using ArrayType = typename std::remove_pointer<decltype(prototype)>::type;
+    return [&](bool wanted, const char* name, int perScale) -> vtkSmartPointer<ArrayType> {
+      if (!wanted)
+      {
+        return nullptr;
+      }
+      auto a = vtkSmartPointer<ArrayType>::New();
+      a->SetName(name);
+      a->SetNumberOfComponents(S * perScale);
+      a->SetNumberOfTuples(n);
+      NameScaleComponents(a, scales, perScale);
+      return a;
+    };
+  };
+  bool completed;
+  if (this->OutputPrecision == FLOAT)
+  {
+    Outputs<float, vtkFloatArray> outputs;
+    completed = fill(outputs, arrayMaker(static_cast<vtkFloatArray*>(nullptr)));
+  }
+  else
+  {
+    Outputs<double, vtkDoubleArray> outputs;
+    completed = fill(outputs, arrayMaker(static_cast<vtkDoubleArray*>(nullptr)));
+  }
+  if (!completed)
+  {
+    return 1;
+  }
+  if (count)
+  {
+    output->GetPointData()->AddArray(count);
   }
   StoreScales(output->GetFieldData(), scales);
   this->StoreBackend(output->GetFieldData());
@@ -180,4 +245,5 @@ void vtkGLSScaleSpace::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StoreFitness: " << this->StoreFitness << "\n";
   os << indent << "StoreDerivatives: " << this->StoreDerivatives << "\n";
   os << indent << "StoreNeighborCount: " << this->StoreNeighborCount << "\n";
+  os << indent << "OutputPrecision: " << (this->OutputPrecision == FLOAT ? "Float" : "Double") << "\n";
 }

@@ -55,6 +55,20 @@ public:
   vtkBooleanMacro(StoreNeighborCount, bool);
   ///@}
 
+  enum OutputPrecisionType
+  {
+    DOUBLE = 0, ///< vtkDoubleArray outputs (default)
+    FLOAT = 1   ///< vtkFloatArray outputs: half the memory; the fits are still computed in double
+  };
+
+  ///@{
+  /// Precision of the stored per-scale arrays (default DOUBLE).
+  vtkSetClampMacro(OutputPrecision, int, DOUBLE, FLOAT);
+  vtkGetMacro(OutputPrecision, int);
+  void SetOutputPrecisionToDouble() { this->SetOutputPrecision(DOUBLE); }
+  void SetOutputPrecisionToFloat() { this->SetOutputPrecision(FLOAT); }
+  ///@}
+
 protected:
   vtkGLSScaleSpace();
   ~vtkGLSScaleSpace() override;
@@ -67,6 +81,7 @@ protected:
   bool StoreFitness;
   bool StoreDerivatives;
   bool StoreNeighborCount;
+  int OutputPrecision;
 
 private:
   vtkGLSScaleSpace(const vtkGLSScaleSpace&) = delete;

@@ -23,9 +23,39 @@ bool finite3(const double* v)
   return isFinite(v[0]) && isFinite(v[1]) && isFinite(v[2]);
 }
 
+/// 2D input (every point in the plane z = const): the in-plane normal of the neighbours' principal line; false
+/// when fewer than 3 neighbours or all at one place.
+bool pcaNormal2D(const GridView& g, const Vec3& p, const std::vector<std::uint64_t>& neighbors, Vec3& normal)
+{
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (std::uint64_t i : neighbors)
+  {
+    const Vec3 x = g.points[i] - p;
+    mean += Eigen::Vector2d(x.x, x.y);
+  }
+  mean /= static_cast<double>(neighbors.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (std::uint64_t i : neighbors)
+  {
+    const Vec3 x = g.points[i] - p;
+    const Eigen::Vector2d d = Eigen::Vector2d(x.x, x.y) - mean;
+    cov += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(cov);
+  if (solver.info() != Eigen::Success || !(solver.eigenvalues()(1) > 0.0))
+  {
+    return false;
+  }
+  const Eigen::Vector2d v = solver.eigenvectors().col(0).normalized();
+  normal = { v(0), v(1), 0.0 };
+  return finite3(&normal.x);
+}
+
 /// Smallest-eigenvalue eigenvector of the covariance of the neighbours (local coordinates around p); false when
-/// fewer than 3 neighbours or when the neighbours are (numerically) on a line or at one place.
-bool pcaNormal(const GridView& g, const Vec3& p, const std::vector<std::uint64_t>& neighbors, Vec3& normal)
+/// fewer than 3 neighbours or when the neighbours are (numerically) on a line or at one place, except on planar
+/// input (every point in z = const), where neighbours on a line are a piece of a 2D curve: its in-plane normal.
+bool pcaNormal(
+  const GridView& g, const Vec3& p, const std::vector<std::uint64_t>& neighbors, bool planar, Vec3& normal)
 {
   if (neighbors.size() < 3)
   {
@@ -53,7 +83,8 @@ bool pcaNormal(const GridView& g, const Vec3& p, const std::vector<std::uint64_t
   const Eigen::Vector3d lambda = solver.eigenvalues(); // ascending
   if (!(lambda(1) > 1e-12 * lambda(2)) || !(lambda(2) > 0.0))
   {
-    return false;
+    // A line of neighbours: no 3D normal, but on 2D input (a curve in the plane z = const) the in-plane one.
+    return planar && pcaNormal2D(g, p, neighbors, normal);
   }
   const Eigen::Vector3d v = solver.eigenvectors().col(0).normalized();
   normal = { v(0), v(1), v(2) };
@@ -80,6 +111,26 @@ bool estimateNormals(
   result.components = 0;
 
   const bool byRadius = settings.neighborhood == NeighborhoodType::Radius;
+  // 2D input: every finite point in one plane z = const (a curve); its normals are in that plane.
+  bool planar = false;
+  double z0 = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!finite3(xyz + 3 * i))
+    {
+      continue;
+    }
+    if (!planar)
+    {
+      planar = true;
+      z0 = xyz[3 * i + 2];
+    }
+    else if (xyz[3 * i + 2] != z0)
+    {
+      planar = false;
+      break;
+    }
+  }
   const double cellSize =
     byRadius ? settings.radius : NeighborGrid::suggestCellSizeForKNearest(xyz, n, settings.k);
   NeighborGrid grid;
@@ -111,7 +162,7 @@ bool estimateNormals(
       const std::uint64_t id = g.ids[s];
       result.neighborCounts[id] = static_cast<int>(nb.size());
       Vec3 normal;
-      if (pcaNormal(g, p, nb, normal))
+      if (pcaNormal(g, p, nb, planar, normal))
       {
         result.normals[3 * id] = normal.x;
         result.normals[3 * id + 1] = normal.y;

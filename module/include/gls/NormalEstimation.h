@@ -2,7 +2,9 @@
 // The normal of a point is the eigenvector of the smallest eigenvalue of the covariance of its neighbourhood
 // (k nearest points including itself, or every point strictly inside a radius), computed in local coordinates.
 // Degenerate input: with fewer than 3 neighbours, or neighbours on a line (two vanishing eigenvalues), or a
-// non-finite position, the normal is NaN (documented, never a silent value).
+// non-finite position, the normal is NaN (documented, never a silent value). 2D input (every finite point in one
+// plane z = const): where the neighbours lie on a line (a 2D curve), the normal is the in-plane perpendicular
+// (z component 0); where they spread over the plane, it is the plane's normal.
 #pragma once
 
 #include "gls/ParallelFor.h"
