@@ -23,10 +23,16 @@ bool finite3(const double* v)
   return isFinite(v[0]) && isFinite(v[1]) && isFinite(v[2]);
 }
 
-/// 2D input (every point in the plane z = const): the in-plane normal of the neighbours' principal line; false
-/// when fewer than 3 neighbours or all at one place.
-bool pcaNormal2D(const GridView& g, const Vec3& p, const std::vector<std::uint64_t>& neighbors, Vec3& normal)
+/// 2D input (every point in the plane z = const): the in-plane normal of the neighbours' principal line and the
+/// ratio of the small to the large eigenvalue (near 0 on a curve, of order 1 on an area); false when fewer than 3
+/// neighbours or all at one place.
+bool pcaNormal2D(
+  const GridView& g, const Vec3& p, const std::vector<std::uint64_t>& neighbors, Vec3& normal, double& ratio)
 {
+  if (neighbors.size() < 3)
+  {
+    return false;
+  }
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (std::uint64_t i : neighbors)
   {
@@ -48,14 +54,13 @@ bool pcaNormal2D(const GridView& g, const Vec3& p, const std::vector<std::uint64
   }
   const Eigen::Vector2d v = solver.eigenvectors().col(0).normalized();
   normal = { v(0), v(1), 0.0 };
+  ratio = solver.eigenvalues()(0) / solver.eigenvalues()(1);
   return finite3(&normal.x);
 }
 
 /// Smallest-eigenvalue eigenvector of the covariance of the neighbours (local coordinates around p); false when
-/// fewer than 3 neighbours or when the neighbours are (numerically) on a line or at one place, except on planar
-/// input (every point in z = const), where neighbours on a line are a piece of a 2D curve: its in-plane normal.
-bool pcaNormal(
-  const GridView& g, const Vec3& p, const std::vector<std::uint64_t>& neighbors, bool planar, Vec3& normal)
+/// fewer than 3 neighbours or when the neighbours are (numerically) on a line or at one place.
+bool pcaNormal(const GridView& g, const Vec3& p, const std::vector<std::uint64_t>& neighbors, Vec3& normal)
 {
   if (neighbors.size() < 3)
   {
@@ -83,8 +88,7 @@ bool pcaNormal(
   const Eigen::Vector3d lambda = solver.eigenvalues(); // ascending
   if (!(lambda(1) > 1e-12 * lambda(2)) || !(lambda(2) > 0.0))
   {
-    // A line of neighbours: no 3D normal, but on 2D input (a curve in the plane z = const) the in-plane one.
-    return planar && pcaNormal2D(g, p, neighbors, normal);
+    return false;
   }
   const Eigen::Vector3d v = solver.eigenvectors().col(0).normalized();
   normal = { v(0), v(1), v(2) };
@@ -137,11 +141,19 @@ bool estimateNormals(
   grid.build(xyz, nullptr, n, cellSize);
   const GridView& g = grid.view();
 
+  // On planar input, also the in-plane normals and how curve-like each neighbourhood is.
+  std::vector<double> inPlane(planar ? 3 * n : 0, kNaN), curveRatio(planar ? n : 0, kNaN);
+
   const int threads = resolveThreadCount(settings.parallel.threads);
   std::vector<std::vector<std::uint64_t>> scratch(static_cast<std::size_t>(threads));
   std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
 
-  const bool completed = parallelFor(g.count, settings.parallel, [&](std::size_t begin, std::size_t end, int t) {
+  ParallelOptions pcaOptions = settings.parallel;
+  if (settings.parallel.progress && settings.orientation == NormalOrientation::MinimumSpanningTree)
+  {
+    pcaOptions.progress = [&settings](double f) { return settings.parallel.progress(0.6 * f); };
+  }
+  const bool completed = parallelFor(g.count, pcaOptions, [&](std::size_t begin, std::size_t end, int t) {
     std::vector<std::uint64_t>& nb = scratch[t];
     for (std::size_t s = begin; s < end; ++s)
     {
@@ -162,17 +174,44 @@ bool estimateNormals(
       const std::uint64_t id = g.ids[s];
       result.neighborCounts[id] = static_cast<int>(nb.size());
       Vec3 normal;
-      if (pcaNormal(g, p, nb, planar, normal))
+      if (pcaNormal(g, p, nb, normal))
       {
         result.normals[3 * id] = normal.x;
         result.normals[3 * id + 1] = normal.y;
         result.normals[3 * id + 2] = normal.z;
+      }
+      if (planar && pcaNormal2D(g, p, nb, normal, curveRatio[id]))
+      {
+        inPlane[3 * id] = normal.x;
+        inPlane[3 * id + 1] = normal.y;
+        inPlane[3 * id + 2] = normal.z;
       }
     }
   });
   if (!completed)
   {
     return false;
+  }
+  // Planar input whose neighbourhoods are mostly lines (median eigenvalue ratio below 0.05) is a 2D curve: its
+  // normals lie in the plane.
+  if (planar)
+  {
+    std::vector<double> finiteRatios;
+    for (double r : curveRatio)
+    {
+      if (std::isfinite(r))
+      {
+        finiteRatios.push_back(r);
+      }
+    }
+    if (!finiteRatios.empty())
+    {
+      std::nth_element(finiteRatios.begin(), finiteRatios.begin() + finiteRatios.size() / 2, finiteRatios.end());
+      if (finiteRatios[finiteRatios.size() / 2] < 0.05)
+      {
+        result.normals = inPlane;
+      }
+    }
   }
 
   double* normals = result.normals.data();
@@ -206,14 +245,26 @@ bool estimateNormals(
       }
       break;
     case NormalOrientation::MinimumSpanningTree:
-      result.components = orientByMinimumSpanningTree(xyz, n, settings.graphNeighbors, normals);
+    {
+      ParallelOptions graph = settings.parallel;
+      if (settings.parallel.progress)
+      {
+        graph.progress = [&settings](double f) { return settings.parallel.progress(0.6 + 0.4 * f); };
+      }
+      if (!orientByMinimumSpanningTree(xyz, n, settings.graphNeighbors, normals, graph, result.components))
+      {
+        return false;
+      }
       break;
+    }
   }
   return true;
 }
 
-std::size_t orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals)
+bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,
+  const ParallelOptions& parallel, std::size_t& components)
 {
+  components = 0;
   // Graph nodes: points with a finite position and a finite normal.
   std::vector<unsigned char> usable(n, 0);
   for (std::size_t i = 0; i < n; ++i)
@@ -224,22 +275,38 @@ std::size_t orientByMinimumSpanningTree(const double* xyz, std::size_t n, int gr
   grid.build(xyz, nullptr, n, NeighborGrid::suggestCellSizeForKNearest(xyz, n, graphNeighbors + 1), usable.data());
   const GridView& g = grid.view();
 
-  // Symmetric k-NN adjacency in CSR form (original ids).
-  std::vector<std::pair<std::uint64_t, std::uint64_t>> edges;
-  edges.reserve(2 * g.count * static_cast<std::size_t>(std::max(graphNeighbors, 1)));
-  std::vector<std::pair<double, std::uint64_t>> knn;
-  for (std::size_t s = 0; s < g.count; ++s)
+  // Symmetric k-NN adjacency in CSR form (original ids); the queries run on all threads, each writing its own slots.
+  const std::uint64_t none = ~std::uint64_t(0);
+  const std::size_t k = static_cast<std::size_t>(std::max(graphNeighbors, 1));
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> edges(2 * g.count * k, { none, none });
+  const int threads = resolveThreadCount(parallel.threads);
+  std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
+  ParallelOptions graphOptions = parallel;
+  if (parallel.progress)
   {
-    grid.kNearest(g.points[s], graphNeighbors + 1, knn);
-    for (const auto& c : knn)
+    graphOptions.progress = [&parallel](double f) { return parallel.progress(0.5 * f); };
+  }
+  const bool built = parallelFor(g.count, graphOptions, [&](std::size_t begin, std::size_t end, int t) {
+    for (std::size_t s = begin; s < end; ++s)
     {
-      if (c.second != s)
+      grid.kNearest(g.points[s], graphNeighbors + 1, knn[t]);
+      std::size_t j = 0;
+      for (const auto& c : knn[t])
       {
-        edges.emplace_back(g.ids[s], g.ids[c.second]);
-        edges.emplace_back(g.ids[c.second], g.ids[s]);
+        if (c.second != s && j < k)
+        {
+          edges[2 * (s * k + j)] = { g.ids[s], g.ids[c.second] };
+          edges[2 * (s * k + j) + 1] = { g.ids[c.second], g.ids[s] };
+          ++j;
+        }
       }
     }
+  });
+  if (!built)
+  {
+    return false;
   }
+  edges.erase(std::remove(edges.begin(), edges.end(), std::make_pair(none, none)), edges.end());
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   std::vector<std::size_t> start(n + 1, 0);
@@ -261,7 +328,7 @@ std::size_t orientByMinimumSpanningTree(const double* xyz, std::size_t n, int gr
 
   std::vector<unsigned char> visited(n, 0);
   std::vector<std::uint64_t> component;
-  std::size_t components = 0;
+  std::size_t oriented = 0;
   for (std::size_t seed = 0; seed < n; ++seed)
   {
     if (!usable[seed] || visited[seed])
@@ -332,6 +399,11 @@ std::size_t orientByMinimumSpanningTree(const double* xyz, std::size_t n, int gr
         continue;
       }
       visited[u] = 1;
+      if (++oriented % 65536 == 0 && parallel.progress &&
+        parallel.progress(0.5 + 0.5 * static_cast<double>(oriented) / static_cast<double>(g.count)))
+      {
+        return false;
+      }
       if (u != parent)
       {
         const double* np = normalOf(parent);
@@ -349,7 +421,7 @@ std::size_t orientByMinimumSpanningTree(const double* xyz, std::size_t n, int gr
     }
     ++components;
   }
-  return components;
+  return true;
 }
 
 } // namespace gls

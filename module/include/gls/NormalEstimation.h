@@ -3,8 +3,9 @@
 // (k nearest points including itself, or every point strictly inside a radius), computed in local coordinates.
 // Degenerate input: with fewer than 3 neighbours, or neighbours on a line (two vanishing eigenvalues), or a
 // non-finite position, the normal is NaN (documented, never a silent value). 2D input (every finite point in one
-// plane z = const): where the neighbours lie on a line (a 2D curve), the normal is the in-plane perpendicular
-// (z component 0); where they spread over the plane, it is the plane's normal.
+// plane z = const) whose neighbourhoods are mostly lines (median ratio of the 2D covariance eigenvalues below
+// 0.05) is a 2D curve: its normals are the in-plane perpendiculars (z component 0); a planar patch keeps the plane's
+// normal.
 #pragma once
 
 #include "gls/ParallelFor.h"
@@ -57,8 +58,10 @@ struct NormalEstimationResult
 bool estimateNormals(const double* xyz, std::size_t n, const NormalEstimationSettings& settings,
   NormalEstimationResult& result);
 
-/// Orients unit normals (3 n, NaN allowed) in place by MST propagation over the k-NN graph of the points.
-/// Returns the number of connected components.
-std::size_t orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals);
+/// Orients unit normals (3 n, NaN allowed) in place by MST propagation over the k-NN graph of the points (graph
+/// queries on parallel.threads threads). `components` receives the number of connected components. Returns false
+/// if the progress callback asked to abort (the normals are then partly oriented and must not be used).
+bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,
+  const ParallelOptions& parallel, std::size_t& components);
 
 } // namespace gls

@@ -1,0 +1,138 @@
+// Cancellation on a million points (every filter returns within a second of the abort, with no partial arrays) and
+// concurrency (two instances of each filter running at once in two threads give the results they give alone).
+#include "FilterTestUtilities.h"
+
+#include "vtkGLSContinuousFeatures.h"
+#include "vtkGLSGeometricVariation.h"
+#include "vtkGLSMultiScaleDissimilarity.h"
+#include "vtkGLSNormalEstimation.h"
+#include "vtkGLSScaleSpace.h"
+
+#include "vtkPointData.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <functional>
+#include <type_traits>
+#include <thread>
+
+using namespace glstest;
+
+namespace
+{
+
+using Clock = std::chrono::steady_clock;
+
+/// Aborts the observed filter at its first progress report past Threshold and remembers when.
+struct TimedAborter : vtkCommand
+{
+  static TimedAborter* New() { return new TimedAborter; }
+  void Execute(vtkObject* caller, unsigned long, void* data) override
+  {
+    if (!this->Fired && *static_cast<double*>(data) > this->Threshold)
+    {
+      this->Fired = true;
+      this->When = Clock::now();
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+    }
+  }
+  double Threshold = 0.05;
+  bool Fired = false;
+  Clock::time_point When;
+};
+
+template <typename Filter>
+void expectQuickAbort(vtkPolyData* input, const char* array, double threshold = 0.05)
+{
+  vtkNew<Filter> f;
+  if constexpr (std::is_base_of<vtkGLSScaleFilterBase, Filter>::value)
+  {
+    f->SetMaxScale(0.01); // about 300 neighbours per point on this sphere: the run itself takes seconds
+    f->SetMinScale(0.002);
+  }
+  vtkNew<TimedAborter> aborter;
+  aborter->Threshold = threshold;
+  f->AddObserver(vtkCommand::ProgressEvent, aborter);
+  f->SetInputData(input);
+  f->Update();
+  const double seconds = std::chrono::duration<double>(Clock::now() - aborter->When).count();
+  ASSERT_TRUE(aborter->Fired) << array;
+  EXPECT_LT(seconds, 1.0) << array;
+  EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray(array), nullptr) << array;
+  std::printf("%-32s aborted past %2.0f%%: returned %.3f s later\n", f->GetClassName(), 100 * threshold, seconds);
+}
+
+} // namespace
+
+TEST(Reliability, AbortOnAMillionPointsReturnsWithinASecond)
+{
+  const Cloud c = sphere(1000000, 1.0);
+  auto withNormals = makePolyData(c);
+  auto pointsOnly = makePolyData(c.points, {});
+  expectQuickAbort<vtkGLSNormalEstimation>(pointsOnly, "Normals");
+  expectQuickAbort<vtkGLSNormalEstimation>(pointsOnly, "Normals", 0.6);  // in the MST graph queries
+  expectQuickAbort<vtkGLSNormalEstimation>(pointsOnly, "Normals", 0.85); // in the tree traversal
+  expectQuickAbort<vtkGLSScaleSpace>(withNormals, "GLSKappa");
+  expectQuickAbort<vtkGLSGeometricVariation>(withNormals, "GLSGeometricVariation");
+  expectQuickAbort<vtkGLSContinuousFeatures>(withNormals, "GLSFeature");
+  expectQuickAbort<vtkGLSMultiScaleDissimilarity>(withNormals, "GLSDissimilarity");
+}
+
+TEST(Reliability, TwoInstancesInTwoThreadsGiveTheResultsTheyGiveAlone)
+{
+  const Cloud a = sphere(20000, 1.0);
+  const Cloud b = paraboloid(150, 1.0, 0.7, -0.2, 0.01, 0.05, 4);
+  auto inputA = makePolyData(a);
+  auto inputB = makePolyData(b);
+  struct Case
+  {
+    const char* array;
+    std::function<vtkSmartPointer<vtkPolyDataAlgorithm>()> make;
+  };
+  const std::vector<Case> cases = {
+    { "Normals", [] { return vtkSmartPointer<vtkPolyDataAlgorithm>(vtkSmartPointer<vtkGLSNormalEstimation>::New()); } },
+    { "GLSKappa", [] { return vtkSmartPointer<vtkPolyDataAlgorithm>(vtkSmartPointer<vtkGLSScaleSpace>::New()); } },
+    { "GLSGeometricVariation",
+      [] { return vtkSmartPointer<vtkPolyDataAlgorithm>(vtkSmartPointer<vtkGLSGeometricVariation>::New()); } },
+    { "GLSFeature",
+      [] { return vtkSmartPointer<vtkPolyDataAlgorithm>(vtkSmartPointer<vtkGLSContinuousFeatures>::New()); } },
+    { "GLSDissimilarity",
+      [] { return vtkSmartPointer<vtkPolyDataAlgorithm>(vtkSmartPointer<vtkGLSMultiScaleDissimilarity>::New()); } },
+  };
+  auto result = [](vtkPolyDataAlgorithm* f, const char* array) {
+    vtkDataArray* out = std::string(array) == "Normals" ? f->GetOutput()->GetPointData()->GetNormals()
+                                                        : f->GetOutput()->GetPointData()->GetArray(array);
+    return values(out);
+  };
+  for (const Case& cs : cases)
+  {
+    // Alone, one after the other.
+    auto a1 = cs.make(), b1 = cs.make();
+    a1->SetInputData(inputA);
+    b1->SetInputData(inputB);
+    a1->Update();
+    b1->Update();
+    // At once, in two threads (twice the same input too).
+    auto a2 = cs.make(), b2 = cs.make(), a3 = cs.make();
+    a2->SetInputData(inputA);
+    b2->SetInputData(inputB);
+    a3->SetInputData(inputA);
+    std::thread t1([&] { a2->Update(); });
+    std::thread t2([&] { b2->Update(); });
+    t1.join();
+    t2.join();
+    std::thread t3([&] { a3->Update(); });
+    vtkSmartPointer<vtkPolyDataAlgorithm> a4 = cs.make();
+    a4->SetInputData(inputA);
+    std::thread t4([&] { a4->Update(); });
+    t3.join();
+    t4.join();
+    const auto alone = result(a1, cs.array);
+    ASSERT_FALSE(alone.empty()) << cs.array;
+    EXPECT_TRUE(identical(alone, result(a2, cs.array))) << cs.array;
+    EXPECT_TRUE(identical(alone, result(a3, cs.array))) << cs.array;
+    EXPECT_TRUE(identical(alone, result(a4, cs.array))) << cs.array;
+    EXPECT_TRUE(identical(result(b1, cs.array), result(b2, cs.array))) << cs.array;
+  }
+}
