@@ -166,7 +166,7 @@ def main(argv):
     from paraview import simple
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
     try:
-        source = gls_io.open_cloud(args.input)
+        source = gls_io.open_cloud(args.input, gls_filter)
     except gls_io.InputError as e:
         print('gls-analyze: %s' % e, file=sys.stderr)
         return 2
