@@ -120,3 +120,22 @@ TEST(NeighborGrid, HugeExtentWithTinyCellsStaysBounded)
   gls::forEachInBall(g, { 5e5, 0.5, 0.5 }, 2e6, [&](std::uint64_t, const gls::Vec3&, double) { ++n; });
   EXPECT_EQ(n, 1000u);
 }
+
+TEST(NeighborGrid, OverflowingExtentFallsBackToOneCell)
+{
+  // Finite points whose extent overflows a double: one cell, correct queries, no hang.
+  const std::vector<double> xyz = { -1e308, 0, 0, 1e308, 0, 0, 0, 0, 0, 1, 0, 0 };
+  gls::NeighborGrid grid;
+  grid.build(xyz.data(), nullptr, 4, 0.5);
+  EXPECT_EQ(grid.view().dims[0] * grid.view().dims[1] * grid.view().dims[2], 1);
+  std::vector<std::uint64_t> found;
+  gls::forEachInBall(grid.view(), { 0.2, 0, 0 }, 2.0, [&](std::uint64_t s, const gls::Vec3&, double) {
+    found.push_back(grid.view().ids[s]);
+  });
+  std::sort(found.begin(), found.end());
+  EXPECT_EQ(found, (std::vector<std::uint64_t>{ 2, 3 }));
+  std::vector<std::pair<double, std::uint64_t>> knn;
+  grid.kNearest({ 0.9, 0, 0 }, 2, knn);
+  ASSERT_EQ(knn.size(), 2u);
+  EXPECT_EQ(grid.view().ids[knn[0].second], 3u);
+}

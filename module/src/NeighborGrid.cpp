@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace gls
 {
@@ -64,29 +65,37 @@ void NeighborGrid::build(
   {
     cellSize = extent > 0.0 ? extent : 1.0;
   }
-  // Keep the cell array proportional to the point count.
+  // Keep the cell array proportional to the point count. Extents that overflow (finite points 1e308 apart) or a
+  // cell size that cannot be fitted get a single cell: slow on such data, but never wrong and never a hang.
   const double maxCells = std::max(8.0 * static_cast<double>(admittedCount), 65536.0);
-  std::int64_t dims[3];
-  for (;;)
+  std::int64_t dims[3] = { 1, 1, 1 };
+  bool fitted = false;
+  for (int attempt = 0; attempt < 256 && isFinite(cellSize) && cellSize > 0.0; ++attempt)
   {
     double cells = 1.0;
     for (int a = 0; a < 3; ++a)
     {
       const double d = std::floor((hi[a] - lo[a]) / cellSize) + 1.0;
       cells *= d;
-      dims[a] = static_cast<std::int64_t>(std::min(d, 4.0e9));
+      dims[a] = isFinite(d) ? static_cast<std::int64_t>(std::min(d, 4.0e9)) : 1;
     }
-    if (cells <= maxCells)
+    if (isFinite(cells) && cells <= maxCells)
     {
+      fitted = true;
       break;
     }
-    cellSize *= std::max(1.01, std::cbrt(cells / maxCells));
+    cellSize *= std::max(1.01, std::cbrt(isFinite(cells) ? cells / maxCells : 2.0));
+  }
+  if (!fitted)
+  {
+    dims[0] = dims[1] = dims[2] = 1;
+    cellSize = std::numeric_limits<double>::infinity();
   }
 
   GridView& v = this->View;
   v.origin = { lo[0], lo[1], lo[2] };
   v.cellSize = cellSize;
-  v.invCellSize = 1.0 / cellSize;
+  v.invCellSize = isFinite(cellSize) ? 1.0 / cellSize : 0.0;
   for (int a = 0; a < 3; ++a)
   {
     v.dims[a] = dims[a];

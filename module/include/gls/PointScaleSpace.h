@@ -23,19 +23,6 @@ struct ScaleBinning
   double inverseCellWidth = 0.0; ///< tableSize / squaredScales[count - 1]
 };
 
-/// Index of the first scale whose open ball holds a neighbour at squared distance d2 (d2 < squaredScales[S-1]).
-GLS_INLINE int firstScaleHolding(const ScaleBinning& b, double d2)
-{
-  int j = static_cast<int>(d2 * b.inverseCellWidth);
-  j = j < b.tableSize ? j : b.tableSize - 1;
-  int k = b.table[j];
-  while (k < b.count - 1 && !(d2 < b.squaredScales[k]))
-  {
-    ++k;
-  }
-  return k;
-}
-
 /// Reference form of firstScaleHolding: binary search (used to build and test the table).
 GLS_INLINE int firstScaleHoldingBySearch(const double* squaredScales, int count, double d2)
 {
@@ -53,6 +40,27 @@ GLS_INLINE int firstScaleHoldingBySearch(const double* squaredScales, int count,
     }
   }
   return lo;
+}
+
+/// Index of the first scale whose open ball holds a neighbour at squared distance d2 (d2 < squaredScales[S-1]).
+/// Exact whatever the rounding of the table index: the start is corrected backwards as well as forwards.
+GLS_INLINE int firstScaleHolding(const ScaleBinning& b, double d2)
+{
+  const double u = d2 * b.inverseCellWidth;
+  if (!(u >= 0.0 && u < static_cast<double>(b.tableSize)))
+  {
+    return firstScaleHoldingBySearch(b.squaredScales, b.count, d2); // degenerate scales (squares underflow)
+  }
+  int k = b.table[static_cast<int>(u)];
+  while (k < b.count - 1 && !(d2 < b.squaredScales[k]))
+  {
+    ++k;
+  }
+  while (k > 0 && d2 < b.squaredScales[k - 1])
+  {
+    --k;
+  }
+  return k;
 }
 
 /// Fits every scale of the evaluation point p (any position; normally a data point) in one pass.
