@@ -61,7 +61,7 @@ def polydata_from(points, normals):
         verts.InsertNextCell(1)
         verts.InsertCellPoint(i)
     pd.SetVerts(verts)
-    n = numpy_to_vtk(np.ascontiguousarray(normals), deep=True)
+    n = numpy_to_vtk(np.ascontiguousarray(normals, dtype=np.float32), deep=True)  # PLY keeps float normals
     n.SetName('Normals')
     pd.GetPointData().SetNormals(n)
     return pd

@@ -139,6 +139,25 @@ def render_features(path, source, title):
     simple.Delete(view)
 
 
+def write_vtp(path, polydata):
+    """Inline binary VTK XML (ParaView 5.11's reader fails on some appended files), without the range caches
+    ParaView keeps in the arrays' information (its own reader complains about reading them back)."""
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+    for data in (polydata.GetPointData(), polydata.GetFieldData()):
+        for i in range(data.GetNumberOfArrays()):
+            array = data.GetAbstractArray(i)
+            if array is not None and array.HasInformation():
+                array.GetInformation().Clear()
+    writer = vtkXMLPolyDataWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(polydata)
+    writer.SetDataModeToBinary()
+    writer.SetCompressorTypeToZLib()
+    writer.SetHeaderTypeToUInt64()
+    if writer.Write() != 1:
+        raise IOError('cannot write %s' % path)
+
+
 def save_state(path, vtp):
     """A state that opens the written .vtp coloured by the features (no plugin needed to open it)."""
     from paraview import simple
@@ -206,7 +225,7 @@ def main(argv):
              np.nanmedian(feature)))
 
     vtp = out('-gls.vtp')
-    simple.SaveData(vtp, proxy=features, DataMode='Binary', CompressorType='ZLib')
+    write_vtp(vtp, result)
     print('wrote %s' % vtp)
     png = out('-features.png')
     render_features(png, features, 'GLS continuous features: %s (%d points)' % (name, count))
