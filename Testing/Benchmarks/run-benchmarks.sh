@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Runs the performance benchmarks P1-P5 (P5 in a process of its own, for its peak memory).
+#   Testing/Benchmarks/run-benchmarks.sh [build dir = build]
+set -euo pipefail
+bin="${1:-build}/bin/glsBenchmarks"
+"$bin" --case all
+"$bin" --case P5
