@@ -64,7 +64,10 @@ int vtkGLSGeometricVariation::RequestData(
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  PrepareOutput(input, output);
+  if (!this->PrepareOutput(input, output))
+  {
+    return 0;
+  }
 
   std::vector<double> scales;
   if (!this->PrepareScaleSamples(input, false, true, scales))

@@ -74,13 +74,11 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  PrepareOutput(input, output);
-  const vtkIdType n = input->GetNumberOfPoints();
-  if (n < 1)
+  if (!this->PrepareOutput(input, output))
   {
-    vtkErrorMacro("The input has no points.");
     return 0;
   }
+  const vtkIdType n = input->GetNumberOfPoints();
 
   // The query point.
   vtkIdType query = this->QueryPointId;

@@ -357,13 +357,19 @@ void vtkGLSScaleFilterBase::StoreBackend(vtkFieldData* fd) const
   fd->AddArray(a);
 }
 
-void vtkGLSScaleFilterBase::PrepareOutput(vtkPolyData* input, vtkPolyData* output)
+bool vtkGLSScaleFilterBase::PrepareOutput(vtkPolyData* input, vtkPolyData* output)
 {
   this->LastBackendUsed.clear();
   output->ShallowCopy(input);
   vtkNew<vtkFieldData> fd;
   fd->ShallowCopy(input->GetFieldData());
   output->SetFieldData(fd);
+  if (input->GetNumberOfPoints() < 1)
+  {
+    vtkErrorMacro("The input has no points.");
+    return false;
+  }
+  return true;
 }
 
 void vtkGLSScaleFilterBase::StoreScales(vtkFieldData* fd, const std::vector<double>& scales)

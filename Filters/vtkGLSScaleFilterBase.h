@@ -208,7 +208,8 @@ protected:
   bool UsesStoredScaleSpace() const;
 
   /// Output = input (shallow) with its own field data, ready for new arrays; forgets the last backend used.
-  void PrepareOutput(vtkPolyData* input, vtkPolyData* output);
+  /// False (with an error) when the input has no points.
+  bool PrepareOutput(vtkPolyData* input, vtkPolyData* output);
 
   /// Runs the engine on this filter's Backend, records the backend used (and warns once per filter when a CUDA
   /// request falls back to the CPU). Returns false if aborted.

@@ -133,7 +133,10 @@ int vtkGLSScaleSpace::RequestData(
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  PrepareOutput(input, output);
+  if (!this->PrepareOutput(input, output))
+  {
+    return 0;
+  }
 
   std::vector<double> points, normals;
   if (!this->GatherPointsAndNormals(input, points, normals))
