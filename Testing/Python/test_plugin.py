@@ -82,7 +82,7 @@ class PluginProxies(unittest.TestCase):
     def setUpClass(cls):
         simple.LoadPlugin(PLUGIN, remote=False, ns=globals())  # a fresh dict passed as ns stays empty
         for name in ('GLSNormalEstimation', 'GLSScaleSpace', 'GLSGeometricVariation', 'GLSContinuousFeatures',
-                     'GLSMultiScaleDissimilarity'):
+                     'GLSMultiScaleDissimilarity', 'GLSScaleProfiles', 'GLSPointCloudReader'):
             NS[name] = globals()[name]
         cls.points, cls.normals = sphere(3000, 2.0)
 
@@ -187,6 +187,32 @@ class PluginProxies(unittest.TestCase):
         self.assertEqual(array(data, 'GLSDissimilarity')[777], 0.0)
         for p in (d, f, v, s, n, src):
             simple.Delete(p)
+
+    def test_scale_profiles_table_equals_the_wrapped_filter(self):
+        src = producer(polydata(self.points, self.normals))
+        p = NS['GLSScaleProfiles'](Input=src, PointIds=[5, 700], NumberOfScales=250, ScaleUnits='Absolute',
+                                   MinScale=0.2, MaxScale=1.5)
+        p.UpdatePipeline()
+        table = servermanager.Fetch(p)
+        self.assertEqual(table.GetNumberOfRows(), 250)
+        direct = glsvtk.vtkGLSScaleProfiles()
+        direct.AddPointId(5)
+        direct.AddPointId(700)
+        direct.SetNumberOfScales(250)
+        direct.SetScaleUnitsToAbsolute()
+        direct.SetMinScale(0.2)
+        direct.SetMaxScale(1.5)
+        direct.SetInputData(polydata(self.points, self.normals))
+        direct.Update()
+        reference = direct.GetOutputTable()
+        for i in range(table.GetNumberOfColumns()):
+            name = table.GetColumnName(i)
+            np.testing.assert_array_equal(vtk_to_numpy(table.GetColumnByName(name)),
+                                          vtk_to_numpy(reference.GetColumnByName(name)), err_msg=name)
+        t = vtk_to_numpy(table.GetColumnByName('t'))
+        np.testing.assert_allclose(vtk_to_numpy(table.GetColumnByName('t*kappa (700)')), t / 2.0, atol=1e-9)
+        simple.Delete(p)
+        simple.Delete(src)
 
     def test_errors_are_reported_not_fatal(self):
         src = producer(polydata(self.points))  # no normals

@@ -8,7 +8,8 @@ estimates oriented normals when the file has none, computes the GLS scale space 
 features, and writes to the output directory:
   <name>-gls.vtp        every array (inline binary VTK XML)
   <name>-features.png   the continuous features on the cloud (colour map, scalar bar, title)
-  <name>-profiles.png   kappa and nu against scale for a few selected points (the paper's Figures 2-3 style)
+  <name>-profiles.png   kappa and nu against 300 scales for a few selected points (GLS Scale Profiles; the
+                        paper's Figures 2-3 style)
   <name>-gls.pvsm       a ParaView state that opens the .vtp coloured by the features
 """
 import argparse
@@ -89,23 +90,30 @@ def select_profile_points(feature, pertinent_count):
     return picks
 
 
-def plot_profiles(path, title, scales, kappa, nu, picks, pertinent):
+def plot_profiles(path, title, table, picks, pertinent):
+    """kappa and nu against scale for the picked points, from a GLS Scale Profiles table (finely sampled)."""
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    def column(name):
+        return vtk_to_numpy(table.GetColumnByName(name))
+
+    t = column('t')
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
     for label, pid in picks.items():
-        line, = ax1.plot(scales, kappa[pid], marker='o', ms=3, label='%s (point %d)' % (label, pid))
-        ax2.semilogy(scales, np.maximum(nu[pid], 1e-12), marker='o', ms=3, color=line.get_color())
-        for t in pertinent[pid]:
-            if np.isfinite(t):
-                ax2.axvline(t, color=line.get_color(), ls=':', lw=1)
+        line, = ax1.plot(t, column('t*kappa (%d)' % pid) / t, label='%s (point %d)' % (label, pid))
+        ax2.semilogy(t, np.maximum(column('nu (%d)' % pid), 1e-12), color=line.get_color())
+        for scale in pertinent[pid]:
+            if np.isfinite(scale):
+                ax2.axvline(scale, color=line.get_color(), ls=':', lw=1)
     ax1.set_ylabel('kappa (1/length)')
     ax1.axhline(0, color='gray', lw=0.5)
     ax1.legend(fontsize=8)
     ax1.set_title(title)
     ax2.set_ylabel('nu (dimensionless, log)')
-    ax2.set_xlabel('scale t (length); dotted: pertinent scales')
+    ax2.set_xlabel('scale t (length), %d scales; dotted: pertinent scales' % len(t))
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -140,14 +148,10 @@ def render_features(path, source, title):
 
 
 def write_vtp(path, polydata):
-    """Inline binary VTK XML (ParaView 5.11's reader fails on some appended files), without the range caches
-    ParaView keeps in the arrays' information (its own reader complains about reading them back)."""
+    """Inline binary VTK XML (ParaView 5.11's reader fails on some appended files). Reading it back, ParaView 5.11
+    prints a harmless "Error reading InformationKey ... L2_NORM_RANGE" for the vector arrays: its writer stores
+    that range cache and its reader does not know the key; the data are read correctly."""
     from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
-    for data in (polydata.GetPointData(), polydata.GetFieldData()):
-        for i in range(data.GetNumberOfArrays()):
-            array = data.GetAbstractArray(i)
-            if array is not None and array.HasInformation():
-                array.GetInformation().Clear()
     writer = vtkXMLPolyDataWriter()
     writer.SetFileName(path)
     writer.SetInputData(polydata)
@@ -231,9 +235,12 @@ def main(argv):
     render_features(png, features, 'GLS continuous features: %s (%d points)' % (name, count))
     print('wrote %s' % png)
     picks = select_profile_points(feature, vtk_to_numpy(pd.GetArray('GLSPertinentScaleCount')))
+    profiles = gls_filter('GLSScaleProfiles', registrationName='Profiles', Input=upstream,
+                          PointIds=list(picks.values()), NumberOfScales=300, MinScale=args.min_scale,
+                          MaxScale=args.max_scale, ScaleSampling='Quadratic')
+    profiles.UpdatePipeline()
     chart = out('-profiles.png')
-    plot_profiles(chart, 'GLS scale profiles: %s' % name, scales, vtk_to_numpy(pd.GetArray('GLSKappa')),
-                  vtk_to_numpy(pd.GetArray('GLSGeometricVariation')), picks,
+    plot_profiles(chart, 'GLS scale profiles: %s' % name, simple.servermanager.Fetch(profiles), picks,
                   vtk_to_numpy(pd.GetArray('GLSPertinentScales')))
     print('wrote %s' % chart)
     state = out('-gls.pvsm')
