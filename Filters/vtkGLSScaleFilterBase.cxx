@@ -238,7 +238,7 @@ bool vtkGLSScaleFilterBase::PrepareScaleSamples(
     return false;
   }
   scales.clear();
-  if (this->ReuseInputScaleSpace)
+  if (this->ReuseInputScaleSpace && this->AcceptsStoredScaleSpace())
   {
     scales = ReadStoredScales(input->GetFieldData());
   }

@@ -204,6 +204,9 @@ protected:
   bool RunScaleSamples(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids = nullptr,
     double progressBegin = 0.0, double progressEnd = 1.0);
 
+  /// Whether this filter may use an upstream scale space at all (vtkGLSScaleProfiles samples its own scales).
+  virtual bool AcceptsStoredScaleSpace() const { return true; }
+
   /// Whether the last PrepareScaleSamples chose the stored arrays.
   bool UsesStoredScaleSpace() const;
 

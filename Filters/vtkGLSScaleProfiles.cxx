@@ -49,7 +49,6 @@ public:
 vtkGLSScaleProfiles::vtkGLSScaleProfiles()
 {
   this->NumberOfScales = 200;
-  this->ReuseInputScaleSpace = false; // profiles sample their own, finer scales
 }
 
 vtkGLSScaleProfiles::~vtkGLSScaleProfiles() = default;

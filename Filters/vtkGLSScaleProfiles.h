@@ -7,7 +7,7 @@
  * one row per scale: column `t` (the scale, length) and, per point id N, the dimensionless profiles of the paper's
  * Figures 2-3: `tau/t (N)`, `t*kappa (N)`, `phi (N)` and `nu (N)` (the geometric variation with weights WTau, WEta,
  * WKappa). NaN where the fit is undefined. The output is a vtkTable, shown in ParaView's line chart view.
- * ReuseInputScaleSpace is off by default here: the profiles sample their own, finer scales.
+ * The profiles always sample their own scales: ReuseInputScaleSpace is ignored (upstream arrays are never reused).
  * Errors: no point selected, a point id out of range, and the errors of vtkGLSScaleFilterBase.
  */
 #ifndef vtkGLSScaleProfiles_h
@@ -42,6 +42,7 @@ protected:
   ~vtkGLSScaleProfiles() override;
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  bool AcceptsStoredScaleSpace() const override { return false; }
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::vector<vtkIdType> PointIds;

@@ -58,6 +58,12 @@ TEST(ScaleProfiles, BunnyProfilesEqualTheScaleSpaceAtTheSameScales)
   vtkNew<vtkGLSScaleProfiles> p;
   p->SetInputConnection(n->GetOutputPort());
   p->SetNumberOfScales(20); // the scale space's default scales
+  // Downstream of a scale space the profiles still sample their own scales.
+  vtkNew<vtkGLSScaleProfiles> fine;
+  fine->SetInputConnection(s->GetOutputPort());
+  fine->AddPointId(1234);
+  fine->Update();
+  EXPECT_EQ(fine->GetOutputTable()->GetNumberOfRows(), 200);
   p->AddPointId(1234);
   p->Update();
   vtkTable* t = p->GetOutputTable();
