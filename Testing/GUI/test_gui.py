@@ -15,8 +15,10 @@ plugin, bunny, work = sys.argv[1:4]
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 env = dict(os.environ, GLS_PLUGIN=plugin, GLS_DEFAULT_INPUT=bunny, GLS_GUI_OUT=work)
+env.pop('DISPLAY', None)  # always a private virtual X server
 session = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'gui_session.py')
-command = ['xvfb-run', '-a', '-s', '-screen 0 1280x1024x24', 'paraview', '--script=' + session, '--exit']
+display = os.path.join(os.path.dirname(session), '..', '..', 'paraview-plugin', 'python', 'with-virtual-display')
+command = [display, 'paraview', '--script=' + session, '--exit']
 result = subprocess.run(command, env=env, capture_output=True, text=True, timeout=240)
 print(result.stdout[-2000:], result.stderr[-2000:])
 failures = []

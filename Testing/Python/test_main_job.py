@@ -17,7 +17,9 @@ ANALYZE, WORK = sys.argv[1], sys.argv[2]
 
 
 def run(*args):
-    return subprocess.run([ANALYZE, *args], capture_output=True, text=True, timeout=300)
+    env = dict(os.environ)
+    env.pop('DISPLAY', None)  # the main job's own virtual X server, as on a headless machine
+    return subprocess.run([ANALYZE, *args], capture_output=True, text=True, timeout=300, env=env)
 
 
 def read_vtp(path):
@@ -97,7 +99,8 @@ class MainJob(unittest.TestCase):
             background, colours = image_stats(png)
             self.assertLess(background, 0.95, png)
             self.assertGreater(colours, 200, png)
-        state = open(files['-gls.pvsm']).read()
+        with open(files['-gls.pvsm']) as f:
+            state = f.read()
         self.assertIn('XMLPolyDataReader', state)
         self.assertIn(os.path.abspath(files['-gls.vtp']), state)
 
