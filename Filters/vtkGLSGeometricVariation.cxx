@@ -70,7 +70,11 @@ int vtkGLSGeometricVariation::RequestData(
   }
 
   std::vector<double> scales;
-  if (!this->PrepareScaleSamples(input, false, true, scales))
+  OutputCost cost;
+  cost.BytesPerPointScale = 8.0; // GLSGeometricVariation, one double per point and scale
+  cost.What = "the geometric variation of every scale";
+  cost.Advice = "Use fewer scales, or vtkGLSContinuousFeatures, which integrates nu without storing it.";
+  if (!this->PrepareScaleSamples(input, false, true, scales, cost))
   {
     return 0;
   }

@@ -226,8 +226,8 @@ bool vtkGLSScaleFilterBase::ReportProgress(double fraction, double begin, double
   return this->GetAbortExecute() != 0;
 }
 
-bool vtkGLSScaleFilterBase::PrepareScaleSamples(
-  vtkPolyData* input, bool needDescriptors, bool needDerivatives, std::vector<double>& scales)
+bool vtkGLSScaleFilterBase::PrepareScaleSamples(vtkPolyData* input, bool needDescriptors, bool needDerivatives,
+  std::vector<double>& scales, const OutputCost& cost)
 {
   this->Source = std::make_unique<Internals>();
   Internals& src = *this->Source;
@@ -242,17 +242,20 @@ bool vtkGLSScaleFilterBase::PrepareScaleSamples(
   {
     scales = ReadStoredScales(input->GetFieldData());
   }
+  const double n = static_cast<double>(src.PointCount);
   if (!scales.empty() && src.Stored.Bind(input, scales.size(), needDescriptors, needDerivatives))
   {
     src.UseStored = true;
     src.ScaleCount = scales.size();
-    return true;
+    return this->CheckMemoryBudget(n * static_cast<double>(scales.size()) * cost.BytesPerPointScale, cost.What,
+      cost.Advice);
   }
 
   scales = this->ComputeAbsoluteScales(input);
   if (scales.empty() ||
-    !this->CheckMemoryBudget(this->EngineBytes(input->GetNumberOfPoints(), scales.size()), "the fused GLS fit",
-      "Use fewer points or scales."))
+    !this->CheckMemoryBudget(n * static_cast<double>(scales.size()) * cost.BytesPerPointScale +
+        this->EngineBytes(input->GetNumberOfPoints(), scales.size()),
+      cost.What, cost.Advice))
   {
     return false;
   }

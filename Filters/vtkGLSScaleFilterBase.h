@@ -192,12 +192,27 @@ protected:
   /// MinimumNeighbors, resolved for this input (see MinimumNeighbors).
   double ResolveMinimumNeighbors(const std::vector<double>& points, const std::vector<double>& normals) const;
 
+  /// What a filter will store per point and scale, for the memory budget, and what to say when it is too much.
+  struct OutputCost
+  {
+    double BytesPerPointScale = 0.0; ///< output bytes for each (point, scale) pair
+    const char* What = "the fused GLS fit";
+    const char* Advice = "Use fewer points or scales.";
+  };
+
   /// Chooses where the samples of RunScaleSamples come from: the arrays a vtkGLSScaleSpace upstream stored (when
-  /// ReuseInputScaleSpace is on and GLSScales plus every array named by needDescriptors -- GLSTau, GLSKappa,
-  /// GLSFitness -- and needDerivatives -- GLSdTau, GLSdKappa, GLSdEta -- are present), else a fit of points and
-  /// normals at this filter's scales. `scales` receives the absolute scales. False (with an error) on bad input.
+  /// ReuseInputScaleSpace is on, AcceptsStoredScaleSpace() and GLSScales plus every array named by needDescriptors --
+  /// GLSTau, GLSKappa, GLSFitness -- and needDerivatives -- GLSdTau, GLSdKappa, GLSdEta -- are present), else a fit
+  /// of points and normals at this filter's scales. `scales` receives the absolute scales. Checks the memory budget
+  /// (the filter's outputs per `cost`, plus the engine when it fits) before allocating. False (with an error) on bad
+  /// input or a budget exceeded.
+  bool PrepareScaleSamples(vtkPolyData* input, bool needDescriptors, bool needDerivatives,
+    std::vector<double>& scales, const OutputCost& cost);
   bool PrepareScaleSamples(
-    vtkPolyData* input, bool needDescriptors, bool needDerivatives, std::vector<double>& scales);
+    vtkPolyData* input, bool needDescriptors, bool needDerivatives, std::vector<double>& scales)
+  {
+    return this->PrepareScaleSamples(input, needDescriptors, needDerivatives, scales, OutputCost());
+  }
 
   /// Feeds the sink with the samples of the given points (all when ids is null), on all threads, reporting progress
   /// from progressBegin to progressEnd. Returns false if aborted. Call PrepareScaleSamples first.

@@ -12,7 +12,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
-#include "gls/ScaleSpaceEngine.h"
+#include "gls/ScaleSpaceEngine.h" // gls::ScaleSampleSink
 
 #include <cmath>
 #include <type_traits>
@@ -138,32 +138,24 @@ int vtkGLSScaleSpace::RequestData(
     return 0;
   }
 
-  std::vector<double> points, normals;
-  if (!this->GatherPointsAndNormals(input, points, normals))
-  {
-    return 0;
-  }
-  const std::vector<double> scales = this->ComputeAbsoluteScales(input);
-  if (scales.empty())
+  // Memory: every stored array is n x S (x 3 for the vectors) values of the output precision.
+  const double valueBytes = this->OutputPrecision == FLOAT ? 4.0 : 8.0;
+  const double valuesPerScale = (this->StoreTau ? 1 : 0) + (this->StoreKappa ? 1 : 0) + (this->StoreFitness ? 1 : 0) +
+    (this->StoreEta ? 3 : 0) + (this->StoreDerivatives ? 5 : 0);
+  OutputCost cost;
+  cost.BytesPerPointScale = valuesPerScale * valueBytes + (this->StoreNeighborCount ? 4 : 0);
+  cost.What = "storing every scale";
+  cost.Advice = "Use fewer scales, OutputPrecision FLOAT (half the memory), turn off arrays you do not need "
+                "(Store*), or use vtkGLSGeometricVariation / vtkGLSContinuousFeatures / "
+                "vtkGLSMultiScaleDissimilarity directly on the points and normals: they compute in a fused pass that "
+                "stores nothing per scale.";
+  std::vector<double> scales;
+  if (!this->PrepareScaleSamples(input, true, true, scales, cost))
   {
     return 0;
   }
   const vtkIdType n = input->GetNumberOfPoints();
   const int S = static_cast<int>(scales.size());
-
-  // Memory: every stored array is n x S (x 3 for the vectors) values of the output precision.
-  const double valueBytes = this->OutputPrecision == FLOAT ? 4.0 : 8.0;
-  const double valuesPerScale = (this->StoreTau ? 1 : 0) + (this->StoreKappa ? 1 : 0) + (this->StoreFitness ? 1 : 0) +
-    (this->StoreEta ? 3 : 0) + (this->StoreDerivatives ? 5 : 0);
-  const double needed = static_cast<double>(n) * S * (valuesPerScale * valueBytes + (this->StoreNeighborCount ? 4 : 0)) +
-    this->EngineBytes(n, scales.size());
-  if (!this->CheckMemoryBudget(needed, "storing every scale",
-        "Use fewer scales, OutputPrecision FLOAT (half the memory), turn off arrays you do not need (Store*), or "
-        "use vtkGLSGeometricVariation / vtkGLSContinuousFeatures / vtkGLSMultiScaleDissimilarity directly on the "
-        "points and normals: they compute in a fused pass that stores nothing per scale."))
-  {
-    return 0;
-  }
 
   vtkSmartPointer<vtkIntArray> count;
   if (this->StoreNeighborCount)
@@ -174,13 +166,6 @@ int vtkGLSScaleSpace::RequestData(
     count->SetNumberOfTuples(n);
     NameScaleComponents(count, scales, 1);
   }
-
-  gls::ScaleSpaceSettings settings;
-  settings.scales = scales;
-  settings.minNeighbors = this->ResolveMinimumNeighbors(points, normals);
-  settings.parallel.threads = this->NumberOfThreads;
-  settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 1.0); };
-  gls::ScaleSpaceEngine engine(points.data(), normals.data(), points.size() / 3, settings);
 
   auto fill = [&](auto& outputs, auto makeArray) -> bool {
     outputs.Tau = makeArray(this->StoreTau, vtkGLSArrayNames::Tau, 1);
@@ -193,7 +178,7 @@ int vtkGLSScaleSpace::RequestData(
     outputs.bind();
     outputs.Sink.S = scales.size();
     outputs.Sink.Count = count ? count->GetPointer(0) : nullptr;
-    if (!this->RunEngine(engine, outputs.Sink, nullptr, settings.parallel))
+    if (!this->RunScaleSamples(outputs.Sink))
     {
       return false; // aborted: the output is the input, without partial arrays
     }

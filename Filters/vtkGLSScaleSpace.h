@@ -74,6 +74,7 @@ protected:
   ~vtkGLSScaleSpace() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool AcceptsStoredScaleSpace() const override { return false; } // it is the producer: it always fits
 
   bool StoreTau;
   bool StoreEta;

@@ -382,6 +382,17 @@ TEST(BadInput, AHundredThousandScales)
   EXPECT_NE(rs.message.find("MiB"), std::string::npos) << rs.message;
   EXPECT_NE(rs.message.find("fused"), std::string::npos) << rs.message;
   EXPECT_EQ(rs.output->GetPointData()->GetArray("GLSKappa"), nullptr);
+  // The variation stores nu per scale: the same budget check, pointing to the features filter.
+  vtkNew<vtkGLSGeometricVariation> variation;
+  variation->SetScaleUnitsToAbsolute();
+  variation->SetMinScale(0.8);
+  variation->SetMaxScale(2.5);
+  variation->SetNumberOfScales(100000);
+  variation->SetMemoryBudget(64.0);
+  const Result rv = run(variation, makePolyData(c));
+  EXPECT_EQ(rv.errors, 1);
+  EXPECT_NE(rv.message.find("vtkGLSContinuousFeatures"), std::string::npos) << rv.message;
+  EXPECT_EQ(rv.output->GetPointData()->GetArray("GLSGeometricVariation"), nullptr);
   // Fused: computed, and correct (no feature on a sphere).
   vtkNew<vtkGLSContinuousFeatures> fused;
   fused->SetScaleUnitsToAbsolute();
