@@ -273,11 +273,6 @@ bool vtkGLSScaleFilterBase::PrepareScaleSamples(vtkPolyData* input, bool needDes
   return true;
 }
 
-bool vtkGLSScaleFilterBase::UsesStoredScaleSpace() const
-{
-  return this->Source && this->Source->UseStored;
-}
-
 bool vtkGLSScaleFilterBase::RunScaleSamples(
   gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, double progressBegin, double progressEnd)
 {

@@ -222,9 +222,6 @@ protected:
   /// Whether this filter may use an upstream scale space at all (vtkGLSScaleProfiles samples its own scales).
   virtual bool AcceptsStoredScaleSpace() const { return true; }
 
-  /// Whether the last PrepareScaleSamples chose the stored arrays.
-  bool UsesStoredScaleSpace() const;
-
   /// Output = input (shallow) with its own field data, ready for new arrays; forgets the last backend used.
   /// False (with an error) when the input has no points.
   bool PrepareOutput(vtkPolyData* input, vtkPolyData* output);

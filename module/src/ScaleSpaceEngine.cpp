@@ -84,11 +84,6 @@ ScaleBinning ScaleSpaceEngine::binning() const
   return b;
 }
 
-int ScaleSpaceEngine::threadCount() const
-{
-  return resolveThreadCount(this->Settings.parallel.threads);
-}
-
 bool ScaleSpaceEngine::runOnDevice(ScaleSampleSink& sink, const std::vector<std::uint64_t>& order,
   const ParallelOptions& options, std::string& reason, bool& aborted) const
 {

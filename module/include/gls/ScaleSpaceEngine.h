@@ -57,7 +57,6 @@ public:
 
   std::size_t pointCount() const { return this->Positions.size(); }
   const std::vector<double>& scales() const { return this->Settings.scales; }
-  int threadCount() const;
 
   /// Evaluates the given points (all when ids is null) and feeds the sink. `parallel` overrides the settings'
   /// threads and progress callback for this run. `backend` Auto or CUDA runs the one-pass method on the CUDA
