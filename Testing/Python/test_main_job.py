@@ -22,6 +22,13 @@ def run(*args):
     return subprocess.run([ANALYZE, *args], capture_output=True, text=True, timeout=300, env=env)
 
 
+def failure_text(result):
+    """The error lines of a failed run first (a crash's stack trace would push them out of a plain tail)."""
+    errors = [line for line in result.stderr.splitlines()
+              if ('ERR|' in line or 'Error' in line or 'error' in line) and 'L2_NORM' not in line]
+    return '\n'.join(errors[:20]) + '\n...\n' + result.stderr[-1500:]
+
+
 def read_vtp(path):
     reader = vtkXMLPolyDataReader()
     reader.SetFileName(path)
@@ -78,7 +85,7 @@ class MainJob(unittest.TestCase):
     def test_bundled_scan_outputs_are_complete_and_non_trivial(self):
         out = os.path.join(WORK, 'bunny')
         result = run('--output-dir', out)
-        self.assertEqual(result.returncode, 0, result.stderr[-3000:])
+        self.assertEqual(result.returncode, 0, failure_text(result))
         self.assertIn('scale space', result.stderr)  # the progress lines
         files = {s: os.path.join(out, 'stanford-bunny' + s) for s in
                  ('-gls.vtp', '-features.png', '-profiles.png', '-gls.pvsm')}
@@ -108,7 +115,7 @@ class MainJob(unittest.TestCase):
         xyz = os.path.join(WORK, 'sphere.xyz')
         write_sphere(xyz, 4000, 2.0, True, ' ')
         result = run(xyz, '--output-dir', WORK, '--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2')
-        self.assertEqual(result.returncode, 0, result.stderr[-3000:])
+        self.assertEqual(result.returncode, 0, failure_text(result))
         pd = read_vtp(os.path.join(WORK, 'sphere-gls.vtp'))
         np.testing.assert_allclose(vtk_to_numpy(pd.GetPointData().GetArray('GLSKappa')), 0.5, atol=1e-8)
         np.testing.assert_allclose(vtk_to_numpy(pd.GetPointData().GetArray('GLSFeature')), 0.0, atol=1e-9)
@@ -116,7 +123,7 @@ class MainJob(unittest.TestCase):
         csv = os.path.join(WORK, 'ball.csv')
         write_sphere(csv, 4000, 1.0, False, ',', header='x,y,z')
         result = run(csv, '--output-dir', WORK, '--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2')
-        self.assertEqual(result.returncode, 0, result.stderr[-3000:])
+        self.assertEqual(result.returncode, 0, failure_text(result))
         pd = read_vtp(os.path.join(WORK, 'ball-gls.vtp'))
         kappa = vtk_to_numpy(pd.GetPointData().GetArray('GLSKappa'))
         self.assertLess(abs(np.median(kappa) - 1.0), 0.02)  # estimated, MST-oriented normals: outward
@@ -141,7 +148,7 @@ class MainJob(unittest.TestCase):
         w2.Write()
         for path, stem in ((ply, 'ply-sphere'), (vtp, 'vtp-sphere')):
             result = run(path, '--output-dir', WORK, '--scales', '4', '--min-scale', '0.08', '--max-scale', '0.3')
-            self.assertEqual(result.returncode, 0, result.stderr[-3000:])
+            self.assertEqual(result.returncode, 0, failure_text(result))
             out = read_vtp(os.path.join(WORK, stem + '-gls.vtp'))
             kappa = vtk_to_numpy(out.GetPointData().GetArray('GLSKappa'))
             self.assertLess(abs(np.nanmedian(kappa) - 1.0), 0.02, path)
