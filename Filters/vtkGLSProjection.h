@@ -1,0 +1,92 @@
+/**
+ * @class   vtkGLSProjection
+ * @brief   Denoising by MLS projection: moves every point onto the GLS surface of the input cloud.
+ *
+ * Each point is projected onto the algebraic sphere fitted (with the GLS weight (d^2/t^2 - 1)^2, oriented normals)
+ * to the input points within t of it; the sphere is refitted around the new position and the step repeated until
+ * it is at most Tolerance * t (at most MaxIterations fits): the iterated MLS projection. The support t is either
+ * one Scale for all points or each point's value of a bandwidth array (the GLSBandwidth of
+ * vtkGLSAdaptiveBandwidth), see ScaleMode. The neighbourhoods always come from the input points (not the moved
+ * ones), so the result does not depend on the order of the points.
+ *
+ * Output: the input with its points moved (double precision; cells kept) and point arrays `Normals` (eta of the
+ * final fit, unit, set as the active normals; replaces an input array of that name), GLSDisplacement (length,
+ * distance moved) and GLSProjectionIterations (fits made; MaxIterations means it did not converge). A point with
+ * non-finite coordinates, a non-finite or non-positive scale, or an undefined fit on the way (fewer than
+ * MinimumNeighbors neighbours, degenerate neighbourhood) keeps its position and (normalized) input normal and gets
+ * GLSDisplacement NaN. Field data: GLSBackend ("CPU": the projection runs on the CPU engine).
+ *
+ * Inputs: points and oriented normals as for every GLS filter (SetInputArrayToProcess(0, ...)); the bandwidth
+ * array is selected with SetInputArrayToProcess(1, ...) (default: the point array GLSBandwidth). Errors: no
+ * normals, a missing or mis-sized bandwidth array in BANDWIDTH_ARRAY mode, Scale <= 0 in FIXED_SCALE mode.
+ * The shared scale-list parameters of vtkGLSScaleFilterBase (MinScale, MaxScale, NumberOfScales, ScaleSampling,
+ * explicit scales), the nu weights, Backend and ReuseInputScaleSpace are not used.
+ */
+#ifndef vtkGLSProjection_h
+#define vtkGLSProjection_h
+
+#include "vtkGLSFiltersModule.h"
+#include "vtkGLSScaleFilterBase.h"
+
+class VTKGLSFILTERS_EXPORT vtkGLSProjection : public vtkGLSScaleFilterBase
+{
+public:
+  static vtkGLSProjection* New();
+  vtkTypeMacro(vtkGLSProjection, vtkGLSScaleFilterBase);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum ScaleModeType
+  {
+    AUTOMATIC = 0,       ///< the bandwidth array when the input has it, else Scale
+    FIXED_SCALE = 1,     ///< Scale for every point
+    BANDWIDTH_ARRAY = 2  ///< each point's value of the selected bandwidth array (length units)
+  };
+
+  ///@{
+  /// Where the support of each point comes from (default AUTOMATIC).
+  vtkSetClampMacro(ScaleMode, int, AUTOMATIC, BANDWIDTH_ARRAY);
+  vtkGetMacro(ScaleMode, int);
+  void SetScaleModeToAutomatic() { this->SetScaleMode(AUTOMATIC); }
+  void SetScaleModeToFixedScale() { this->SetScaleMode(FIXED_SCALE); }
+  void SetScaleModeToBandwidthArray() { this->SetScaleMode(BANDWIDTH_ARRAY); }
+  ///@}
+
+  ///@{
+  /// The single support t of FIXED_SCALE mode, in ScaleUnits (default 0.01: 1% of the bounding-box diagonal).
+  vtkSetClampMacro(Scale, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Scale, double);
+  ///@}
+
+  ///@{
+  /// Fits per point at most (default 50, at least 1: 1 = one projection step, no iteration).
+  vtkSetClampMacro(MaxIterations, int, 1, 100000);
+  vtkGetMacro(MaxIterations, int);
+  ///@}
+
+  ///@{
+  /// The iteration stops when a step is at most Tolerance times the point's scale (dimensionless, default 1e-6).
+  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkGetMacro(Tolerance, double);
+  ///@}
+
+  /// The mode the last run used (FIXED_SCALE or BANDWIDTH_ARRAY; AUTOMATIC before any run).
+  vtkGetMacro(LastScaleMode, int);
+
+protected:
+  vtkGLSProjection();
+  ~vtkGLSProjection() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int ScaleMode;
+  double Scale;
+  int MaxIterations;
+  double Tolerance;
+  int LastScaleMode = AUTOMATIC;
+
+private:
+  vtkGLSProjection(const vtkGLSProjection&) = delete;
+  void operator=(const vtkGLSProjection&) = delete;
+};
+
+#endif
