@@ -74,6 +74,11 @@ int vtkGLSProjection::RequestData(
   int mode = this->ScaleMode;
   if (mode == AUTOMATIC)
   {
+    if (!bandwidth)
+    {
+      // A selection made before the input's arrays were known (a script that did not update the input first).
+      bandwidth = input->GetPointData()->GetArray(vtkGLSArrayNames::Bandwidth);
+    }
     mode = bandwidth ? BANDWIDTH_ARRAY : FIXED_SCALE;
   }
   std::vector<double> scales(count);

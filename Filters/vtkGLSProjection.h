@@ -37,7 +37,7 @@ public:
 
   enum ScaleModeType
   {
-    AUTOMATIC = 0,       ///< the bandwidth array when the input has it, else Scale
+    AUTOMATIC = 0,       ///< the selected bandwidth array, else GLSBandwidth, when the input has it; else Scale
     FIXED_SCALE = 1,     ///< Scale for every point
     BANDWIDTH_ARRAY = 2  ///< each point's value of the selected bandwidth array (length units)
   };

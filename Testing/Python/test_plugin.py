@@ -82,7 +82,8 @@ class PluginProxies(unittest.TestCase):
     def setUpClass(cls):
         simple.LoadPlugin(PLUGIN, remote=False, ns=globals())  # a fresh dict passed as ns stays empty
         for name in ('GLSNormalEstimation', 'GLSScaleSpace', 'GLSGeometricVariation', 'GLSContinuousFeatures',
-                     'GLSMultiScaleDissimilarity', 'GLSScaleProfiles', 'GLSPointCloudReader'):
+                     'GLSMultiScaleDissimilarity', 'GLSScaleProfiles', 'GLSPointCloudReader',
+                     'GLSAdaptiveBandwidth', 'GLSProjection'):
             NS[name] = globals()[name]
         cls.points, cls.normals = sphere(3000, 2.0)
 
@@ -213,6 +214,47 @@ class PluginProxies(unittest.TestCase):
         np.testing.assert_allclose(vtk_to_numpy(table.GetColumnByName('t*kappa (700)')), t / 2.0, atol=1e-9)
         simple.Delete(p)
         simple.Delete(src)
+
+    def test_denoising_pipeline_on_a_noisy_sphere(self):
+        # Noise on the radius of one hemisphere (z > 0); the other stays clean.
+        rng = np.random.default_rng(4)
+        radial = np.where(self.points[:, 2] > 0, 1.0 + rng.normal(0.0, 0.01, len(self.points)), 1.0)
+        noisy = self.points * radial[:, None]
+        src = producer(polydata(noisy, self.normals))
+        bandwidth = NS['GLSAdaptiveBandwidth'](Input=src, ScaleUnits='Absolute', MinScale=0.15, MaxScale=1.5,
+                                               NumberOfScales=30, ScaleSampling='Logarithmic',
+                                               SmoothingRadius=0.3, Threshold=0.01)
+        projection = NS['GLSProjection'](Input=bandwidth)
+        self.assertEqual(projection.ScaleMode, 'Automatic')
+        out = fetch(projection)
+        moved = vtk_to_numpy(out.GetPoints().GetData())
+        radius = np.linalg.norm(moved, axis=1)
+        top = self.points[:, 2] > 0.2
+        before = np.sqrt(np.mean((2.0 * radial[top] - 2.0) ** 2))
+        after = np.sqrt(np.mean((radius[top] - 2.0) ** 2))
+        self.assertLess(after * 2.5, before)
+        bw = array(fetch(bandwidth), 'GLSBandwidth')
+        self.assertGreater(np.median(bw[top]), 1.5 * np.median(bw[self.points[:, 2] < -0.5]))
+        normals = array(out, 'Normals').reshape(-1, 3)
+        np.testing.assert_allclose(np.sum(normals * moved, axis=1) / radius, 1.0, atol=5e-3)
+        # The same through the wrapped C++ filters, bit for bit.
+        direct_bw = glsvtk.vtkGLSAdaptiveBandwidth()
+        direct_bw.SetScaleUnitsToAbsolute()
+        direct_bw.SetMinScale(0.15)
+        direct_bw.SetMaxScale(1.5)
+        direct_bw.SetNumberOfScales(30)
+        direct_bw.SetScaleSamplingToLogarithmic()
+        direct_bw.SetSmoothingRadius(0.3)
+        direct_bw.SetInputData(polydata(noisy, self.normals))
+        direct = glsvtk.vtkGLSProjection()
+        direct.SetInputConnection(direct_bw.GetOutputPort())
+        direct.Update()
+        np.testing.assert_array_equal(vtk_to_numpy(direct.GetOutput().GetPoints().GetData()), moved)
+        fixed = NS['GLSProjection'](Input=src, ScaleMode='Fixed scale', ScaleUnits='Absolute', Scale=0.5)
+        self.assertLess(np.sqrt(np.mean((np.linalg.norm(vtk_to_numpy(fetch(fixed).GetPoints().GetData()),
+                                                        axis=1)[top] - 2.0) ** 2)) * 2.0, before)
+        for p in (fixed, projection, bandwidth, src):
+            simple.Delete(p)
 
     def test_errors_are_reported_not_fatal(self):
         src = producer(polydata(self.points))  # no normals
