@@ -17,6 +17,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStripper.h"
 
 #include "gls/Descriptors.h"
@@ -183,6 +184,33 @@ int vtkGLSScaleSpaceImage::FillOutputPortInformation(int port, vtkInformation* i
   return 1;
 }
 
+int vtkGLSScaleSpaceImage::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // The image's extent depends on the curve (one column per curve point by default). It is announced here when the
+  // input data is already at hand (ParaView's renderers ask for the whole extent before RequestData), and again by
+  // RequestData.
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int rows = this->ExplicitScales.empty() ? this->NumberOfScales
+                                                : static_cast<int>(this->ExplicitScales.size());
+  int columns = this->NumberOfArclengthSamples > 0 ? std::max(this->NumberOfArclengthSamples, 2) : 0;
+  if (columns == 0 && input && input->GetNumberOfPoints() > 0)
+  {
+    vtkGLSCurve::Curve curve;
+    if (vtkGLSCurve::Extract(input, this->Closed, curve).empty())
+    {
+      columns = static_cast<int>(curve.Ids.size()) + (curve.Closed ? 1 : 0);
+    }
+  }
+  if (columns > 0 && rows > 0)
+  {
+    const int extent[6] = { 0, columns - 1, 0, rows - 1, 0, 0 };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  }
+  return 1;
+}
+
 int vtkGLSScaleSpaceImage::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -332,6 +360,8 @@ int vtkGLSScaleSpaceImage::RequestData(
   const vtkIdType nx = columns;
   const vtkIdType ny = static_cast<vtkIdType>(S);
   image->SetDimensions(static_cast<int>(nx), static_cast<int>(ny), 1);
+  outputVector->GetInformationObject(0)->Set(
+    vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), image->GetExtent(), 6);
   image->SetOrigin(0.0, scales.front(), 0.0);
   image->SetSpacing(length / static_cast<double>(nx - 1), step, 1.0);
   auto kappa = NewArray(vtkGLSArrayNames::Kappa, nx * ny);

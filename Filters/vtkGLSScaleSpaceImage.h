@@ -98,6 +98,7 @@ protected:
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   bool AcceptsStoredScaleSpace() const override { return false; }
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int Closed;
