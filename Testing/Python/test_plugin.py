@@ -47,6 +47,20 @@ def sphere(n, radius):
     return radius * normals, normals
 
 
+def flower_curve(n, amplitude=0.25):
+    """The closed polyline r = 1 + amplitude cos(5 theta), counter-clockwise, without normals."""
+    theta = 2 * math.pi * np.arange(n) / n
+    r = 1 + amplitude * np.cos(5 * theta)
+    pd = polydata(np.stack([r * np.cos(theta), r * np.sin(theta), 0 * theta], axis=1))
+    lines = vtkCellArray()
+    lines.InsertNextCell(n + 1)
+    for i in list(range(n)) + [0]:
+        lines.InsertCellPoint(i)
+    pd.SetVerts(vtkCellArray())
+    pd.SetLines(lines)
+    return pd
+
+
 def producer(pd):
     source = simple.TrivialProducer()
     source.GetClientSideObject().SetOutput(pd)
@@ -82,7 +96,7 @@ class PluginProxies(unittest.TestCase):
     def setUpClass(cls):
         simple.LoadPlugin(PLUGIN, remote=False, ns=globals())  # a fresh dict passed as ns stays empty
         for name in ('GLSNormalEstimation', 'GLSScaleSpace', 'GLSGeometricVariation', 'GLSContinuousFeatures',
-                     'GLSMultiScaleDissimilarity', 'GLSScaleProfiles', 'GLSPointCloudReader',
+                     'GLSMultiScaleDissimilarity', 'GLSScaleProfiles', 'GLSScaleSpaceImage', 'GLSPointCloudReader',
                      'GLSAdaptiveBandwidth', 'GLSProjection'):
             NS[name] = globals()[name]
         cls.points, cls.normals = sphere(3000, 2.0)
@@ -255,6 +269,44 @@ class PluginProxies(unittest.TestCase):
                                                         axis=1)[top] - 2.0) ** 2)) * 2.0, before)
         for p in (fixed, projection, bandwidth, src):
             simple.Delete(p)
+
+    def test_scale_space_image_of_a_flower(self):
+        # r = 1 + 0.25 cos(5 theta) has 10 inflections (the C++ test checks it analytically): 10 zero crossings of
+        # kappa at the smallest scale, none left at t = 1, where kappa > 0 everywhere.
+        src = producer(flower_curve(1000))
+        p = NS['GLSScaleSpaceImage'](Input=src, ScaleUnits='Absolute', MinScale=0.02, MaxScale=1.0,
+                                     NumberOfScales=50)
+        for prop in ('Closed', 'NumberOfArclengthSamples', 'WKappa', 'Normals'):
+            self.assertIn(prop, p.ListProperties())
+        p.UpdatePipeline()
+        image = servermanager.Fetch(p, idx=0)
+        crossings = servermanager.Fetch(p, idx=1)
+        self.assertEqual(image.GetDimensions(), (1001, 50, 1))
+        self.assertAlmostEqual(image.GetOrigin()[1], 0.02)
+        self.assertAlmostEqual(image.GetSpacing()[1], 0.02)
+        kappa = array(image, 'GLSKappa').reshape(50, 1001)
+        scaled = array(image, 'GLSScaledKappa').reshape(50, 1001)
+        np.testing.assert_allclose(scaled, kappa * (0.02 + 0.02 * np.arange(50))[:, None], rtol=1e-14)
+        self.assertEqual(array(image, 'GLSNu').shape, (50 * 1001,))
+        row = kappa[0, :-1]
+        self.assertEqual(int(np.sum(np.sign(row) != np.sign(np.roll(row, 1)))), 10)
+        self.assertTrue(np.all(kappa[-1] > 0))
+        self.assertGreater(crossings.GetNumberOfLines(), 0)
+        ys = vtk_to_numpy(crossings.GetPoints().GetData())[:, 1]
+        self.assertEqual(int(np.sum(np.abs(ys - 0.02) < 1e-7)), 10)
+        self.assertLess(ys.max(), 1.0)
+        # The proxy runs the wrapped C++ filter: same numbers.
+        direct = glsvtk.vtkGLSScaleSpaceImage()
+        direct.SetScaleUnitsToAbsolute()
+        direct.SetMinScale(0.02)
+        direct.SetMaxScale(1.0)
+        direct.SetNumberOfScales(50)
+        direct.SetInputData(flower_curve(1000))
+        direct.Update()
+        np.testing.assert_array_equal(array(direct.GetImageOutput(), 'GLSKappa'), array(image, 'GLSKappa'))
+        self.assertEqual(direct.GetCrossingsOutput().GetNumberOfLines(), crossings.GetNumberOfLines())
+        simple.Delete(p)
+        simple.Delete(src)
 
     def test_errors_are_reported_not_fatal(self):
         src = producer(polydata(self.points))  # no normals
