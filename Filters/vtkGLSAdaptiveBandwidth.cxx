@@ -12,7 +12,6 @@
 #include "vtkPolyData.h"
 
 #include "gls/AdaptiveBandwidth.h"
-#include "gls/BandwidthSink.h"
 
 #include <vector>
 
@@ -40,38 +39,21 @@ int vtkGLSAdaptiveBandwidth::RequestData(
   raw->SetName(vtkGLSArrayNames::RawBandwidth);
   raw->SetNumberOfTuples(n);
   const double fitEnd = 0.9;
-
-  // An upstream GLSGeometricVariation array: scan it directly.
-  std::vector<double> scales =
-    this->ReuseInputScaleSpace ? ReadStoredScales(input->GetFieldData()) : std::vector<double>();
-  vtkDataArray* storedNu = input->GetPointData()->GetArray(vtkGLSArrayNames::Variation);
-  if (!scales.empty() && storedNu && storedNu->GetNumberOfComponents() == static_cast<int>(scales.size()) &&
-    storedNu->GetNumberOfTuples() == n)
+  const double threshold = this->Threshold;
+  std::vector<double> scales;
+  bool aborted = false;
+  if (!this->ReduceVariationPerPoint(
+        input,
+        [threshold](const double* nu, const std::vector<double>& t) {
+          return gls::rawBandwidth(nu, t.data(), static_cast<int>(t.size()), threshold);
+        },
+        scales, raw->GetPointer(0), fitEnd, aborted))
   {
-    std::vector<double> nu(scales.size());
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      storedNu->GetTuple(i, nu.data());
-      raw->SetValue(i, gls::rawBandwidth(nu.data(), scales.data(), static_cast<int>(scales.size()),
-                         this->Threshold));
-      if (i % 65536 == 0 && this->ReportProgress(static_cast<double>(i) / n, 0.0, fitEnd))
-      {
-        return 1; // aborted: no partial arrays
-      }
-    }
+    return 0;
   }
-  else
+  if (aborted)
   {
-    if (!this->PrepareScaleSamples(input, false, true, scales))
-    {
-      return 0;
-    }
-    gls::BandwidthSink sink(scales, gls::resolveThreadCount(this->NumberOfThreads),
-      { this->WTau, this->WEta, this->WKappa }, this->Threshold, raw->GetPointer(0));
-    if (!this->RunScaleSamples(sink, nullptr, 0.0, fitEnd))
-    {
-      return 1; // aborted: no partial arrays
-    }
+    return 1; // no partial arrays
   }
 
   // Spatial regularization.

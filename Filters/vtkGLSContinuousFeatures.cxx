@@ -10,10 +10,11 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
-#include "gls/FeatureSink.h"
+#include "gls/ScaleAnalysis.h"
+
+#include <vector>
 
 vtkStandardNewMacro(vtkGLSContinuousFeatures);
-
 
 vtkGLSContinuousFeatures::vtkGLSContinuousFeatures()
   : Sigma(0.1)
@@ -37,38 +38,21 @@ int vtkGLSContinuousFeatures::RequestData(
   feature->SetName(vtkGLSArrayNames::Feature);
   feature->SetNumberOfTuples(n);
   const gls::FeatureMeasure measure = static_cast<gls::FeatureMeasure>(this->FeatureMeasure);
-
-  // An upstream GLSGeometricVariation array: integrate it directly.
-  std::vector<double> scales =
-    this->ReuseInputScaleSpace ? ReadStoredScales(input->GetFieldData()) : std::vector<double>();
-  vtkDataArray* storedNu = input->GetPointData()->GetArray(vtkGLSArrayNames::Variation);
-  if (!scales.empty() && storedNu && storedNu->GetNumberOfComponents() == static_cast<int>(scales.size()) &&
-    storedNu->GetNumberOfTuples() == n)
+  const double sigma = this->Sigma;
+  std::vector<double> scales;
+  bool aborted = false;
+  if (!this->ReduceVariationPerPoint(
+        input,
+        [sigma, measure](const double* nu, const std::vector<double>& t) {
+          return gls::continuousFeature(nu, t.data(), static_cast<int>(t.size()), sigma, measure);
+        },
+        scales, feature->GetPointer(0), 1.0, aborted))
   {
-    std::vector<double> nu(scales.size());
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      storedNu->GetTuple(i, nu.data());
-      feature->SetValue(i, gls::continuousFeature(
-                             nu.data(), scales.data(), static_cast<int>(scales.size()), this->Sigma, measure));
-      if (i % 65536 == 0 && this->ReportProgress(static_cast<double>(i) / n, 0.0, 1.0))
-      {
-        return 1; // aborted: no partial arrays
-      }
-    }
+    return 0;
   }
-  else
+  if (aborted)
   {
-    if (!this->PrepareScaleSamples(input, false, true, scales))
-    {
-      return 0;
-    }
-    gls::ContinuousFeatureSink sink(scales, gls::resolveThreadCount(this->NumberOfThreads),
-      { this->WTau, this->WEta, this->WKappa }, this->Sigma, measure, feature->GetPointer(0));
-    if (!this->RunScaleSamples(sink))
-    {
-      return 1; // aborted: no partial arrays
-    }
+    return 1; // no partial arrays
   }
   output->GetPointData()->AddArray(feature);
   output->GetPointData()->SetActiveScalars(vtkGLSArrayNames::Feature);

@@ -13,12 +13,10 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkStringArray.h"
 
 #include "gls/MlsProjection.h"
 
 #include <cmath>
-#include <cstring>
 #include <vector>
 
 vtkStandardNewMacro(vtkGLSProjection);
@@ -34,23 +32,6 @@ vtkGLSProjection::vtkGLSProjection()
 }
 
 vtkGLSProjection::~vtkGLSProjection() = default;
-
-namespace
-{
-
-/// The array selected at `index`, or the named default when nothing (or an empty name) is selected.
-vtkDataArray* selectedArray(vtkAlgorithm* self, int index, vtkPolyData* input, const char* fallback)
-{
-  vtkInformation* info = self->GetInputArrayInformation(index);
-  const char* name = info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : nullptr;
-  if (!name || !*name)
-  {
-    name = fallback;
-  }
-  return input->GetPointData()->GetArray(name);
-}
-
-} // namespace
 
 int vtkGLSProjection::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -70,7 +51,8 @@ int vtkGLSProjection::RequestData(
   const vtkIdType n = input->GetNumberOfPoints();
   const std::size_t count = static_cast<std::size_t>(n);
 
-  vtkDataArray* bandwidth = selectedArray(this, 1, input, vtkGLSArrayNames::Bandwidth);
+  const char* selected = SelectedArrayName(this, 1);
+  vtkDataArray* bandwidth = input->GetPointData()->GetArray(selected ? selected : vtkGLSArrayNames::Bandwidth);
   int mode = this->ScaleMode;
   if (mode == AUTOMATIC)
   {
@@ -160,11 +142,8 @@ int vtkGLSProjection::RequestData(
   pd->AddArray(displacement);
   pd->AddArray(iterations);
   pd->SetActiveScalars(vtkGLSArrayNames::Displacement);
-  vtkNew<vtkStringArray> backend;
-  backend->SetName(vtkGLSArrayNames::Backend);
-  backend->InsertNextValue("CPU");
-  output->GetFieldData()->RemoveArray(vtkGLSArrayNames::Backend);
-  output->GetFieldData()->AddArray(backend);
+  this->LastBackendUsed = "CPU";
+  this->StoreBackend(output->GetFieldData());
   return 1;
 }
 

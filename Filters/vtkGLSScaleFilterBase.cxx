@@ -16,6 +16,7 @@
 
 #include "gls/ScaleSampling.h"
 #include "gls/ScaleSpaceEngine.h"
+#include "gls/VariationSink.h"
 
 #include <unistd.h>
 
@@ -191,15 +192,16 @@ vtkDataArray* vtkGLSScaleFilterBase::FindSelectedNormals(vtkPolyData* input)
 
 vtkDataArray* vtkGLSScaleFilterBase::FindSelectedNormals(vtkAlgorithm* self, int index, vtkPolyData* input)
 {
-  // A selection by name must be honoured; no selection, or an empty name (as ParaView sets before it knows the
-  // input's arrays), means the active normals.
+  // A selection by name must be honoured; no selection means the active normals.
+  const char* name = SelectedArrayName(self, index);
+  return name ? input->GetPointData()->GetArray(name) : input->GetPointData()->GetNormals();
+}
+
+const char* vtkGLSScaleFilterBase::SelectedArrayName(vtkAlgorithm* self, int index)
+{
   vtkInformation* info = self->GetInputArrayInformation(index);
   const char* name = info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : nullptr;
-  if (name && name[0] != '\0')
-  {
-    return input->GetPointData()->GetArray(name);
-  }
-  return input->GetPointData()->GetNormals();
+  return name && name[0] != '\0' ? name : nullptr;
 }
 
 double vtkGLSScaleFilterBase::ResolveMinimumNeighbors(
@@ -270,6 +272,40 @@ bool vtkGLSScaleFilterBase::PrepareScaleSamples(vtkPolyData* input, bool needDes
   settings.parallel.threads = this->NumberOfThreads;
   src.ScaleCount = scales.size();
   src.Engine = std::make_unique<gls::ScaleSpaceEngine>(points.data(), normals.data(), src.PointCount, settings);
+  return true;
+}
+
+bool vtkGLSScaleFilterBase::ReduceVariationPerPoint(vtkPolyData* input, const VariationReducer& reduce,
+  std::vector<double>& scales, double* out, double progressEnd, bool& aborted)
+{
+  aborted = false;
+  const vtkIdType n = input->GetNumberOfPoints();
+  scales = this->ReuseInputScaleSpace && this->AcceptsStoredScaleSpace() ? ReadStoredScales(input->GetFieldData())
+                                                                         : std::vector<double>();
+  vtkDataArray* storedNu = input->GetPointData()->GetArray(vtkGLSArrayNames::Variation);
+  if (!scales.empty() && storedNu && storedNu->GetNumberOfComponents() == static_cast<int>(scales.size()) &&
+    storedNu->GetNumberOfTuples() == n)
+  {
+    std::vector<double> nu(scales.size());
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      storedNu->GetTuple(i, nu.data());
+      out[i] = reduce(nu.data(), scales);
+      if (i % 65536 == 0 && this->ReportProgress(static_cast<double>(i) / n, 0.0, progressEnd))
+      {
+        aborted = true;
+        return true;
+      }
+    }
+    return true;
+  }
+  if (!this->PrepareScaleSamples(input, false, true, scales))
+  {
+    return false;
+  }
+  gls::VariationReductionSink sink(scales, gls::resolveThreadCount(this->NumberOfThreads),
+    { this->WTau, this->WEta, this->WKappa }, [&](const double* nu) { return reduce(nu, scales); }, out);
+  aborted = !this->RunScaleSamples(sink, nullptr, 0.0, progressEnd);
   return true;
 }
 

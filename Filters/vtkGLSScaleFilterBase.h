@@ -24,6 +24,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -169,6 +170,10 @@ public:
   /// normals when no name (or an empty one, as ParaView sets before it knows the input's arrays) is selected.
   static vtkDataArray* FindSelectedNormals(vtkAlgorithm* self, int index, vtkPolyData* input);
 
+  /// The array name an algorithm selected with SetInputArrayToProcess(index, ...), or null when none (or an empty
+  /// name, as ParaView sets before it knows the input's arrays) is selected.
+  static const char* SelectedArrayName(vtkAlgorithm* self, int index);
+
 protected:
   vtkGLSScaleFilterBase();
   ~vtkGLSScaleFilterBase() override;
@@ -218,6 +223,18 @@ protected:
   /// from progressBegin to progressEnd. Returns false if aborted. Call PrepareScaleSamples first.
   bool RunScaleSamples(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids = nullptr,
     double progressBegin = 0.0, double progressEnd = 1.0);
+
+  /// Maps a point's nu at the given scales (one value per scale) to one value; called concurrently, read-only.
+  using VariationReducer = std::function<double(const double* nu, const std::vector<double>& scales)>;
+
+  /// Reduces every point's geometric variation over the scales to one value (the filters that summarize nu per
+  /// point: continuous features, adaptive bandwidth). nu comes from an upstream GLSGeometricVariation array and its
+  /// GLSScales when ReuseInputScaleSpace allows and they match the input, else from a fused fit at this filter's
+  /// scales with WTau/WEta/WKappa that stores nothing per scale. `scales` receives the scales used; progress runs
+  /// from 0 to progressEnd. False (with an error) on bad input; `aborted` tells whether the run was cut short
+  /// (then `out` is incomplete).
+  bool ReduceVariationPerPoint(vtkPolyData* input, const VariationReducer& reduce, std::vector<double>& scales,
+    double* out, double progressEnd, bool& aborted);
 
   /// Whether this filter may use an upstream scale space at all (vtkGLSScaleProfiles samples its own scales).
   virtual bool AcceptsStoredScaleSpace() const { return true; }

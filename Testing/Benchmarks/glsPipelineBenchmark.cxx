@@ -22,7 +22,8 @@
 #include "vtkPolyData.h"
 
 #include "gls/Backend.h"
-#include "gls/FeatureSink.h"
+#include "gls/ScaleAnalysis.h"
+#include "gls/VariationSink.h"
 #include "gls/ScaleSampling.h"
 
 #include <sys/resource.h>
@@ -171,7 +172,11 @@ int main(int argc, char* argv[])
   gls::ScaleSpaceEngine engine(xyz.data(), nrm.data(), static_cast<std::size_t>(count), settings);
   const int T = gls::resolveThreadCount(threads);
   std::vector<double> fOnePass(count), fPerScale(count);
-  gls::ContinuousFeatureSink a(settings.scales, T, {}, 0.1, gls::FeatureMeasure::Scale, fOnePass.data());
+  const gls::VariationReductionSink::Reducer feature = [&settings](const double* nu) {
+    return gls::continuousFeature(
+      nu, settings.scales.data(), static_cast<int>(settings.scales.size()), 0.1, gls::FeatureMeasure::Scale);
+  };
+  gls::VariationReductionSink a(settings.scales, T, {}, feature, fOnePass.data());
   gls::RunReport used;
   double onePass = 0.0;
   for (int r = 0; r < repeat; ++r)
@@ -188,7 +193,7 @@ int main(int argc, char* argv[])
   if (perScale)
   {
     c = Clock();
-    gls::ContinuousFeatureSink p(settings.scales, T, {}, 0.1, gls::FeatureMeasure::Scale, fPerScale.data());
+    gls::VariationReductionSink p(settings.scales, T, {}, feature, fPerScale.data());
     engine.run(p, nullptr, gls::EvaluationMethod::PerScale);
     const double slow = c.seconds();
     report("per-scale scales+nu+features (fused)", c, n * S);
