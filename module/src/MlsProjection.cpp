@@ -13,30 +13,12 @@ namespace gls
 bool projectPointCloud(const double* points, const double* normals, std::size_t n, const double* scales,
   const ProjectionSettings& settings, const ProjectionOutputs& out)
 {
-  std::vector<double> unitNormals(3 * n, 0.0);
-  std::vector<unsigned char> admit(n, 0);
+  std::vector<double> unitNormals;
+  std::vector<unsigned char> admit;
+  normalizeAndAdmit(points, normals, n, unitNormals, admit);
   double largestScale = 0.0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    const double* p = points + 3 * i;
-    const double* m = normals + 3 * i;
-    const double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-    const bool finitePoint = isFinite(p[0]) && isFinite(p[1]) && isFinite(p[2]);
-    if (len > 0.0 && isFinite(len))
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        unitNormals[3 * i + a] = m[a] / len;
-      }
-      admit[i] = finitePoint ? 1 : 0;
-    }
-    else
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        unitNormals[3 * i + a] = quietNaN<double>();
-      }
-    }
     if (isFinite(scales[i]) && scales[i] > largestScale)
     {
       largestScale = scales[i];

@@ -251,4 +251,24 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
   }
 }
 
+void normalizeAndAdmit(const double* points, const double* normals, std::size_t n, std::vector<double>& unitNormals,
+  std::vector<unsigned char>& admit)
+{
+  unitNormals.assign(3 * n, std::numeric_limits<double>::quiet_NaN());
+  admit.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* m = normals + 3 * i;
+    const double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+    if (len > 0.0 && isFinite(len))
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        unitNormals[3 * i + a] = m[a] / len;
+      }
+      admit[i] = finitePoint(points + 3 * i) ? 1 : 0;
+    }
+  }
+}
+
 } // namespace gls

@@ -19,7 +19,8 @@ struct ProjectionSettings
 
 /// Outputs per point (arrays of n, or 3n for vectors). A point whose scale is not finite and positive, whose
 /// coordinates are not finite, or whose fit becomes undefined keeps its input position and normal (normal
-/// normalized, or NaN if it cannot be) and gets displacement NaN and iterations 0 (undefined fit: the fits made).
+/// normalized, or NaN if it cannot be) and gets displacement NaN; its iterations are 0 when it was not projected at
+/// all, else the fits made up to the undefined one.
 struct ProjectionOutputs
 {
   double* points;        ///< projected positions

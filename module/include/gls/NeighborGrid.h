@@ -40,4 +40,10 @@ private:
   GridView View;
 };
 
+/// The rule of every GLS fit for oriented points: a point enters neighbourhoods when its coordinates are finite and
+/// its normal can be normalized (finite, non-zero). Fills unitNormals (3n: the unit normal, NaN where the normal
+/// cannot be normalized) and admit (n flags, the `include` mask of NeighborGrid::build).
+void normalizeAndAdmit(const double* points, const double* normals, std::size_t n, std::vector<double>& unitNormals,
+  std::vector<unsigned char>& admit);
+
 } // namespace gls
