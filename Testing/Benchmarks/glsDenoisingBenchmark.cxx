@@ -8,14 +8,13 @@
 // angle (degrees), the largest move of clean points far from the noise, and the wall time.
 //
 //   glsDenoisingBenchmark [--points N]      (default 100000)
+#include "FilterTestUtilities.h"
 #include "MeshSampler.h"
 #include "NoisyCurve.h"
 
 #include "vtkGLSAdaptiveBandwidth.h"
 #include "vtkGLSProjection.h"
 
-#include "vtkCellArray.h"
-#include "vtkDoubleArray.h"
 #include "vtkGenericCell.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
@@ -47,56 +46,16 @@ double seconds(const std::function<void()>& f)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-vtkSmartPointer<vtkPolyData> cloud(const std::vector<double>& xyz, const std::vector<double>& normals)
-{
-  auto pd = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  const vtkIdType n = static_cast<vtkIdType>(xyz.size() / 3);
-  pts->SetNumberOfPoints(n);
-  vtkNew<vtkCellArray> verts;
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    pts->SetPoint(i, &xyz[3 * i]);
-    verts->InsertNextCell(1, &i);
-  }
-  pd->SetPoints(pts);
-  pd->SetVerts(verts);
-  vtkNew<vtkDoubleArray> nrm;
-  nrm->SetName("Normals");
-  nrm->SetNumberOfComponents(3);
-  nrm->SetNumberOfTuples(n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    nrm->SetTuple(i, &normals[3 * i]);
-  }
-  pd->GetPointData()->SetNormals(nrm);
-  return pd;
-}
-
 std::vector<double> positions(vtkPointSet* pd)
 {
-  std::vector<double> v(3 * static_cast<std::size_t>(pd->GetNumberOfPoints()));
-  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
-  {
-    pd->GetPoint(i, &v[3 * i]);
-  }
-  return v;
+  return glstest::values(pd->GetPoints()->GetData());
 }
 
+/// The output's normals, or the input's for a method that does not estimate them.
 std::vector<double> normalsOf(vtkPointSet* pd, const std::vector<double>& fallback)
 {
   vtkDataArray* a = pd->GetPointData()->GetNormals();
-  if (!a)
-  {
-    return fallback; // a method that does not estimate normals keeps the input's
-  }
-  std::vector<double> v(3 * static_cast<std::size_t>(pd->GetNumberOfPoints()));
-  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
-  {
-    a->GetTuple(i, &v[3 * i]);
-  }
-  return v;
+  return a ? glstest::values(a) : fallback;
 }
 
 /// Per-region scores: RMS distance, RMS angle, max move of the clean interior.
@@ -348,7 +307,7 @@ int main(int argc, char** argv)
 
   const glstest::NoisyCurve curve{ glstest::NoisyCurveSpec() };
   printHeader("Figure 9 curve, 4000 points", curve.spacing());
-  runMethods(cloud(curve.Points, curve.Normals), [&](vtkPointSet* out) { return scoreCurve(curve, out); },
+  runMethods(glstest::makePolyData(curve.Points, curve.Normals), [&](vtkPointSet* out) { return scoreCurve(curve, out); },
     curve.spacing(), 0.004, 0.1, 0.03, { 0.02, 0.04, 0.06, 0.08, 0.09, 0.1, 0.12 });
 
   Bunny bunny;
@@ -358,7 +317,7 @@ int main(int argc, char** argv)
     return 1;
   }
   double bounds[6];
-  auto input = cloud(bunny.points, bunny.normals);
+  auto input = glstest::makePolyData(bunny.points, bunny.normals);
   input->GetBounds(bounds);
   const double diag = std::sqrt(std::pow(bounds[1] - bounds[0], 2) + std::pow(bounds[3] - bounds[2], 2) +
     std::pow(bounds[5] - bounds[4], 2));

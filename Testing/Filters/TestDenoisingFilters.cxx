@@ -38,12 +38,6 @@ std::vector<double> points(vtkPolyData* pd)
   return values(pd->GetPoints()->GetData());
 }
 
-std::vector<double> median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return { v[v.size() / 2] };
-}
-
 double regionMedian(const std::vector<double>& values, const NoisyCurve& curve, int region)
 {
   std::vector<double> v;
@@ -54,7 +48,8 @@ double regionMedian(const std::vector<double>& values, const NoisyCurve& curve, 
       v.push_back(values[i]);
     }
   }
-  return median(v)[0];
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return v[v.size() / 2];
 }
 
 } // namespace
