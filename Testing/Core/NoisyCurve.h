@@ -104,6 +104,7 @@ public:
     double totalPositionRms; ///< over all points
     double totalNormalRmsDegrees;
     double cleanInteriorMaxMove; ///< largest move of a D point farther than 0.35 rad from A and C (length)
+    double cleanInteriorRmsMove; ///< RMS move of those points (length)
   };
 
   Scores score(const double* points, const double* normals) const
@@ -111,6 +112,8 @@ public:
     Scores s{};
     double sum[4] = { 0, 0, 0, 0 }, angle[4] = { 0, 0, 0, 0 };
     int count[4] = { 0, 0, 0, 0 };
+    double cleanSum = 0.0;
+    int cleanCount = 0;
     for (std::size_t i = 0; i < this->size(); ++i)
     {
       double n[3];
@@ -130,6 +133,8 @@ public:
           std::pow(points[3 * i + 1] - this->Points[3 * i + 1], 2) +
           std::pow(points[3 * i + 2] - this->Points[3 * i + 2], 2));
         s.cleanInteriorMaxMove = std::max(s.cleanInteriorMaxMove, move);
+        cleanSum += move * move;
+        cleanCount += 1;
       }
     }
     double all = 0, allAngle = 0;
@@ -141,6 +146,7 @@ public:
       allAngle += angle[r];
     }
     s.totalPositionRms = std::sqrt(all / static_cast<double>(this->size()));
+    s.cleanInteriorRmsMove = std::sqrt(cleanSum / cleanCount);
     s.totalNormalRmsDegrees = std::sqrt(allAngle / static_cast<double>(this->size()));
     return s;
   }
