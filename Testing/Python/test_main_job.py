@@ -3,6 +3,7 @@
     pvpython test_main_job.py <build/bin/gls-analyze> <work dir>"""
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -27,6 +28,12 @@ def failure_text(result):
     errors = [line for line in result.stderr.splitlines()
               if ('ERR|' in line or 'Error' in line or 'error' in line) and 'L2_NORM' not in line]
     return '\n'.join(errors[:20]) + '\n...\n' + result.stderr[-1500:]
+
+
+def denoising_rms(stdout):
+    """The main job's "RMS distance to the input surface A -> B" figures."""
+    m = re.search(r'RMS distance to the input surface (\S+) -> (\S+)', stdout)
+    return float(m.group(1)), float(m.group(2))
 
 
 def read_vtp(path):
@@ -84,11 +91,12 @@ class MainJob(unittest.TestCase):
 
     def test_bundled_scan_outputs_are_complete_and_non_trivial(self):
         out = os.path.join(WORK, 'bunny')
-        result = run('--output-dir', out)
+        result = run('--output-dir', out, '--noise', '0.002')
         self.assertEqual(result.returncode, 0, failure_text(result))
         self.assertIn('scale space', result.stderr)  # the progress lines
+        self.assertIn('adaptive bandwidth', result.stderr)
         files = {s: os.path.join(out, 'stanford-bunny' + s) for s in
-                 ('-gls.vtp', '-features.png', '-profiles.png', '-gls.pvsm')}
+                 ('-gls.vtp', '-features.png', '-profiles.png', '-denoising.png', '-scale-space.png', '-gls.pvsm')}
         for f in files.values():
             self.assertTrue(os.path.isfile(f), f)
         pd = read_vtp(files['-gls.vtp'])
@@ -102,10 +110,17 @@ class MainJob(unittest.TestCase):
         self.assertLess(np.percentile(feature, 5), 0.15)
         self.assertGreater(np.percentile(feature, 95), 0.85)
         self.assertGreater(feature.std(), 0.15)
-        for png in (files['-features.png'], files['-profiles.png']):
+        for png in (files['-features.png'], files['-profiles.png'], files['-denoising.png'],
+                    files['-scale-space.png']):
             background, colours = image_stats(png)
             self.assertLess(background, 0.95, png)
             self.assertGreater(colours, 200, png)
+        # Noise of 0.002 x diagonal along the normals (RMS 0.0005 here): the denoised cloud is at least twice
+        # closer to the scan (measured 0.00050 -> 0.00019; the scan's own roughness is smoothed too).
+        before, after = denoising_rms(result.stdout)
+        diagonal = math.sqrt(sum((pd.GetBounds()[2 * a + 1] - pd.GetBounds()[2 * a]) ** 2 for a in range(3)))
+        self.assertAlmostEqual(before / diagonal, 0.002, delta=0.0001)
+        self.assertLess(after * 2.0, before)
         with open(files['-gls.pvsm']) as f:
             state = f.read()
         self.assertIn('XMLPolyDataReader', state)
@@ -118,6 +133,13 @@ class MainJob(unittest.TestCase):
         self.assertEqual(result.returncode, 0, failure_text(result))
         pd = read_vtp(os.path.join(WORK, 'sphere-gls.vtp'))
         np.testing.assert_allclose(vtk_to_numpy(pd.GetPointData().GetArray('GLSKappa')), 0.5, atol=1e-8)
+        # Points exactly on a sphere with exact normals: the projection onto the fitted spheres moves nothing.
+        before, after = denoising_rms(result.stdout)
+        self.assertEqual(before, 0.0)
+        self.assertLess(after, 1e-9)
+        self.assertIn('scale-space image: skipped (the input has no polygons', result.stdout)
+        self.assertFalse(os.path.exists(os.path.join(WORK, 'sphere-scale-space.png')))
+        self.assertTrue(os.path.isfile(os.path.join(WORK, 'sphere-denoising.png')))
         np.testing.assert_allclose(vtk_to_numpy(pd.GetPointData().GetArray('GLSFeature')), 0.0, atol=1e-9)
 
         csv = os.path.join(WORK, 'ball.csv')

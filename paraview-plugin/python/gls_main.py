@@ -1,6 +1,6 @@
 """The GLS main job, for pvpython (under Xvfb when there is no display: see the gls-analyze wrapper).
 
-    gls-analyze [input] [--output-dir DIR] [--scales N] [--min-scale F] [--max-scale F] [--sigma S]
+    gls-analyze [input] [--output-dir DIR] [--scales N] [--min-scale F] [--max-scale F] [--sigma S] [--noise F]
 
 Reads a point cloud or mesh (PLY, OBJ, VTP, XYZ/CSV with or without normals; default: the bundled bunny scan),
 estimates oriented normals when the file has none, computes the GLS scale space (N quadratic scales from
@@ -10,6 +10,10 @@ features, and writes to the output directory:
   <name>-features.png   the continuous features on the cloud (colour map, scalar bar, title)
   <name>-profiles.png   kappa and nu against 300 scales for a few selected points (GLS Scale Profiles; the
                         paper's Figures 2-3 style)
+  <name>-denoising.png  before/after of the denoising (GLS Adaptive Bandwidth + GLS Projection) on the cloud,
+                        after adding Gaussian noise of --noise x diagonal along the normals (default 0: as it is)
+  <name>-scale-space.png  a mesh only: the scale-space image (t*kappa against arclength and scale, zero crossings
+                        of kappa) of its central cross-section (GLS Scale Space Image; the paper's Figures 6-8)
   <name>-gls.pvsm       a ParaView state that opens the .vtp coloured by the features
 """
 import argparse
@@ -22,6 +26,8 @@ sys.path.insert(0, HERE)
 
 import numpy as np  # noqa: E402
 
+import gls_cross_section  # noqa: E402
+import gls_denoising  # noqa: E402
 import gls_io  # noqa: E402
 
 
@@ -36,6 +42,9 @@ def parse_arguments(argv):
     p.add_argument('--min-scale', type=float, default=0.008, help='smallest scale / diagonal (default 0.008)')
     p.add_argument('--max-scale', type=float, default=0.08, help='largest scale / diagonal (default 0.08)')
     p.add_argument('--sigma', type=float, default=0.1, help='tanh scale of the features (default 0.1)')
+    p.add_argument('--noise', type=float, default=0.0,
+                   help='denoising picture: Gaussian noise added along the normals first, standard deviation as a '
+                        'fraction of the diagonal (default 0: denoise the input as it is)')
     return p.parse_args(argv)
 
 
@@ -243,6 +252,26 @@ def main(argv):
     plot_profiles(chart, 'GLS scale profiles: %s' % name, simple.servermanager.Fetch(profiles), picks,
                   vtk_to_numpy(pd.GetArray('GLSPertinentScales')))
     print('wrote %s' % chart)
+
+    stage = gls_denoising.denoise(gls_filter, simple.servermanager.Fetch(upstream), args.noise, progress)
+    rms = gls_denoising.offsets(stage)
+    print('denoising: %.2f s; bandwidth searched from %.4g to %.4g; RMS distance to the input surface %.4g -> %.4g'
+          % (stage['seconds'], 1.5 * stage['spacing'], 8.0 * stage['spacing'], rms['noisy'], rms['denoised']))
+    picture = out('-denoising.png')
+    gls_denoising.render(picture, stage, 'GLS denoising: %s%s (left) -> adaptive-bandwidth MLS projection (right)'
+                         % (name, ' + noise %.3g x diagonal' % args.noise if args.noise > 0 else ''))
+    print('wrote %s' % picture)
+
+    curve, axis = gls_cross_section.longest_section(simple.servermanager.Fetch(source))
+    if curve is None:
+        print('scale-space image: skipped (the input has no polygons to cut a cross-section from)')
+    else:
+        image, crossings = gls_cross_section.scale_space_image(gls_filter, curve)
+        picture = out('-scale-space.png')
+        gls_cross_section.plot(picture, 'GLS scale-space image of the central cross-section of %s (%d points)'
+                               % (name, curve.GetNumberOfPoints()), curve, axis, image, crossings)
+        print('wrote %s' % picture)
+
     state = out('-gls.pvsm')
     save_state(state, vtp)
     print('wrote %s' % state)
