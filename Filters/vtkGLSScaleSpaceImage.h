@@ -78,7 +78,10 @@ public:
 
   ///@{
   /// Number of image columns, uniformly spaced in arclength from 0 to L (both included). 0 (default) = one per
-  /// curve point (plus one for a closed curve, for s = L). At least 2 when set.
+  /// curve point (plus one for a closed curve, for s = L). At least 2 when set. With 0 the image's extent is
+  /// known at RequestInformation only when the input data is already there (SetInputData); downstream of a reader
+  /// or filter it is not, and a consumer that asks for the whole extent beforehand (ParaView's representations)
+  /// gets an empty image: set a count there (the ParaView proxy defaults to 1000).
   vtkSetClampMacro(NumberOfArclengthSamples, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfArclengthSamples, int);
   ///@}

@@ -4,7 +4,9 @@ Run by CTest as: pvpython test_plugin.py <plugin.so> <bunny.obj>, with PYTHONPAT
 Every proxy runs on analytic shapes (asserted against the analytic values) and on the bundled scan (asserted equal,
 bit for bit, to the wrapped C++ filter run directly with the same parameters)."""
 import math
+import os
 import sys
+import tempfile
 import unittest
 
 import numpy as np
@@ -14,6 +16,7 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray,
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 from vtkmodules.vtkIOGeometry import vtkOBJReader
+from vtkmodules.vtkIOImage import vtkPNGReader
 
 import glsvtk
 
@@ -275,7 +278,7 @@ class PluginProxies(unittest.TestCase):
         # kappa at the smallest scale, none left at t = 1, where kappa > 0 everywhere.
         src = producer(flower_curve(1000))
         p = NS['GLSScaleSpaceImage'](Input=src, ScaleUnits='Absolute', MinScale=0.02, MaxScale=1.0,
-                                     NumberOfScales=50)
+                                     NumberOfScales=50, NumberOfArclengthSamples=0)  # one column per point
         for prop in ('Closed', 'NumberOfArclengthSamples', 'WKappa', 'Normals'):
             self.assertIn(prop, p.ListProperties())
         p.UpdatePipeline()
@@ -305,6 +308,45 @@ class PluginProxies(unittest.TestCase):
         direct.Update()
         np.testing.assert_array_equal(array(direct.GetImageOutput(), 'GLSKappa'), array(image, 'GLSKappa'))
         self.assertEqual(direct.GetCrossingsOutput().GetNumberOfLines(), crossings.GetNumberOfLines())
+        simple.Delete(p)
+        simple.Delete(src)
+
+    def test_scale_space_image_shows_in_a_render_view_with_the_proxy_defaults(self):
+        # The proxy's defaults: 200 scales for the image and the profiles (their base proxy's 20 stays for the
+        # others), 1000 arclength columns, so that the image's extent is announced before it is computed: a
+        # render view asks for it first and would otherwise get an empty image.
+        src = producer(flower_curve(400))
+        p = NS['GLSScaleSpaceImage'](Input=src)
+        p.ScaleUnits = 'Absolute'  # an image about as tall as wide (arclength 7.3, t up to 3), easy to see
+        p.MinScale = 0.05
+        p.MaxScale = 3.0
+        self.assertEqual(p.NumberOfScales, 200)
+        self.assertEqual(p.NumberOfArclengthSamples, 1000)
+        for name, scales in (('GLSScaleProfiles', 200), ('GLSScaleSpace', 20), ('GLSGeometricVariation', 20)):
+            other = NS[name]()
+            self.assertEqual(other.NumberOfScales, scales, name)
+            simple.Delete(other)
+        view = simple.CreateRenderView()
+        view.ViewSize = [400, 300]
+        view.OrientationAxesVisibility = 0
+        for representation in ('Slice', 'Surface'):
+            display = simple.Show(p, view)
+            display.SetRepresentationType(representation)
+            simple.ColorBy(display, ('POINTS', 'GLSScaledKappa'))
+            view.ResetCamera()
+            simple.Render(view)
+            info = display.GetRepresentedDataInformation()
+            self.assertEqual(info.GetNumberOfPoints(), 1000 * 200, representation)
+            png = os.path.join(tempfile.mkdtemp(), 'image.png')
+            simple.SaveScreenshot(png, view, ImageResolution=[400, 300])
+            reader = vtkPNGReader()
+            reader.SetFileName(png)
+            reader.Update()
+            pixels = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3]
+            covered = np.mean(np.any(pixels != pixels[0], axis=1))
+            self.assertGreater(covered, 0.2, representation)
+            simple.Hide(p, view)
+        simple.Delete(view)
         simple.Delete(p)
         simple.Delete(src)
 
