@@ -7,6 +7,8 @@ smoothed over 6 d -- the ranges of the denoising benchmark (Testing/Benchmarks/g
 this rule beats every single global scale."""
 import numpy as np
 
+import gls_render
+
 
 def nearest_neighbour_distance(polydata, samples=2000):
     """Median distance from a point to its nearest neighbour (length), on an evenly spaced subset of the points."""
@@ -138,17 +140,8 @@ def render(path, stage, title):
         display.PointSize = 3
         simple.ColorBy(display, ('POINTS', 'GLSOffset'))
         display.SetScalarBarVisibility(view, True)
-    bar = simple.GetScalarBar(lut, view)
-    bar.Title = 'distance to the input surface (length)'
-    bar.ComponentTitle = ''
-    text = simple.Text(registrationName='Title', Text=title)
-    text_display = simple.Show(text, view)
-    text_display.WindowLocation = 'Upper Center'
-    text_display.FontSize = 20
-    view.ResetCamera()
-    view.GetActiveCamera().Dolly(1.7)
-    simple.Render(view)
-    simple.SaveScreenshot(path, view, ImageResolution=[1600, 800])
-    for proxy in [text] + sources:
+    gls_render.save_picture(path, view, lut, 'distance to the input surface (length)', title, 20, [1600, 800],
+                            dolly=1.7)
+    for proxy in sources:
         simple.Delete(proxy)
     simple.Delete(view)

@@ -29,6 +29,7 @@ import numpy as np  # noqa: E402
 import gls_cross_section  # noqa: E402
 import gls_denoising  # noqa: E402
 import gls_io  # noqa: E402
+import gls_render  # noqa: E402
 
 
 def parse_arguments(argv):
@@ -142,17 +143,7 @@ def render_features(path, source, title):
     lut.ApplyPreset('Inferno (matplotlib)', True)
     lut.RescaleTransferFunction(0.0, 1.0)
     display.SetScalarBarVisibility(view, True)
-    bar = simple.GetScalarBar(lut, view)
-    bar.Title = 'GLS feature f'
-    bar.ComponentTitle = ''
-    text = simple.Text(registrationName='Title', Text=title)
-    text_display = simple.Show(text, view)
-    text_display.WindowLocation = 'Upper Center'
-    text_display.FontSize = 22
-    view.ResetCamera()
-    simple.Render(view)
-    simple.SaveScreenshot(path, view, ImageResolution=[1200, 900])
-    simple.Delete(text)
+    gls_render.save_picture(path, view, lut, 'GLS feature f', title, 22, [1200, 900])
     simple.Delete(view)
 
 
