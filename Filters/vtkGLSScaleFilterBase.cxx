@@ -69,7 +69,8 @@ vtkCxxSetObjectMacro(vtkGLSScaleFilterBase, Controller, vtkMultiProcessControlle
 
 bool vtkGLSScaleFilterBase::BeginRun(vtkPolyData* input)
 {
-  this->DistributedRun = std::make_unique<vtkGLSDistributedCloud>(this->Controller);
+  // Assigned in place: a filter may hold a reference to it across a call that begins the run again.
+  *this->DistributedRun = vtkGLSDistributedCloud(this->Controller);
   this->GhostPointsUsed = -1;
   const vtkGLSDistributedCloud& dist = *this->DistributedRun;
   if (!dist.IsParallel())
@@ -78,7 +79,7 @@ bool vtkGLSScaleFilterBase::BeginRun(vtkPolyData* input)
   }
   if (!this->SupportsDistributedInput())
   {
-    this->DistributedRun = std::make_unique<vtkGLSDistributedCloud>(nullptr); // re-checked at every run
+    *this->DistributedRun = vtkGLSDistributedCloud(nullptr); // re-checked at every run
     vtkErrorMacro(<< this->GetClassName() << " is serial-only: it runs here on " << dist.GetSize()
                   << " processes, where each would see only its own piece of the cloud and give wrong values near "
                      "the piece boundaries. Run it in a serial pvpython/pvbatch (or on one process).");

@@ -1,12 +1,13 @@
 """The GLS pipeline on the bundled scan, run by pvbatch on one or several MPI ranks; saves every GLS array (ordered by
 global point id) to an .npz file for run_mpi_compare.py.
 
-    [mpiexec -np N] pvbatch mpi_pipeline.py <plugin.so> <scan.obj> <out.npz> [--stride S]
+    [mpiexec -np N] pvbatch mpi_pipeline.py <plugin.so> <scan.obj> <out.npz> [--stride S] [--all-on-rank0]
 
 The cloud comes from a programmable source that honours ParaView's piece requests: every rank reads the scan, keeps
 every S-th vertex (the test cloud, in file order), numbers it with a GlobalIds attribute (its serial index) and
 keeps the slab of x it owns (the points sorted by x, cut in N equal counts). On one rank that is the whole cloud in
-serial order. The pipeline: oriented normals (minimum spanning tree) -> scale space -> geometric variation ->
+serial order. With --all-on-rank0, rank 0 keeps the whole cloud and the other ranks get empty pieces (what a reader
+that ignores pieces gives). The pipeline: oriented normals (minimum spanning tree) -> scale space -> geometric variation ->
 continuous features -> dissimilarity to a point id (these three reuse the stored scale space), and, fitting
 themselves from the normals: geometric variation, continuous features, dissimilarity to a point given by its
 coordinates. Also saved per point: the rank that computed it and how many ghost points that rank used.
@@ -24,6 +25,7 @@ parser.add_argument('plugin')
 parser.add_argument('scan')
 parser.add_argument('out')
 parser.add_argument('--stride', type=int, default=3)
+parser.add_argument('--all-on-rank0', action='store_true')
 args = parser.parse_args()
 
 LoadPlugin(args.plugin, remote=False, ns=globals())
@@ -45,6 +47,8 @@ xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)[
 ids = np.arange(len(xyz), dtype=np.int64)
 order = np.argsort(xyz[:, 0], kind='stable')
 mine = np.sort(np.array_split(order, pieces)[piece])
+if ALL_ON_RANK0:
+    mine = ids if piece == 0 else ids[:0]
 out = self.GetPolyDataOutput()
 pts = vtkPoints()
 pts.SetData(numpy_to_vtk(np.ascontiguousarray(xyz[mine]), deep=1))
@@ -57,7 +61,8 @@ out.SetVerts(verts)
 gid = numpy_to_vtkIdTypeArray(np.ascontiguousarray(ids[mine]), deep=1)
 gid.SetName('GlobalIds')
 out.GetPointData().SetGlobalIds(gid)
-'''.replace('SCAN', repr(args.scan)).replace('STRIDE', str(args.stride))
+'''.replace('SCAN', repr(args.scan)).replace('STRIDE', str(args.stride)).replace(
+    'ALL_ON_RANK0', str(args.all_on_rank0))
 
 INFO_SCRIPT = r'''
 from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
