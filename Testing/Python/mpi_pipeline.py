@@ -2,6 +2,7 @@
 global point id) to an .npz file for run_mpi_compare.py.
 
     [mpiexec -np N] pvbatch mpi_pipeline.py <plugin.so> <scan.obj> <out.npz> [--stride S] [--all-on-rank0]
+    pvpython mpi_pipeline.py ... --server HOST:PORT     (a pvserver started with mpiexec -np N pvserver)
 
 The cloud comes from a programmable source that honours ParaView's piece requests: every rank reads the scan, keeps
 every S-th vertex (the test cloud, in file order), numbers it with a GlobalIds attribute (its serial index) and
@@ -26,9 +27,13 @@ parser.add_argument('scan')
 parser.add_argument('out')
 parser.add_argument('--stride', type=int, default=3)
 parser.add_argument('--all-on-rank0', action='store_true')
+parser.add_argument('--server', help='HOST:PORT of a running pvserver (the pipeline then runs on its ranks)')
 args = parser.parse_args()
 
-LoadPlugin(args.plugin, remote=False, ns=globals())
+if args.server:
+    host, port = args.server.rsplit(':', 1)
+    Connect(host, int(port))  # noqa: F405
+LoadPlugin(args.plugin, remote=bool(args.server), ns=globals())
 
 SOURCE_SCRIPT = r'''
 import numpy as np

@@ -1,7 +1,7 @@
 """Runs mpi_pipeline.py in pvbatch on N MPI ranks and compares every array with the serial run's (the oracle).
 
     python3 run_mpi_compare.py --pvbatch P --mpiexec M --plugin SO --scan OBJ --work DIR --np N
-        [--expect-mismatch | --all-on-rank0]
+        [--expect-mismatch | --all-on-rank0 | --pvserver PVSERVER --pvpython PVPYTHON]
 
 --np 1 runs pvbatch alone (no mpiexec) and writes DIR/serial.npz, the reference. --np N > 1 runs
 `mpiexec -np N pvbatch` (oversubscribed: N may exceed the cores) and checks, against DIR/serial.npz:
@@ -14,9 +14,11 @@
 exchange the comparison must fail (relative difference above 1e-6), which shows that the test can fail.
 --all-on-rank0 gives rank 0 the whole cloud and the other ranks empty pieces (a reader that ignores pieces): the
 results must still equal the serial ones, rank 0 computing every point without ghosts.
+--pvserver runs the pipeline on `mpiexec -np N pvserver` driven by a pvpython client instead of pvbatch.
 """
 import argparse
 import os
+import socket
 import subprocess
 import sys
 import time
@@ -35,14 +37,16 @@ parser.add_argument('--work', required=True)
 parser.add_argument('--np', type=int, required=True)
 parser.add_argument('--expect-mismatch', action='store_true')
 parser.add_argument('--all-on-rank0', action='store_true')
+parser.add_argument('--pvserver')
+parser.add_argument('--pvpython')
 args = parser.parse_args()
 
 here = os.path.dirname(os.path.abspath(__file__))
 os.makedirs(args.work, exist_ok=True)
 reference = os.path.join(args.work, 'serial.npz')
 result = reference if args.np == 1 else os.path.join(
-    args.work, 'np%d%s%s.npz' % (args.np, '-no-ghosts' if args.expect_mismatch else '',
-                                 '-all-on-rank0' if args.all_on_rank0 else ''))
+    args.work, 'np%d%s%s%s.npz' % (args.np, '-no-ghosts' if args.expect_mismatch else '',
+                                   '-all-on-rank0' if args.all_on_rank0 else '', '-pvserver' if args.pvserver else ''))
 if os.path.exists(result):
     os.remove(result)
 
@@ -62,9 +66,34 @@ if args.np > 1:
     command = launcher + command
     if args.expect_mismatch:
         env['GLS_DISTRIBUTED_NO_GHOSTS'] = '1'
+server = None
+server_log = ''
+if args.pvserver:
+    # N server ranks on a free port; the client is pvpython running the same script with --server.
+    with socket.socket() as probe:
+        probe.bind(('localhost', 0))
+        port = probe.getsockname()[1]
+    server_command = command[:command.index(args.pvbatch)] + [args.pvserver, '--server-port=%d' % port]
+    print('$ %s' % ' '.join(server_command))
+    server = subprocess.Popen(server_command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    for line in server.stdout:
+        server_log += line
+        if 'Accepting connection' in line:
+            break
+    command = [args.pvpython] + command[command.index(args.pvbatch) + 1:] + ['--server', 'localhost:%d' % port]
 start = time.time()
 run = subprocess.run(command, env=env, capture_output=True, text=True, timeout=300)
 elapsed = time.time() - start
+if server:
+    try:
+        server_log += server.communicate(timeout=60)[0]
+    except subprocess.TimeoutExpired:
+        server.kill()
+        server_log += server.communicate()[0]
+    if server.returncode != 0:
+        print(server_log[-4000:])
+        print('FAIL: pvserver exited with %s' % server.returncode)
+        sys.exit(1)
 output = '\n'.join(line for line in (run.stdout + run.stderr).splitlines() if 'vtkDataWriter' not in line)
 print('$ %s\n(%.1f s, exit %d)' % (' '.join(command), elapsed, run.returncode))
 if run.returncode != 0 or not os.path.exists(result):
