@@ -9,7 +9,8 @@
 - every floating-point array (normals with their sign, every scale-space array, nu, pertinent scales, features,
   dissimilarity): the same NaN pattern and max |parallel - serial| <= 1e-12 * max |serial| over the array;
   integer-valued arrays (neighbour counts, pertinent-scale counts, the similar flags) and the query id exactly;
-- every rank computed points and used ghost points (the piece boundaries were exercised).
+- every rank computed points and used ghost points (the piece boundaries were exercised);
+- the serial-only filters (scale profiles, projection) gave output serially and refused to run on N ranks.
 --expect-mismatch (with GLS_DISTRIBUTED_NO_GHOSTS=1 passed to the ranks) inverts the verdict: without the ghost
 exchange the comparison must fail (relative difference above 1e-6), which shows that the test can fail.
 --all-on-rank0 gives rank 0 the whole cloud and the other ranks empty pieces (a reader that ignores pieces): the
@@ -114,6 +115,13 @@ if sorted(serial.files) != sorted(parallel.files):
 for key in sorted(set(serial.files) & set(parallel.files)):
     name = key.split('/', 1)[1]
     if name in ('Rank', 'GhostsOnRank'):
+        continue
+    if key.startswith('serial_only/'):
+        if not (serial[key][0] > 0 and parallel[key][0] == 0):
+            failures.append('%s: %d serially, %d on %d ranks (expected > 0, then 0: refused)' % (
+                key, serial[key][0], parallel[key][0], args.np))
+        else:
+            print('%-40s %d serially, refused on %d ranks' % (key, serial[key][0], args.np))
         continue
     a, b = serial[key], parallel[key]
     if a.shape != b.shape:
