@@ -6,7 +6,8 @@ The cloud: C copies of the scan side by side along x (a strip of constant densit
 slabs of x by a programmable source that honours ParaView's piece requests (every rank builds it and keeps its
 slab). Scales are absolute: 0.8% to 8% of one copy's diagonal (S quadratic scales, default 20), so the ghost band
 does not grow with the cloud. Times, on rank 0 (wall clock, every rank working): normal estimation (16 nearest,
-minimum spanning tree, gathered on rank 0), the scale space (every array stored) and the fused continuous features.
+minimum spanning tree, gathered on rank 0), the scale space (every array stored) and the fused continuous features;
+then every rank's owned and ghost points (the scale space's field data GLSGhostPoints).
 Each filter runs on T threads per rank (default 1: N ranks = N cores).
 """
 import argparse
@@ -77,3 +78,25 @@ for label, proxy in (('normal estimation', normals), ('scale space', space), ('c
     proxy.UpdatePipeline()
     seconds = time.perf_counter() - start
     print('%-20s %7.2f s  %9.0f points/s' % (label, seconds, n / seconds))
+
+# One point per rank carrying its owned and ghost point counts.
+COUNT_SCRIPT = r'''
+from vtkmodules.vtkCommonCore import vtkPoints, vtkDoubleArray
+inp = self.GetInput()
+out = self.GetOutput()
+pts = vtkPoints()
+pts.InsertNextPoint(0.0, 0.0, 0.0)
+out.SetPoints(pts)
+g = inp.GetFieldData().GetArray('GLSGhostPoints')
+for name, value in (('owned', inp.GetNumberOfPoints()), ('ghosts', g.GetValue(0) if g else 0)):
+    a = vtkDoubleArray()
+    a.SetName(name)
+    a.InsertNextValue(value)
+    out.GetPointData().AddArray(a)
+'''
+counts = servermanager.Fetch(ProgrammableFilter(Input=space, OutputDataSetType='vtkPolyData',  # noqa: F405
+                                                Script=COUNT_SCRIPT))
+for r in range(counts.GetNumberOfPoints()):
+    owned = counts.GetPointData().GetArray('owned').GetValue(r)
+    ghosts = counts.GetPointData().GetArray('ghosts').GetValue(r)
+    print('piece %d: %d owned points, %d ghost points (%.1f%%)' % (r, owned, ghosts, 100.0 * ghosts / (owned if owned > 0 else 1.0)))
