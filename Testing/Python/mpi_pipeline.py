@@ -11,9 +11,9 @@ serial order. With --all-on-rank0, rank 0 keeps the whole cloud and the other ra
 that ignores pieces gives). The pipeline: oriented normals (minimum spanning tree) -> scale space -> geometric variation ->
 continuous features -> dissimilarity to a point id (these three reuse the stored scale space), and, fitting
 themselves from the normals: geometric variation, continuous features, dissimilarity to a point given by its
-coordinates. Also saved per point: the rank that computed it and how many ghost points that rank used. And, for two
-serial-only filters (scale profiles, projection), the size of their output (on several processes they must refuse
-to run: an empty output).
+coordinates; the scale profiles of three points (a table, assembled on rank 0). Also saved per point: the rank that
+computed it and how many ghost points that rank used. And, for a serial-only filter (projection), the size of its
+output (on several processes it must refuse to run: an empty output).
 """
 import argparse
 import sys
@@ -126,10 +126,13 @@ for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_f
     query = data.GetFieldData().GetArray('GLSQueryPointId')
     if query is not None:
         saved[prefix + '/GLSQueryPointId'] = np.array([query.GetValue(0)], dtype=np.float64)
-# Serial-only filters: their output size (0 when they refused to run).
-profiles = GLSScaleProfiles(Input=normals, PointIds=[5], NumberOfScales=10)  # noqa: F405
+# Scale profiles of three points (global ids), compared column by column.
+profiles = GLSScaleProfiles(Input=normals, PointIds=[5, 6000, 11000], NumberOfScales=10)  # noqa: F405
 profiles.UpdatePipeline()
-saved['serial_only/ScaleProfilesRows'] = np.array([servermanager.Fetch(profiles).GetNumberOfRows()], dtype=np.float64)
+table = servermanager.Fetch(profiles)
+for i in range(table.GetNumberOfColumns()):
+    saved['profiles/' + table.GetColumnName(i)] = vtk_to_numpy(table.GetColumn(i)).astype(np.float64)
+# A serial-only filter: its output size (0 when it refused to run).
 projection = GLSProjection(Input=normals, ScaleMode='Fixed scale', Scale=0.02, MaxIterations=2)  # noqa: F405
 projection.UpdatePipeline()
 projected = servermanager.Fetch(projection).GetPointData().GetArray('GLSDisplacement')

@@ -10,7 +10,7 @@
   dissimilarity): the same NaN pattern and max |parallel - serial| <= 1e-12 * max |serial| over the array;
   integer-valued arrays (neighbour counts, pertinent-scale counts, the similar flags) and the query id exactly;
 - every rank computed points and used ghost points (the piece boundaries were exercised);
-- the serial-only filters (scale profiles, projection) gave output serially and refused to run on N ranks.
+- the serial-only filter (projection) gave output serially and refused to run on N ranks.
 --expect-mismatch (with GLS_DISTRIBUTED_NO_GHOSTS=1 passed to the ranks) inverts the verdict: without the ghost
 exchange the comparison must fail (relative difference above 1e-6), which shows that the test can fail.
 --all-on-rank0 gives rank 0 the whole cloud and the other ranks empty pieces (a reader that ignores pieces): the
