@@ -11,7 +11,8 @@ serial order. With --all-on-rank0, rank 0 keeps the whole cloud and the other ra
 that ignores pieces gives). The pipeline: oriented normals (minimum spanning tree) -> scale space -> geometric variation ->
 continuous features -> dissimilarity to a point id (these three reuse the stored scale space), and, fitting
 themselves from the normals: geometric variation, continuous features, dissimilarity to a point given by its
-coordinates; the scale profiles of three points (a table, assembled on rank 0). Also saved per point: the rank that
+coordinates; normals re-estimated over a radius and made to agree with the first ones; the scale profiles of three
+points (a table, assembled on rank 0). Also saved per point: the rank that
 computed it and how many ghost points that rank used. And, for a serial-only filter (projection), the size of its
 output (on several processes it must refuse to run: an empty output).
 """
@@ -108,10 +109,12 @@ tagged = ProgrammableFilter(Input=fused_variation, OutputDataSetType='vtkPolyDat
 fused_features = GLSContinuousFeatures(Input=normals, **scales)  # noqa: F405
 fused_similar = GLSMultiScaleDissimilarity(Input=normals, UseQueryPointCoordinates=1,  # noqa: F405
                                            QueryPoint=[-0.03, 0.12, 0.03], PriorMinScale=0.02, **scales)
+agreeing = GLSNormalEstimation(Input=normals, NeighborhoodType='Radius', Radius=0.006,  # noqa: F405
+                               Orientation='Agree with existing normals', ExistingNormals=['POINTS', 'Normals'])
 
 saved = {}
 for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_features', fused_features),
-                      ('fused_similar', fused_similar)):
+                      ('fused_similar', fused_similar), ('radius_agreeing', agreeing)):
     proxy.UpdatePipeline()
     data = servermanager.Fetch(proxy)
     pd = data.GetPointData()
