@@ -1,6 +1,7 @@
 """Throughput of the distributed GLS filters in pvbatch (the README's scaling note).
 
     [mpiexec -np N] pvbatch mpi_throughput.py <plugin.so> <scan.obj> [--copies C] [--threads T] [--scales S]
+        [--orientation 'Minimum spanning tree' | 'Towards point' | ...]
 
 The cloud: C copies of the scan side by side along x (a strip of constant density, like a survey), cut into N
 slabs of x by a programmable source that honours ParaView's piece requests (every rank builds it and keeps its
@@ -22,6 +23,7 @@ parser.add_argument('scan')
 parser.add_argument('--copies', type=int, default=5)
 parser.add_argument('--threads', type=int, default=1)
 parser.add_argument('--scales', type=int, default=20)
+parser.add_argument('--orientation', default='Minimum spanning tree')
 args = parser.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 
@@ -67,12 +69,13 @@ n = cloud.GetDataInformation().GetNumberOfPoints()
 # One copy's bounding-box diagonal is about 0.25 (the bunny: 0.155 x 0.154 x 0.120).
 scales = dict(ScaleUnits='Absolute', MinScale=0.008 * 0.25, MaxScale=0.08 * 0.25, NumberOfScales=args.scales,
               ScaleSampling='Quadratic', NumberOfThreads=args.threads)
-normals = GLSNormalEstimation(Input=cloud, NumberOfNeighbors=16, Orientation='Minimum spanning tree',  # noqa: F405
-                              NumberOfThreads=args.threads)
+normals = GLSNormalEstimation(Input=cloud, NumberOfNeighbors=16, Orientation=args.orientation,  # noqa: F405
+                              OrientationPoint=[0.0, 1.0, 1.0], NumberOfThreads=args.threads)
 space = GLSScaleSpace(Input=normals, **scales)  # noqa: F405
 features = GLSContinuousFeatures(Input=normals, **scales)  # noqa: F405
 ranks = servermanager.ActiveConnection.GetNumberOfDataPartitions()
-print('%d points, %d ranks x %d threads, %d scales' % (n, ranks, args.threads, args.scales))
+print('%d points, %d ranks x %d threads, %d scales, orientation: %s' % (n, ranks, args.threads, args.scales,
+                                                                       args.orientation))
 for label, proxy in (('normal estimation', normals), ('scale space', space), ('continuous features', features)):
     start = time.perf_counter()
     proxy.UpdatePipeline()
