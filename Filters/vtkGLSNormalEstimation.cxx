@@ -172,7 +172,8 @@ bool vtkGLSNormalEstimation::EstimateDistributed(const vtkGLSDistributedCloud& d
   gls::NormalEstimationResult local;
   gls::estimateNormals(xyz.data(), n + ghostCount, settings, local);
   result.normals.assign(local.normals.begin(), local.normals.begin() + 3 * static_cast<std::ptrdiff_t>(n));
-  result.neighborCounts.assign(local.neighborCounts.begin(), local.neighborCounts.begin() + static_cast<std::ptrdiff_t>(n));
+  result.neighborCounts.assign(
+    local.neighborCounts.begin(), local.neighborCounts.begin() + static_cast<std::ptrdiff_t>(n));
   xyz.resize(3 * n);
   if (!mst)
   {

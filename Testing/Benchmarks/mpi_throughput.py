@@ -102,4 +102,5 @@ counts = servermanager.Fetch(ProgrammableFilter(Input=space, OutputDataSetType='
 for r in range(counts.GetNumberOfPoints()):
     owned = counts.GetPointData().GetArray('owned').GetValue(r)
     ghosts = counts.GetPointData().GetArray('ghosts').GetValue(r)
-    print('piece %d: %d owned points, %d ghost points (%.1f%%)' % (r, owned, ghosts, 100.0 * ghosts / (owned if owned > 0 else 1.0)))
+    share = 100.0 * ghosts / (owned if owned > 0 else 1.0)
+    print('piece %d: %d owned points, %d ghost points (%.1f%%)' % (r, owned, ghosts, share))

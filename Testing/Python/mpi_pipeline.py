@@ -8,16 +8,15 @@ The cloud comes from a programmable source that honours ParaView's piece request
 every S-th vertex (the test cloud, in file order), numbers it with a GlobalIds attribute (its serial index) and
 keeps the slab of x it owns (the points sorted by x, cut in N equal counts). On one rank that is the whole cloud in
 serial order. With --all-on-rank0, rank 0 keeps the whole cloud and the other ranks get empty pieces (what a reader
-that ignores pieces gives). The pipeline: oriented normals (minimum spanning tree) -> scale space -> geometric variation ->
-continuous features -> dissimilarity to a point id (these three reuse the stored scale space), and, fitting
-themselves from the normals: geometric variation, continuous features, dissimilarity to a point given by its
+that ignores pieces gives). The pipeline: oriented normals (minimum spanning tree) -> scale space -> geometric
+variation -> continuous features -> dissimilarity to a point id (these three reuse the stored scale space), and,
+fitting themselves from the normals: geometric variation, continuous features, dissimilarity to a point given by its
 coordinates; normals re-estimated over a radius and made to agree with the first ones; the scale profiles of three
-points (a table, assembled on rank 0). Also saved per point: the rank that
-computed it and how many ghost points that rank used. And, for a serial-only filter (projection), the size of its
-output (on several processes it must refuse to run: an empty output).
+points (a table, assembled on rank 0). Also saved per point: the rank that computed it and how many ghost points
+that rank used. And, for a serial-only filter (projection), the size of its output (on several processes it must
+refuse to run: an empty output).
 """
 import argparse
-import sys
 
 import numpy as np
 from paraview.simple import *  # noqa: F401,F403

@@ -129,8 +129,8 @@ for key in sorted(set(serial.files) & set(parallel.files)):
         continue
     if name in ('GlobalIds', 'Points') or name in INTEGER_ARRAYS:
         if not np.array_equal(a, b, equal_nan=True):
-            failures.append('%s: differs (%d of %d values)' % (key, int(np.sum(~((a == b) | (np.isnan(a) & np.isnan(b))))),
-                                                                a.size))
+            same = (a == b) | (np.isnan(a) & np.isnan(b))
+            failures.append('%s: differs (%d of %d values)' % (key, int(np.sum(~same)), a.size))
         continue
     nan_a, nan_b = np.isnan(a), np.isnan(b)
     if not np.array_equal(nan_a, nan_b):
