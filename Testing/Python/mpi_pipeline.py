@@ -11,10 +11,10 @@ serial order. With --all-on-rank0, rank 0 keeps the whole cloud and the other ra
 that ignores pieces gives). The pipeline: oriented normals (minimum spanning tree) -> scale space -> geometric
 variation -> continuous features -> dissimilarity to a point id (these three reuse the stored scale space), and,
 fitting themselves from the normals: geometric variation, continuous features, dissimilarity to a point given by its
-coordinates; normals re-estimated over a radius and made to agree with the first ones; the scale profiles of three
-points (a table, assembled on rank 0). Also saved per point: the rank that computed it and how many ghost points
-that rank used. And, for a serial-only filter (projection), the size of its output (on several processes it must
-refuse to run: an empty output).
+coordinates; normals re-estimated over a radius and made to agree with the first ones; the MLS projection (moved
+points); the scale profiles of three points (a table, assembled on rank 0). Also saved per point: the rank that
+computed it and how many ghost points that rank used. And, for a serial-only filter (adaptive bandwidth), the size
+of its output (on several processes it must refuse to run: an empty output).
 """
 import argparse
 
@@ -110,10 +110,11 @@ fused_similar = GLSMultiScaleDissimilarity(Input=normals, UseQueryPointCoordinat
                                            QueryPoint=[-0.03, 0.12, 0.03], PriorMinScale=0.02, **scales)
 agreeing = GLSNormalEstimation(Input=normals, NeighborhoodType='Radius', Radius=0.006,  # noqa: F405
                                Orientation='Agree with existing normals', ExistingNormals=['POINTS', 'Normals'])
+projection = GLSProjection(Input=normals, ScaleMode='Fixed scale', Scale=0.02)  # noqa: F405
 
 saved = {}
 for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_features', fused_features),
-                      ('fused_similar', fused_similar), ('radius_agreeing', agreeing)):
+                      ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('projection', projection)):
     proxy.UpdatePipeline()
     data = servermanager.Fetch(proxy)
     pd = data.GetPointData()
@@ -135,11 +136,11 @@ table = servermanager.Fetch(profiles)
 for i in range(table.GetNumberOfColumns()):
     saved['profiles/' + table.GetColumnName(i)] = vtk_to_numpy(table.GetColumn(i)).astype(np.float64)
 # A serial-only filter: its output size (0 when it refused to run).
-projection = GLSProjection(Input=normals, ScaleMode='Fixed scale', Scale=0.02, MaxIterations=2)  # noqa: F405
-projection.UpdatePipeline()
-projected = servermanager.Fetch(projection).GetPointData().GetArray('GLSDisplacement')
-saved['serial_only/ProjectionPoints'] = np.array([projected.GetNumberOfTuples() if projected else 0],
-                                                 dtype=np.float64)
+bandwidth = GLSAdaptiveBandwidth(Input=normals, **scales)  # noqa: F405
+bandwidth.UpdatePipeline()
+computed = servermanager.Fetch(bandwidth).GetPointData().GetArray('GLSBandwidth')
+saved['serial_only/AdaptiveBandwidthPoints'] = np.array([computed.GetNumberOfTuples() if computed else 0],
+                                                        dtype=np.float64)
 np.savez(args.out, **saved)
 print('saved %d arrays of %d points to %s' % (len(saved), len(saved['chain/GlobalIds']), args.out))
 
