@@ -22,6 +22,7 @@ constexpr const char* Dissimilarity = "GLSDissimilarity";
 constexpr const char* Similar = "GLSSimilar";
 constexpr const char* Backend = "GLSBackend";            // field data: "CPU" or "CUDA", where the fits ran
 constexpr const char* QueryPointId = "GLSQueryPointId";   // field data of the dissimilarity output
+constexpr const char* GhostPoints = "GLSGhostPoints";     // field data of a distributed run: ghosts this rank used
 constexpr const char* Bandwidth = "GLSBandwidth";          // adaptive bandwidth (length)
 constexpr const char* RawBandwidth = "GLSRawBandwidth";    // adaptive bandwidth before smoothing (length)
 constexpr const char* Displacement = "GLSDisplacement";    // projection: distance moved (length)

@@ -52,6 +52,7 @@ protected:
   ~vtkGLSContinuousFeatures() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool SupportsDistributedInput() const override { return true; }
 
   double Sigma;
   int FeatureMeasure;

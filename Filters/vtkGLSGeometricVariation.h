@@ -41,6 +41,7 @@ protected:
   ~vtkGLSGeometricVariation() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool SupportsDistributedInput() const override { return true; }
 
   int MaxNumberOfPertinentScales;
 

@@ -1,6 +1,7 @@
 #include "vtkGLSMultiScaleDissimilarity.h"
 
 #include "vtkGLSArrayNames.h"
+#include "vtkGLSDistributedCloud.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -8,6 +9,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -19,7 +21,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <type_traits>
 
 vtkStandardNewMacro(vtkGLSMultiScaleDissimilarity);
 
@@ -79,12 +83,13 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
     return 0;
   }
   const vtkIdType n = input->GetNumberOfPoints();
+  const vtkGLSDistributedCloud& dist = this->Distributed();
 
-  // The query point.
+  // The query point (in a distributed run, `query` is this piece's index of it, -1 on the other ranks).
   vtkIdType query = this->QueryPointId;
+  double best = VTK_DOUBLE_MAX;
   if (this->UseQueryPointCoordinates)
   {
-    double best = VTK_DOUBLE_MAX;
     query = -1;
     for (vtkIdType i = 0; i < n; ++i)
     {
@@ -97,13 +102,18 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
         query = i;
       }
     }
-    if (query < 0)
+    if (query < 0 && !dist.IsParallel())
     {
       vtkErrorMacro("No input point with finite coordinates to snap the query point to.");
       return 0;
     }
   }
-  if (query >= n)
+  long long queryGlobalId = query;
+  if (dist.IsParallel() && !this->LocateDistributedQuery(input, best, query, queryGlobalId))
+  {
+    return 0;
+  }
+  if (!dist.IsParallel() && query >= n)
   {
     vtkErrorMacro("QueryPointId " << query << " is out of range: the input has " << n << " points.");
     return 0;
@@ -129,10 +139,24 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
     return 0;
   }
 
+  // The query's descriptors: computed where it lives (with the ghosts of that piece), then sent to every rank.
   CaptureSink querySink;
   querySink.Samples.resize(scales.size());
-  const std::vector<std::uint64_t> queryIds{ static_cast<std::uint64_t>(query) };
-  if (!this->RunScaleSamples(querySink, &queryIds, 0.0, 0.02))
+  int queryStatus = 1; // 1 computed, 0 aborted
+  if (query >= 0)
+  {
+    const std::vector<std::uint64_t> queryIds{ static_cast<std::uint64_t>(query) };
+    queryStatus = this->RunScaleSamples(querySink, &queryIds, 0.0, 0.02) ? 1 : 0;
+  }
+  if (dist.IsParallel())
+  {
+    static_assert(std::is_trivially_copyable<gls::ScaleSample>::value, "sent as bytes");
+    vtkMultiProcessController* c = this->GetController();
+    c->Broadcast(&queryStatus, 1, this->QueryOwner);
+    c->Broadcast(reinterpret_cast<char*>(querySink.Samples.data()),
+      static_cast<vtkIdType>(querySink.Samples.size() * sizeof(gls::ScaleSample)), this->QueryOwner);
+  }
+  if (!queryStatus)
   {
     return 1; // aborted
   }
@@ -143,7 +167,7 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
   }
   if (!anyValid)
   {
-    vtkErrorMacro("The query point " << query
+    vtkErrorMacro("The query point " << queryGlobalId
                                      << " has no defined fit at any scale of the prior (non-finite coordinates, or "
                                         "too few neighbours): pick another point or larger scales.");
     return 0;
@@ -171,11 +195,66 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
   output->GetPointData()->SetActiveScalars(vtkGLSArrayNames::Dissimilarity);
   vtkNew<vtkIdTypeArray> queryArray;
   queryArray->SetName(vtkGLSArrayNames::QueryPointId);
-  queryArray->InsertNextValue(query);
+  queryArray->InsertNextValue(static_cast<vtkIdType>(queryGlobalId));
   output->GetFieldData()->AddArray(queryArray);
   StoreScales(output->GetFieldData(), scales);
   this->StoreBackend(output->GetFieldData());
   return 1;
+}
+
+bool vtkGLSMultiScaleDissimilarity::LocateDistributedQuery(
+  vtkPolyData* input, double localBest2, vtkIdType& query, long long& globalId)
+{
+  const vtkGLSDistributedCloud& dist = this->Distributed();
+  const std::vector<long long> ids = dist.GlobalIds(input);
+  const double none = std::numeric_limits<double>::infinity();
+  if (this->UseQueryPointCoordinates)
+  {
+    // The nearest point over all pieces; among equally near ones the smallest global id (the serial choice, the
+    // first such point, when the global ids follow the serial order).
+    const double best2 = dist.Min(query >= 0 ? localBest2 : none);
+    if (!(best2 < none))
+    {
+      vtkErrorMacro("No input point with finite coordinates to snap the query point to.");
+      return false;
+    }
+    double mine = none;
+    for (std::size_t i = 0; i < ids.size(); ++i)
+    {
+      double p[3];
+      input->GetPoint(static_cast<vtkIdType>(i), p);
+      if (vtkMath::Distance2BetweenPoints(p, this->QueryPoint) == best2)
+      {
+        mine = std::min(mine, static_cast<double>(ids[i]));
+      }
+    }
+    globalId = static_cast<long long>(dist.Min(mine));
+  }
+  else
+  {
+    globalId = this->QueryPointId;
+  }
+  query = -1;
+  for (std::size_t i = 0; i < ids.size() && query < 0; ++i)
+  {
+    if (ids[i] == globalId)
+    {
+      query = static_cast<vtkIdType>(i);
+    }
+  }
+  this->QueryOwner = static_cast<int>(dist.Min(query >= 0 ? dist.GetRank() : dist.GetSize()));
+  if (this->QueryOwner >= dist.GetSize())
+  {
+    vtkErrorMacro("QueryPointId " << globalId << " is out of range: no piece has a point with that global id (the "
+                                  << static_cast<long long>(dist.Sum(static_cast<double>(input->GetNumberOfPoints())))
+                                  << " points are numbered by their GlobalIds, else in rank order).");
+    return false;
+  }
+  if (dist.GetRank() != this->QueryOwner)
+  {
+    query = -1; // a duplicated global id: the lowest rank holding it owns the query
+  }
+  return true;
 }
 
 void vtkGLSMultiScaleDissimilarity::PrintSelf(ostream& os, vtkIndent indent)

@@ -38,7 +38,11 @@ public:
   };
 
   ///@{
-  /// Id of the query point (default 0). Ignored when UseQueryPointCoordinates is on.
+  /// Id of the query point (default 0). Ignored when UseQueryPointCoordinates is on. In a distributed run (several
+  /// processes, see vtkGLSScaleFilterBase) it is a global id: the value of the point-data GlobalIds attribute when
+  /// the pieces carry one (the serial index when the ids were made before the cloud was split), else the index in
+  /// the rank-order concatenation of the pieces; the rank holding it computes its descriptors and broadcasts them.
+  /// The field data GLSQueryPointId then holds that global id.
   vtkSetClampMacro(QueryPointId, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(QueryPointId, vtkIdType);
   ///@}
@@ -81,7 +85,14 @@ protected:
   ~vtkGLSMultiScaleDissimilarity() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool SupportsDistributedInput() const override { return true; }
 
+  /// Distributed run: finds the query over all pieces (by global id, or the nearest point to QueryPoint given this
+  /// piece's nearest squared distance `localBest2`), sets `query` to its index in this piece (-1 elsewhere),
+  /// `globalId`, and QueryOwner. False (with an error, on every rank) when no piece has it.
+  bool LocateDistributedQuery(vtkPolyData* input, double localBest2, vtkIdType& query, long long& globalId);
+
+  int QueryOwner = 0; ///< the rank whose piece holds the query point (distributed runs)
   vtkIdType QueryPointId;
   double QueryPoint[3];
   bool UseQueryPointCoordinates;

@@ -1,6 +1,7 @@
 #include "vtkGLSNormalEstimation.h"
 
 #include "vtkGLSArrayNames.h"
+#include "vtkGLSDistributedCloud.h"
 #include "vtkGLSScaleFilterBase.h"
 
 #include "vtkDataArray.h"
@@ -8,6 +9,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -15,7 +17,10 @@
 
 #include "gls/NormalEstimation.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numeric>
 #include <vector>
 
 vtkStandardNewMacro(vtkGLSNormalEstimation);
@@ -31,9 +36,15 @@ vtkGLSNormalEstimation::vtkGLSNormalEstimation()
 {
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::NORMALS);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
-vtkGLSNormalEstimation::~vtkGLSNormalEstimation() = default;
+vtkGLSNormalEstimation::~vtkGLSNormalEstimation()
+{
+  this->SetController(nullptr);
+}
+
+vtkCxxSetObjectMacro(vtkGLSNormalEstimation, Controller, vtkMultiProcessController);
 
 int vtkGLSNormalEstimation::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -49,7 +60,8 @@ int vtkGLSNormalEstimation::RequestData(
   output->ShallowCopy(input);
 
   const vtkIdType n = input->GetNumberOfPoints();
-  if (n < 1)
+  const vtkGLSDistributedCloud dist(this->Controller);
+  if (dist.IsParallel() ? !(dist.Sum(static_cast<double>(n)) > 0.0) : n < 1)
   {
     vtkErrorMacro("The input has no points.");
     return 0;
@@ -63,6 +75,16 @@ int vtkGLSNormalEstimation::RequestData(
   for (vtkIdType i = 0; i < n; ++i)
   {
     input->GetPoint(i, &xyz[3 * i]);
+  }
+  if (dist.IsParallel())
+  {
+    double b[6];
+    if (dist.FiniteBounds(xyz.data(), static_cast<std::size_t>(n), b) && b[4] == b[5])
+    {
+      vtkErrorMacro("Distributed normal estimation of a planar input (every point in the plane z = "
+        << b[4] << ") is not supported: run it on one process.");
+      return 0;
+    }
   }
 
   gls::NormalEstimationSettings settings;
@@ -82,7 +104,8 @@ int vtkGLSNormalEstimation::RequestData(
   if (this->Orientation == AGREE_WITH_EXISTING)
   {
     vtkDataArray* existing = vtkGLSScaleFilterBase::FindSelectedNormals(this, 0, input);
-    if (!existing || existing->GetNumberOfComponents() != 3 || existing->GetNumberOfTuples() != n)
+    const bool valid = existing && existing->GetNumberOfComponents() == 3 && existing->GetNumberOfTuples() == n;
+    if (!dist.AllTrue(valid || (dist.IsParallel() && n == 0)))
     {
       vtkErrorMacro("AGREE_WITH_EXISTING needs an existing 3-component point normals array with one tuple per "
                     "point (select it with SetInputArrayToProcess, or set active normals).");
@@ -97,7 +120,14 @@ int vtkGLSNormalEstimation::RequestData(
   }
 
   gls::NormalEstimationResult result;
-  if (!gls::estimateNormals(xyz.data(), static_cast<std::size_t>(n), settings, result))
+  if (dist.IsParallel())
+  {
+    if (!this->EstimateDistributed(dist, input, xyz, reference, settings, result))
+    {
+      return 0;
+    }
+  }
+  else if (!gls::estimateNormals(xyz.data(), static_cast<std::size_t>(n), settings, result))
   {
     return 1; // aborted: the output is the input, without partial normals
   }
@@ -111,6 +141,93 @@ int vtkGLSNormalEstimation::RequestData(
   return 1;
 }
 
+bool vtkGLSNormalEstimation::EstimateDistributed(const vtkGLSDistributedCloud& dist, vtkPolyData* input,
+  std::vector<double>& xyz, std::vector<double>& reference, gls::NormalEstimationSettings settings,
+  gls::NormalEstimationResult& result)
+{
+  const std::size_t n = xyz.size() / 3;
+  // Ghosts: every point within the reach of this piece's neighbourhoods.
+  const double reach = settings.neighborhood == gls::NeighborhoodType::Radius
+    ? settings.radius
+    : gls::kNearestReach(xyz.data(), n, settings.k, settings.parallel);
+  std::vector<double> ghosts;
+  std::size_t ghostCount = 0;
+  if (!dist.AllTrue(dist.ExchangeGhosts(xyz.data(), n, 3, reach, ghosts, ghostCount)))
+  {
+    vtkErrorMacro("The exchange of ghost points between the processes failed.");
+    return false;
+  }
+  xyz.insert(xyz.end(), ghosts.begin(), ghosts.end());
+  if (!reference.empty())
+  {
+    reference.resize(xyz.size(), std::numeric_limits<double>::quiet_NaN()); // ghosts: keep the solver's sign
+    settings.reference = reference.data();
+  }
+  const bool mst = settings.orientation == gls::NormalOrientation::MinimumSpanningTree;
+  if (mst)
+  {
+    settings.orientation = gls::NormalOrientation::None; // oriented below, over the whole cloud
+  }
+  settings.parallel.progress = nullptr; // no abort half-way through a collective run
+  gls::NormalEstimationResult local;
+  gls::estimateNormals(xyz.data(), n + ghostCount, settings, local);
+  result.normals.assign(local.normals.begin(), local.normals.begin() + 3 * static_cast<std::ptrdiff_t>(n));
+  result.neighborCounts.assign(
+    local.neighborCounts.begin(), local.neighborCounts.begin() + static_cast<std::ptrdiff_t>(n));
+  xyz.resize(3 * n);
+  if (!mst)
+  {
+    return true;
+  }
+
+  // Minimum spanning tree over the whole cloud, on rank 0, in global-id order (the serial order).
+  const std::vector<long long> ids = dist.GlobalIds(input);
+  std::vector<double> rows(7 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    rows[7 * i] = static_cast<double>(ids[i]);
+    std::copy(&xyz[3 * i], &xyz[3 * i] + 3, &rows[7 * i + 1]);
+    std::copy(&result.normals[3 * i], &result.normals[3 * i] + 3, &rows[7 * i + 4]);
+  }
+  std::vector<double> all;
+  std::vector<long long> counts;
+  if (!dist.GatherRows(rows, 7, 0, all, counts))
+  {
+    vtkErrorMacro("Gathering the points on rank 0 for the minimum-spanning-tree orientation failed.");
+    return false;
+  }
+  std::vector<double> oriented;
+  if (dist.GetRank() == 0)
+  {
+    const std::size_t total = all.size() / 7;
+    std::vector<std::size_t> order(total);
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+      [&all](std::size_t a, std::size_t b) { return all[7 * a] < all[7 * b]; });
+    std::vector<double> sortedXyz(3 * total), sortedNormals(3 * total);
+    for (std::size_t j = 0; j < total; ++j)
+    {
+      std::copy(&all[7 * order[j] + 1], &all[7 * order[j] + 4], &sortedXyz[3 * j]);
+      std::copy(&all[7 * order[j] + 4], &all[7 * order[j] + 7], &sortedNormals[3 * j]);
+    }
+    gls::orientByMinimumSpanningTree(sortedXyz.data(), total, settings.graphNeighbors, sortedNormals.data(),
+      settings.parallel, result.components);
+    oriented.resize(3 * total);
+    for (std::size_t j = 0; j < total; ++j)
+    {
+      std::copy(&sortedNormals[3 * j], &sortedNormals[3 * j] + 3, &oriented[3 * order[j]]);
+    }
+  }
+  std::vector<double> mine;
+  if (!dist.ScatterRows(oriented, 3, 0, counts, mine))
+  {
+    vtkErrorMacro("Sending the oriented normals back from rank 0 failed.");
+    return false;
+  }
+  result.normals = mine;
+  return true;
+}
+
 void vtkGLSNormalEstimation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -122,4 +239,5 @@ void vtkGLSNormalEstimation::PrintSelf(ostream& os, vtkIndent indent)
      << this->OrientationPoint[2] << "\n";
   os << indent << "GraphNeighbors: " << this->GraphNeighbors << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
 }

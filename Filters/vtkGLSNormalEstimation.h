@@ -22,12 +22,33 @@
  * Degenerate input: a point with fewer than 3 neighbours, whose neighbours lie on a line, or with non-finite
  * coordinates gets a NaN normal (later GLS filters leave it out of every neighbourhood). An empty input, a Radius <= 0
  * in RADIUS mode, or AGREE_WITH_EXISTING without a valid normals array is an error.
+ *
+ * Distributed runs (pvbatch / pvserver on N MPI ranks; the Controller has several processes): each rank fetches the
+ * other ranks' points within the reach of its neighbourhoods (Radius, or the largest distance from one of its points
+ * to its k-th nearest point in its own piece, which bounds the true one) around its piece (vtkGLSDistributedCloud),
+ * estimates the normals of its own points only, and orients them per point (TOWARDS/AWAY_FROM_POINT,
+ * AGREE_WITH_EXISTING) or, for MINIMUM_SPANNING_TREE, by gathering the points and unoriented normals on rank 0
+ * (ordered by global id: the GlobalIds attribute, else rank order), orienting them there as a serial run would, and
+ * sending every rank its oriented normals back (rank 0 then holds 56 bytes per point of the whole cloud). The
+ * normals equal a serial run's (sign included). A planar input (every point in one plane z = const, possibly a 2D
+ * curve) is refused on several processes: its curve test is global.
  */
 #ifndef vtkGLSNormalEstimation_h
 #define vtkGLSNormalEstimation_h
 
 #include "vtkGLSFiltersModule.h"
 #include "vtkPolyDataAlgorithm.h"
+
+#include <vector> // for std::vector
+
+class vtkGLSDistributedCloud;
+class vtkMultiProcessController;
+class vtkPolyData;
+namespace gls
+{
+struct NormalEstimationSettings;
+struct NormalEstimationResult;
+}
 
 class VTKGLSFILTERS_EXPORT vtkGLSNormalEstimation : public vtkPolyDataAlgorithm
 {
@@ -99,12 +120,25 @@ public:
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
+  ///@{
+  /// The controller of a distributed run (default: the global controller when the filter is created, as ParaView's
+  /// pvbatch and pvserver set it). Null or a single process: serial.
+  virtual void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
 protected:
   vtkGLSNormalEstimation();
   ~vtkGLSNormalEstimation() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// The distributed estimate (see the class documentation): ghosts, normals of the owned points, and the
+  /// minimum-spanning-tree orientation on rank 0. `xyz` (this piece's points) and `reference` are scratch. False
+  /// (with an error) on a communication failure.
+  bool EstimateDistributed(const vtkGLSDistributedCloud& dist, vtkPolyData* input, std::vector<double>& xyz,
+    std::vector<double>& reference, gls::NormalEstimationSettings settings, gls::NormalEstimationResult& result);
 
   int NeighborhoodType;
   int NumberOfNeighbors;
@@ -113,6 +147,7 @@ protected:
   double OrientationPoint[3];
   int GraphNeighbors;
   int NumberOfThreads;
+  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkGLSNormalEstimation(const vtkGLSNormalEstimation&) = delete;

@@ -1,6 +1,7 @@
 #include "vtkGLSProjection.h"
 
 #include "vtkGLSArrayNames.h"
+#include "vtkGLSDistributedCloud.h"
 
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
@@ -16,7 +17,9 @@
 
 #include "gls/MlsProjection.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 vtkStandardNewMacro(vtkGLSProjection);
@@ -44,64 +47,21 @@ int vtkGLSProjection::RequestData(
     return 0;
   }
   std::vector<double> points, normals;
-  if (!this->GatherPointsAndNormals(input, points, normals))
-  {
-    return 0;
-  }
+  std::vector<double> scales;
+  int mode = AUTOMATIC;
   const vtkIdType n = input->GetNumberOfPoints();
   const std::size_t count = static_cast<std::size_t>(n);
-
-  const char* selected = SelectedArrayName(this, 1);
-  vtkDataArray* bandwidth = input->GetPointData()->GetArray(selected ? selected : vtkGLSArrayNames::Bandwidth);
-  int mode = this->ScaleMode;
-  if (mode == AUTOMATIC)
-  {
-    if (!bandwidth)
-    {
-      // A selection made before the input's arrays were known (a script that did not update the input first).
-      bandwidth = input->GetPointData()->GetArray(vtkGLSArrayNames::Bandwidth);
-    }
-    mode = bandwidth ? BANDWIDTH_ARRAY : FIXED_SCALE;
-  }
-  std::vector<double> scales(count);
-  if (mode == BANDWIDTH_ARRAY)
-  {
-    if (!bandwidth)
-    {
-      vtkErrorMacro("No bandwidth array: run GLS Adaptive Bandwidth first (it writes GLSBandwidth), select the "
-                    "array with SetInputArrayToProcess(1, ...), or use ScaleMode FIXED_SCALE.");
-      return 0;
-    }
-    if (bandwidth->GetNumberOfComponents() != 1 || bandwidth->GetNumberOfTuples() != n)
-    {
-      vtkErrorMacro("The bandwidth array " << (bandwidth->GetName() ? bandwidth->GetName() : "(unnamed)")
-                                           << " must have 1 component and " << n << " tuples; it has "
-                                           << bandwidth->GetNumberOfComponents() << " and "
-                                           << bandwidth->GetNumberOfTuples() << ".");
-      return 0;
-    }
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      scales[static_cast<std::size_t>(i)] = bandwidth->GetComponent(i, 0);
-    }
-  }
-  else
-  {
-    const double t = this->ToAbsoluteLength(input, this->Scale);
-    if (!(t > 0.0) || !std::isfinite(t))
-    {
-      vtkErrorMacro("Scale must be positive (it is " << this->Scale
-                                                     << (this->ScaleUnits == RELATIVE_TO_DIAGONAL
-                                                            ? " of the bounding-box diagonal)."
-                                                            : ")."));
-      return 0;
-    }
-    std::fill(scales.begin(), scales.end(), t);
-  }
+  const vtkGLSDistributedCloud& dist = this->Distributed();
   // Outputs plus the core's copies of points and normals and its grid.
-  if (!this->CheckMemoryBudget(static_cast<double>(count) * (3 * 8 + 3 * 8 + 8 + 4 + 1 + 7 * 8),
-        "the projection", "Use fewer points."))
+  const bool ok = this->GatherPointsAndNormals(input, points, normals) && this->ResolveScales(input, scales, mode) &&
+    this->CheckMemoryBudget(static_cast<double>(count) * (3 * 8 + 3 * 8 + 8 + 4 + 1 + 7 * 8), "the projection",
+      "Use fewer points.");
+  if (!dist.AllTrue(ok))
   {
+    if (ok)
+    {
+      vtkErrorMacro("Stopped: another process of this distributed run failed (see its error).");
+    }
     return 0;
   }
 
@@ -129,7 +89,14 @@ int vtkGLSProjection::RequestData(
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 1.0); };
   const gls::ProjectionOutputs out{ static_cast<double*>(moved->GetData()->GetVoidPointer(0)), eta->GetPointer(0),
     displacement->GetPointer(0), iterations->GetPointer(0), converged.data() };
-  if (!gls::projectPointCloud(points.data(), normals.data(), count, scales.data(), settings, out))
+  if (dist.IsParallel())
+  {
+    if (!this->ProjectDistributed(points, normals, scales, settings, out))
+    {
+      return 0;
+    }
+  }
+  else if (!gls::projectPointCloud(points.data(), normals.data(), count, scales.data(), settings, out))
   {
     return 1; // aborted: the input passes through, no partial arrays
   }
@@ -145,6 +112,125 @@ int vtkGLSProjection::RequestData(
   this->LastBackendUsed = "CPU";
   this->StoreBackend(output->GetFieldData());
   return 1;
+}
+
+bool vtkGLSProjection::ResolveScales(vtkPolyData* input, std::vector<double>& scales, int& mode)
+{
+  const vtkIdType n = input->GetNumberOfPoints();
+  const std::size_t count = static_cast<std::size_t>(n);
+  const char* selected = SelectedArrayName(this, 1);
+  vtkDataArray* bandwidth = input->GetPointData()->GetArray(selected ? selected : vtkGLSArrayNames::Bandwidth);
+  mode = this->ScaleMode;
+  if (mode == AUTOMATIC)
+  {
+    if (!bandwidth)
+    {
+      // A selection made before the input's arrays were known (a script that did not update the input first).
+      bandwidth = input->GetPointData()->GetArray(vtkGLSArrayNames::Bandwidth);
+    }
+    mode = bandwidth ? BANDWIDTH_ARRAY : FIXED_SCALE;
+  }
+  scales.assign(count, 0.0);
+  if (mode == BANDWIDTH_ARRAY)
+  {
+    if (!bandwidth)
+    {
+      vtkErrorMacro("No bandwidth array: run GLS Adaptive Bandwidth first (it writes GLSBandwidth), select the "
+                    "array with SetInputArrayToProcess(1, ...), or use ScaleMode FIXED_SCALE.");
+      return false;
+    }
+    if (bandwidth->GetNumberOfComponents() != 1 || bandwidth->GetNumberOfTuples() != n)
+    {
+      vtkErrorMacro("The bandwidth array " << (bandwidth->GetName() ? bandwidth->GetName() : "(unnamed)")
+                                           << " must have 1 component and " << n << " tuples; it has "
+                                           << bandwidth->GetNumberOfComponents() << " and "
+                                           << bandwidth->GetNumberOfTuples() << ".");
+      return false;
+    }
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      scales[static_cast<std::size_t>(i)] = bandwidth->GetComponent(i, 0);
+    }
+  }
+  else
+  {
+    const double t = this->ToAbsoluteLength(input, this->Scale);
+    if (!(t > 0.0) || !std::isfinite(t))
+    {
+      vtkErrorMacro("Scale must be positive (it is " << this->Scale
+                                                     << (this->ScaleUnits == RELATIVE_TO_DIAGONAL
+                                                            ? " of the bounding-box diagonal)."
+                                                            : ")."));
+      return false;
+    }
+    std::fill(scales.begin(), scales.end(), t);
+  }
+  return true;
+}
+
+bool vtkGLSProjection::ProjectDistributed(const std::vector<double>& points, const std::vector<double>& normals,
+  const std::vector<double>& scales, gls::ProjectionSettings settings, const gls::ProjectionOutputs& out)
+{
+  const vtkGLSDistributedCloud& dist = this->Distributed();
+  const std::size_t n = points.size() / 3;
+  double tmax = 0.0;
+  for (double t : scales)
+  {
+    tmax = std::isfinite(t) ? std::max(tmax, t) : tmax;
+  }
+  tmax = dist.Max(tmax);
+  std::vector<double> rows(6 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    std::copy(&points[3 * i], &points[3 * i] + 3, &rows[6 * i]);
+    std::copy(&normals[3 * i], &normals[3 * i] + 3, &rows[6 * i + 3]);
+  }
+  settings.parallel.progress = nullptr; // no abort half-way through a collective run
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double diagonal = this->DistributedDiagonal;
+  // Ghosts within twice the largest support; a point that ends further than its support from that band (its last
+  // fit then lacked neighbours) makes every rank redo the projection with the band doubled.
+  for (double reach = 2.0 * tmax;; reach *= 2.0)
+  {
+    std::vector<double> ghosts;
+    std::size_t ghostCount = 0;
+    if (!dist.AllTrue(dist.ExchangeGhosts(rows.data(), n, 6, reach, ghosts, ghostCount)))
+    {
+      vtkErrorMacro("The exchange of ghost points between the processes failed.");
+      return false;
+    }
+    this->GhostPointsUsed = static_cast<long long>(ghostCount);
+    const std::size_t total = n + ghostCount;
+    std::vector<double> xyz(points), nrm(normals), t(scales);
+    xyz.reserve(3 * total);
+    nrm.reserve(3 * total);
+    for (std::size_t g = 0; g < ghostCount; ++g)
+    {
+      xyz.insert(xyz.end(), &ghosts[6 * g], &ghosts[6 * g] + 3);
+      nrm.insert(nrm.end(), &ghosts[6 * g + 3], &ghosts[6 * g] + 6);
+    }
+    t.resize(total, nan); // ghosts are neighbours only: a NaN scale leaves them in place
+    std::vector<double> movedAll(3 * total), etaAll(3 * total), moveAll(total);
+    std::vector<int> iterationsAll(total);
+    std::vector<unsigned char> convergedAll(total);
+    const gls::ProjectionOutputs all{ movedAll.data(), etaAll.data(), moveAll.data(), iterationsAll.data(),
+      convergedAll.data() };
+    gls::projectPointCloud(xyz.data(), nrm.data(), total, t.data(), settings, all);
+    bool inside = true;
+    for (std::size_t i = 0; i < n && inside; ++i)
+    {
+      inside = !(moveAll[i] + scales[i] > reach); // NaN displacement: not projected, nothing to check
+    }
+    if (dist.AllTrue(inside) || !(reach > 0.0) || reach > 2.0 * diagonal)
+    {
+      std::copy(movedAll.begin(), movedAll.begin() + 3 * static_cast<std::ptrdiff_t>(n), out.points);
+      std::copy(etaAll.begin(), etaAll.begin() + 3 * static_cast<std::ptrdiff_t>(n), out.normals);
+      std::copy(moveAll.begin(), moveAll.begin() + static_cast<std::ptrdiff_t>(n), out.displacement);
+      std::copy(iterationsAll.begin(), iterationsAll.begin() + static_cast<std::ptrdiff_t>(n), out.iterations);
+      std::copy(convergedAll.begin(), convergedAll.begin() + static_cast<std::ptrdiff_t>(n), out.converged);
+      return true;
+    }
+  }
 }
 
 void vtkGLSProjection::PrintSelf(ostream& os, vtkIndent indent)

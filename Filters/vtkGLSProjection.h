@@ -21,12 +21,25 @@
  * normals, a missing or mis-sized bandwidth array in BANDWIDTH_ARRAY mode, Scale <= 0 in FIXED_SCALE mode.
  * The shared scale-list parameters of vtkGLSScaleFilterBase (MinScale, MaxScale, NumberOfScales, ScaleSampling,
  * explicit scales), the nu weights, Backend and ReuseInputScaleSpace are not used.
+ *
+ * Distributed runs (see vtkGLSScaleFilterBase): each rank fetches the other ranks' points within twice the largest
+ * support of all ranks around its piece, projects its own points, and checks that every one ended within its
+ * support of that band (distance moved + t <= band); if not, every rank redoes the projection with the band doubled.
+ * The intermediate positions are not checked. Field data GLSGhostPoints: the ghosts of the last pass.
  */
 #ifndef vtkGLSProjection_h
 #define vtkGLSProjection_h
 
 #include "vtkGLSFiltersModule.h"
 #include "vtkGLSScaleFilterBase.h"
+
+#include <vector> // for std::vector
+
+namespace gls
+{
+struct ProjectionSettings;
+struct ProjectionOutputs;
+}
 
 class VTKGLSFILTERS_EXPORT vtkGLSProjection : public vtkGLSScaleFilterBase
 {
@@ -77,6 +90,16 @@ protected:
   ~vtkGLSProjection() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool SupportsDistributedInput() const override { return true; }
+
+  /// Each point's support (`scales`) and the ScaleMode used; false (with an error) on a missing or mis-sized
+  /// bandwidth array or a bad Scale.
+  bool ResolveScales(vtkPolyData* input, std::vector<double>& scales, int& mode);
+
+  /// The distributed projection (see the class documentation): this piece's points (with their supports) projected
+  /// with ghosts into `out`. False (with an error) on a communication failure.
+  bool ProjectDistributed(const std::vector<double>& points, const std::vector<double>& normals,
+    const std::vector<double>& scales, gls::ProjectionSettings settings, const gls::ProjectionOutputs& out);
 
   int ScaleMode;
   double Scale;

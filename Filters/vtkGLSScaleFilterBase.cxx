@@ -1,13 +1,16 @@
 #include "vtkGLSScaleFilterBase.h"
 
 #include "vtkGLSArrayNames.h"
+#include "vtkGLSDistributedCloud.h"
 #include "vtkGLSStoredScaleSpace.h"
 
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -23,14 +26,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 struct vtkGLSScaleFilterBase::Internals
 {
   bool UseStored = false;
   vtkGLSStoredScaleSpace Stored;
-  std::size_t PointCount = 0;
+  std::size_t PointCount = 0; ///< owned points (the input's)
   std::size_t ScaleCount = 0;
+  std::vector<std::uint64_t> OwnedOrder; ///< distributed fits: the engine's order without the ghosts
   std::unique_ptr<gls::ScaleSpaceEngine> Engine;
 };
 
@@ -51,9 +56,59 @@ vtkGLSScaleFilterBase::vtkGLSScaleFilterBase()
 {
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::NORMALS);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+  this->DistributedRun = std::make_unique<vtkGLSDistributedCloud>(nullptr);
 }
 
-vtkGLSScaleFilterBase::~vtkGLSScaleFilterBase() = default;
+vtkGLSScaleFilterBase::~vtkGLSScaleFilterBase()
+{
+  this->SetController(nullptr);
+}
+
+vtkCxxSetObjectMacro(vtkGLSScaleFilterBase, Controller, vtkMultiProcessController);
+
+bool vtkGLSScaleFilterBase::BeginRun(vtkPolyData* input)
+{
+  // Assigned in place: a filter may hold a reference to it across a call that begins the run again.
+  *this->DistributedRun = vtkGLSDistributedCloud(this->Controller);
+  this->GhostPointsUsed = -1;
+  const vtkGLSDistributedCloud& dist = *this->DistributedRun;
+  if (!dist.IsParallel())
+  {
+    return true;
+  }
+  if (!this->SupportsDistributedInput())
+  {
+    *this->DistributedRun = vtkGLSDistributedCloud(nullptr); // re-checked at every run
+    vtkErrorMacro(<< this->GetClassName() << " is serial-only: it runs here on " << dist.GetSize()
+                  << " processes, where each would see only its own piece of the cloud and give wrong values near "
+                     "the piece boundaries. Run it in a serial pvpython/pvbatch (or on one process).");
+    return false;
+  }
+  const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
+  std::vector<double> xyz(3 * static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    input->GetPoint(i, &xyz[3 * i]);
+  }
+  // Every rank takes part, an empty piece too: the diagonal is over the finite points of all the pieces.
+  double b[6];
+  const bool any = dist.FiniteBounds(xyz.data(), static_cast<std::size_t>(n), b);
+  const double dx = b[1] - b[0], dy = b[3] - b[2], dz = b[5] - b[4];
+  this->DistributedDiagonal = any ? std::sqrt(dx * dx + dy * dy + dz * dz) : 0.0;
+  if (!(dist.Sum(static_cast<double>(n)) > 0.0))
+  {
+    vtkErrorMacro("The input has no points (on any of the " << dist.GetSize() << " processes).");
+    return false;
+  }
+  return true;
+}
+
+double vtkGLSScaleFilterBase::InputDiagonal(vtkPolyData* input) const
+{
+  return this->DistributedRun && this->DistributedRun->IsParallel() ? this->DistributedDiagonal
+                                                                     : FiniteDiagonal(input);
+}
 
 void vtkGLSScaleFilterBase::AddScale(double scale)
 {
@@ -82,7 +137,7 @@ double vtkGLSScaleFilterBase::ToAbsoluteLength(vtkPolyData* input, double value)
   {
     return value;
   }
-  return value * FiniteDiagonal(input);
+  return value * this->InputDiagonal(input);
 }
 
 double vtkGLSScaleFilterBase::FiniteDiagonal(vtkPolyData* input)
@@ -112,7 +167,7 @@ double vtkGLSScaleFilterBase::FiniteDiagonal(vtkPolyData* input)
 std::vector<double> vtkGLSScaleFilterBase::ComputeAbsoluteScales(vtkPolyData* input)
 {
   std::vector<double> scales;
-  if (this->ScaleUnits == RELATIVE_TO_DIAGONAL && !(FiniteDiagonal(input) > 0.0))
+  if (this->ScaleUnits == RELATIVE_TO_DIAGONAL && !(this->InputDiagonal(input) > 0.0))
   {
     vtkErrorMacro("Invalid scales: they are relative to the bounding-box diagonal, and it is zero (all points with "
                   "finite coordinates coincide, or there are none): set ScaleUnits to ABSOLUTE.");
@@ -155,8 +210,15 @@ bool vtkGLSScaleFilterBase::GatherPointsAndNormals(
   vtkPolyData* input, std::vector<double>& points, std::vector<double>& normals)
 {
   const vtkIdType n = input->GetNumberOfPoints();
+  const bool parallel = this->DistributedRun && this->DistributedRun->IsParallel();
   if (n < 1)
   {
+    if (parallel)
+    {
+      points.clear(); // an empty piece of a distributed input (BeginRun checked that some rank has points)
+      normals.clear();
+      return true;
+    }
     vtkErrorMacro("The input has no points.");
     return false;
   }
@@ -211,15 +273,23 @@ double vtkGLSScaleFilterBase::ResolveMinimumNeighbors(
   {
     return this->MinimumNeighbors;
   }
+  // A 2D curve: every point in the plane z = const (the first point's z) with normals in that plane. In a
+  // distributed run every piece must agree, on the same plane.
   const std::size_t n = points.size() / 3;
-  for (std::size_t i = 0; i < n; ++i)
+  bool flat = true;
+  for (std::size_t i = 0; i < n && flat; ++i)
   {
-    if (points[3 * i + 2] != points[2] || normals[3 * i + 2] != 0.0)
-    {
-      return 6.0;
-    }
+    flat = !(points[3 * i + 2] != points[2] || normals[3 * i + 2] != 0.0);
   }
-  return 3.0; // a 2D curve
+  const vtkGLSDistributedCloud& dist = *this->DistributedRun;
+  if (dist.IsParallel())
+  {
+    const double inf = std::numeric_limits<double>::infinity();
+    const bool allFlat = dist.AllTrue(flat);
+    const double zmin = dist.Min(n > 0 ? points[2] : inf), zmax = dist.Max(n > 0 ? points[2] : -inf);
+    flat = allFlat && zmin == zmax;
+  }
+  return flat ? 3.0 : 6.0;
 }
 
 bool vtkGLSScaleFilterBase::ReportProgress(double fraction, double begin, double end)
@@ -234,7 +304,12 @@ bool vtkGLSScaleFilterBase::PrepareScaleSamples(vtkPolyData* input, bool needDes
   this->Source = std::make_unique<Internals>();
   Internals& src = *this->Source;
   src.PointCount = static_cast<std::size_t>(input->GetNumberOfPoints());
-  if (src.PointCount == 0)
+  if (!this->DistributedRun->IsParallel() && !this->BeginRun(input))
+  {
+    return false; // (a filter that called PrepareOutput has begun its run already)
+  }
+  const vtkGLSDistributedCloud& dist = *this->DistributedRun;
+  if (src.PointCount == 0 && !dist.IsParallel())
   {
     vtkErrorMacro("The input has no points.");
     return false;
@@ -245,7 +320,10 @@ bool vtkGLSScaleFilterBase::PrepareScaleSamples(vtkPolyData* input, bool needDes
     scales = ReadStoredScales(input->GetFieldData());
   }
   const double n = static_cast<double>(src.PointCount);
-  if (!scales.empty() && src.Stored.Bind(input, scales.size(), needDescriptors, needDerivatives))
+  // Stored arrays need no neighbours; every rank must take the same path (an empty piece goes along).
+  const bool bound = !scales.empty() && src.Stored.Bind(input, scales.size(), needDescriptors, needDerivatives);
+  if (dist.AllTrue(bound || (dist.IsParallel() && src.PointCount == 0)) &&
+    (!dist.IsParallel() || dist.Max(bound ? 1.0 : 0.0) > 0.5))
   {
     src.UseStored = true;
     src.ScaleCount = scales.size();
@@ -253,17 +331,20 @@ bool vtkGLSScaleFilterBase::PrepareScaleSamples(vtkPolyData* input, bool needDes
       cost.Advice);
   }
 
+  src.UseStored = false;
   scales = this->ComputeAbsoluteScales(input);
-  if (scales.empty() ||
-    !this->CheckMemoryBudget(n * static_cast<double>(scales.size()) * cost.BytesPerPointScale +
-        this->EngineBytes(input->GetNumberOfPoints(), scales.size()),
-      cost.What, cost.Advice))
-  {
-    return false;
-  }
   std::vector<double> points, normals;
-  if (!this->GatherPointsAndNormals(input, points, normals))
+  bool ok = !scales.empty() &&
+    this->CheckMemoryBudget(n * static_cast<double>(scales.size()) * cost.BytesPerPointScale +
+        this->EngineBytes(input->GetNumberOfPoints(), scales.size()),
+      cost.What, cost.Advice) &&
+    this->GatherPointsAndNormals(input, points, normals);
+  if (!dist.AllTrue(ok))
   {
+    if (ok)
+    {
+      vtkErrorMacro("Stopped: another process of this distributed run failed (see its error).");
+    }
     return false;
   }
   gls::ScaleSpaceSettings settings;
@@ -271,7 +352,46 @@ bool vtkGLSScaleFilterBase::PrepareScaleSamples(vtkPolyData* input, bool needDes
   settings.minNeighbors = this->ResolveMinimumNeighbors(points, normals);
   settings.parallel.threads = this->NumberOfThreads;
   src.ScaleCount = scales.size();
-  src.Engine = std::make_unique<gls::ScaleSpaceEngine>(points.data(), normals.data(), src.PointCount, settings);
+  if (!dist.IsParallel())
+  {
+    src.Engine = std::make_unique<gls::ScaleSpaceEngine>(points.data(), normals.data(), src.PointCount, settings);
+    return true;
+  }
+  // Distributed: the other pieces' points within the largest scale of this piece (with their normals) join the
+  // engine after the owned points; only the owned ones are evaluated.
+  std::vector<double> rows(6 * src.PointCount);
+  for (std::size_t i = 0; i < src.PointCount; ++i)
+  {
+    std::copy(&points[3 * i], &points[3 * i] + 3, &rows[6 * i]);
+    std::copy(&normals[3 * i], &normals[3 * i] + 3, &rows[6 * i + 3]);
+  }
+  std::vector<double> ghosts;
+  std::size_t ghostCount = 0;
+  ok = dist.ExchangeGhosts(rows.data(), src.PointCount, 6, scales.back(), ghosts, ghostCount);
+  if (!dist.AllTrue(ok))
+  {
+    vtkErrorMacro("The exchange of ghost points between the processes failed.");
+    return false;
+  }
+  this->GhostPointsUsed = static_cast<long long>(ghostCount);
+  if (src.PointCount == 0)
+  {
+    return true; // an empty piece: nothing to fit
+  }
+  for (std::size_t g = 0; g < ghostCount; ++g)
+  {
+    points.insert(points.end(), &ghosts[6 * g], &ghosts[6 * g] + 3);
+    normals.insert(normals.end(), &ghosts[6 * g + 3], &ghosts[6 * g] + 6);
+  }
+  src.Engine = std::make_unique<gls::ScaleSpaceEngine>(
+    points.data(), normals.data(), src.PointCount + ghostCount, settings);
+  for (std::uint64_t id : src.Engine->evaluationOrder())
+  {
+    if (id < src.PointCount)
+    {
+      src.OwnedOrder.push_back(id);
+    }
+  }
   return true;
 }
 
@@ -283,8 +403,16 @@ bool vtkGLSScaleFilterBase::ReduceVariationPerPoint(vtkPolyData* input, const Va
   scales = this->ReuseInputScaleSpace && this->AcceptsStoredScaleSpace() ? ReadStoredScales(input->GetFieldData())
                                                                          : std::vector<double>();
   vtkDataArray* storedNu = input->GetPointData()->GetArray(vtkGLSArrayNames::Variation);
-  if (!scales.empty() && storedNu && storedNu->GetNumberOfComponents() == static_cast<int>(scales.size()) &&
-    storedNu->GetNumberOfTuples() == n)
+  if (!this->DistributedRun->IsParallel() && !this->BeginRun(input))
+  {
+    return false;
+  }
+  const vtkGLSDistributedCloud& dist = *this->DistributedRun;
+  const bool haveNu = !scales.empty() && storedNu &&
+    storedNu->GetNumberOfComponents() == static_cast<int>(scales.size()) && storedNu->GetNumberOfTuples() == n;
+  // Every rank must take the same path (an empty piece goes along).
+  if (dist.AllTrue(haveNu || (dist.IsParallel() && n == 0)) &&
+    (!dist.IsParallel() || dist.Max(haveNu ? 1.0 : 0.0) > 0.5))
   {
     std::vector<double> nu(scales.size());
     for (vtkIdType i = 0; i < n; ++i)
@@ -320,7 +448,12 @@ bool vtkGLSScaleFilterBase::RunScaleSamples(
   };
   if (!src.UseStored)
   {
-    return this->RunEngine(*src.Engine, sink, ids, parallel);
+    if (!src.Engine)
+    {
+      return true; // an empty piece of a distributed input
+    }
+    const bool distributed = this->DistributedRun->IsParallel();
+    return this->RunEngine(*src.Engine, sink, ids || !distributed ? ids : &src.OwnedOrder, parallel);
   }
   const std::size_t n = ids ? ids->size() : src.PointCount;
   const int threads = gls::resolveThreadCount(this->NumberOfThreads);
@@ -381,6 +514,13 @@ double vtkGLSScaleFilterBase::EngineBytes(vtkIdType n, std::size_t S) const
 
 void vtkGLSScaleFilterBase::StoreBackend(vtkFieldData* fd) const
 {
+  if (this->DistributedRun && this->DistributedRun->IsParallel() && this->GhostPointsUsed >= 0)
+  {
+    vtkNew<vtkIdTypeArray> ghosts;
+    ghosts->SetName(vtkGLSArrayNames::GhostPoints);
+    ghosts->InsertNextValue(static_cast<vtkIdType>(this->GhostPointsUsed));
+    fd->AddArray(ghosts);
+  }
   if (this->LastBackendUsed.empty())
   {
     return;
@@ -398,7 +538,11 @@ bool vtkGLSScaleFilterBase::PrepareOutput(vtkPolyData* input, vtkPolyData* outpu
   vtkNew<vtkFieldData> fd;
   fd->ShallowCopy(input->GetFieldData());
   output->SetFieldData(fd);
-  if (input->GetNumberOfPoints() < 1)
+  if (!this->BeginRun(input))
+  {
+    return false;
+  }
+  if (input->GetNumberOfPoints() < 1 && !this->DistributedRun->IsParallel())
   {
     vtkErrorMacro("The input has no points.");
     return false;
@@ -466,4 +610,5 @@ void vtkGLSScaleFilterBase::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Backend: " << this->Backend << " (last used: " << this->LastBackendUsed << ")\n";
   os << indent << "MemoryBudget (MiB): " << this->MemoryBudget << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
 }

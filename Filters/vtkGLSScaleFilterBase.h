@@ -16,6 +16,17 @@
  * Bad parameters (MinScale <= 0, MinScale > MaxScale, NumberOfScales < 1, a non-increasing explicit list), missing
  * or mis-sized normals and empty input give a vtkErrorMacro and RequestData returns 0. The filters report progress
  * and stop early when aborted (the output then carries the input only, no partial arrays).
+ *
+ * Distributed runs (pvbatch / pvserver on N MPI ranks): when the Controller has more than one process, each rank
+ * holds a piece of the cloud. The filters that support it (SupportsDistributedInput: vtkGLSScaleSpace,
+ * vtkGLSGeometricVariation, vtkGLSContinuousFeatures, vtkGLSMultiScaleDissimilarity, vtkGLSScaleProfiles,
+ * vtkGLSProjection) fetch the other ranks' points
+ * within the largest scale of their piece's bounding box (ghosts, see vtkGLSDistributedCloud), fit their own points
+ * only, and write arrays for their own points only; the bounding-box diagonal (for relative scales) and the
+ * automatic MinimumNeighbors are reduced over all ranks, so the results equal a serial run's (to the summation order
+ * of the neighbours, about 1e-15 relative). A rank may hold no points. The output's field data then also carries
+ * GLSGhostPoints (how many ghost points this rank used). The other filters are serial-only: on more than one
+ * process they stop with an error (a piece alone would give wrong values near its boundary).
  */
 #ifndef vtkGLSScaleFilterBase_h
 #define vtkGLSScaleFilterBase_h
@@ -31,6 +42,8 @@
 
 class vtkDataArray;
 class vtkFieldData;
+class vtkGLSDistributedCloud;
+class vtkMultiProcessController;
 class vtkPolyData;
 
 namespace gls
@@ -162,8 +175,16 @@ public:
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
+  ///@{
+  /// The controller of a distributed run (default: the global controller when the filter is created, as ParaView's
+  /// pvbatch and pvserver set it). Null or a single process: serial. See the class documentation.
+  virtual void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
   /// The absolute scales this filter would use for the given input, or an empty vector (and an error) when the
-  /// parameters are invalid.
+  /// parameters are invalid. In a distributed run (inside RequestData) relative scales use the diagonal of all the
+  /// pieces.
   std::vector<double> ComputeAbsoluteScales(vtkPolyData* input);
 
   /// The point array an algorithm selected with SetInputArrayToProcess(index, ...): the named array, or the active
@@ -183,8 +204,25 @@ protected:
   /// Bounding-box diagonal of the points with finite coordinates (0 when none or all coincide).
   static double FiniteDiagonal(vtkPolyData* input);
 
-  /// Converts a length given in ScaleUnits into an absolute length for this input.
+  /// Converts a length given in ScaleUnits into an absolute length for this input (the whole distributed input
+  /// in a distributed run).
   double ToAbsoluteLength(vtkPolyData* input, double value) const;
+
+  /// FiniteDiagonal of the input, or of all the pieces in a distributed run.
+  double InputDiagonal(vtkPolyData* input) const;
+
+  /// Whether this filter computes correct results on a distributed input (a piece per process, see the class
+  /// documentation). False by default: such a filter stops with an error when its Controller has several processes.
+  virtual bool SupportsDistributedInput() const { return false; }
+
+  /// The collective steps of the current run (serial identities in a serial run); valid after PrepareOutput or
+  /// PrepareScaleSamples.
+  const vtkGLSDistributedCloud& Distributed() const { return *this->DistributedRun; }
+
+  /// Starts a run: in a distributed run, checks that this filter supports it (else an error) and reduces the
+  /// pieces' bounds; an empty piece is fine as long as some rank has points. Called by PrepareOutput and
+  /// PrepareScaleSamples (once per run). False with an error otherwise, on every rank alike.
+  bool BeginRun(vtkPolyData* input);
 
   /// Copies the points and the selected normals into double buffers; false (with an error) when the input is empty
   /// or the normals are missing or mis-sized.
@@ -254,7 +292,8 @@ protected:
   /// Bytes of the engine's own buffers for n points and S scales (coordinates, normals, grid, per-thread scratch).
   double EngineBytes(vtkIdType n, std::size_t S) const;
 
-  /// Writes the backend of the last fit as the field-data string array GLSBackend (nothing if none ran).
+  /// Writes the backend of the last fit as the field-data string array GLSBackend (nothing if none ran) and, in a
+  /// distributed run, the number of ghost points this rank used as GLSGhostPoints.
   void StoreBackend(vtkFieldData* fd) const;
 
   /// Writes `scales` as the field-data array GLSScales.
@@ -285,6 +324,10 @@ protected:
   int NumberOfThreads;
   std::string LastBackendUsed;
   bool WarnedAboutBackend = false;
+  vtkMultiProcessController* Controller = nullptr;
+  std::unique_ptr<vtkGLSDistributedCloud> DistributedRun;
+  double DistributedDiagonal = 0.0;
+  long long GhostPointsUsed = -1; ///< ghosts of the last distributed fit (-1: none ran)
 
 private:
   struct Internals;

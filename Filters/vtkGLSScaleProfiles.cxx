@@ -1,5 +1,7 @@
 #include "vtkGLSScaleProfiles.h"
 
+#include "vtkGLSDistributedCloud.h"
+
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkInformation.h"
@@ -12,7 +14,10 @@
 #include "gls/Descriptors.h"
 #include "gls/ScaleSpaceEngine.h"
 
+#include <cstring>
 #include <string>
+#include <type_traits>
+#include <unordered_map>
 
 vtkStandardNewMacro(vtkGLSScaleProfiles);
 
@@ -85,7 +90,12 @@ int vtkGLSScaleProfiles::RequestData(
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkTable* output = vtkTable::GetData(outputVector);
   const vtkIdType n = input->GetNumberOfPoints();
-  if (n < 1)
+  if (!this->BeginRun(input))
+  {
+    return 0;
+  }
+  const vtkGLSDistributedCloud& dist = this->Distributed();
+  if (n < 1 && !dist.IsParallel())
   {
     vtkErrorMacro("The input has no points.");
     return 0;
@@ -96,14 +106,10 @@ int vtkGLSScaleProfiles::RequestData(
     return 0;
   }
   std::vector<std::uint64_t> ids;
-  for (vtkIdType id : this->PointIds)
+  std::vector<std::size_t> slots;
+  if (!this->LocateSelectedPoints(input, ids, slots))
   {
-    if (id < 0 || id >= n)
-    {
-      vtkErrorMacro("Point id " << id << " is out of range: the input has " << n << " points.");
-      return 0;
-    }
-    ids.push_back(static_cast<std::uint64_t>(id));
+    return 0;
   }
   std::vector<double> scales;
   if (!this->PrepareScaleSamples(input, true, true, scales))
@@ -111,9 +117,18 @@ int vtkGLSScaleProfiles::RequestData(
     return 0;
   }
   ProfileSink sink(ids, scales.size());
-  if (!this->RunScaleSamples(sink, &ids))
+  if (!dist.AllTrue(this->RunScaleSamples(sink, &ids)))
   {
     return 1; // aborted: an empty table
+  }
+  std::vector<gls::ScaleSample> samples;
+  if (!this->CollectSamples(sink.Samples, slots, scales.size(), samples))
+  {
+    return 0;
+  }
+  if (dist.GetRank() != 0)
+  {
+    return 1; // a distributed run: the table is on rank 0, the other ranks' tables are empty
   }
 
   const vtkIdType S = static_cast<vtkIdType>(scales.size());
@@ -126,9 +141,9 @@ int vtkGLSScaleProfiles::RequestData(
   }
   output->AddColumn(t);
   const gls::VariationWeights weights{ this->WTau, this->WEta, this->WKappa };
-  for (std::size_t j = 0; j < ids.size(); ++j)
+  for (std::size_t j = 0; j < this->PointIds.size(); ++j)
   {
-    const std::string suffix = " (" + std::to_string(ids[j]) + ")";
+    const std::string suffix = " (" + std::to_string(this->PointIds[j]) + ")";
     vtkNew<vtkDoubleArray> tau, kappa, phi, nu;
     tau->SetName(("tau/t" + suffix).c_str());
     kappa->SetName(("t*kappa" + suffix).c_str());
@@ -140,7 +155,7 @@ int vtkGLSScaleProfiles::RequestData(
     }
     for (vtkIdType k = 0; k < S; ++k)
     {
-      const gls::ScaleSample& s = sink.Samples[j * scales.size() + static_cast<std::size_t>(k)];
+      const gls::ScaleSample& s = samples[j * scales.size() + static_cast<std::size_t>(k)];
       const double tk = scales[static_cast<std::size_t>(k)];
       tau->SetValue(k, s.tau / tk);
       kappa->SetValue(k, tk * s.kappa);
@@ -153,6 +168,91 @@ int vtkGLSScaleProfiles::RequestData(
     output->AddColumn(nu);
   }
   return 1;
+}
+
+bool vtkGLSScaleProfiles::LocateSelectedPoints(
+  vtkPolyData* input, std::vector<std::uint64_t>& ids, std::vector<std::size_t>& slots)
+{
+  const vtkIdType n = input->GetNumberOfPoints();
+  const vtkGLSDistributedCloud& dist = this->Distributed();
+  if (!dist.IsParallel())
+  {
+    for (std::size_t j = 0; j < this->PointIds.size(); ++j)
+    {
+      const vtkIdType id = this->PointIds[j];
+      if (id < 0 || id >= n)
+      {
+        vtkErrorMacro("Point id " << id << " is out of range: the input has " << n << " points.");
+        return false;
+      }
+      ids.push_back(static_cast<std::uint64_t>(id));
+      slots.push_back(j);
+    }
+    return true;
+  }
+  // Global ids: every selected point is profiled by the rank that holds it.
+  const std::vector<long long> global = dist.GlobalIds(input);
+  std::unordered_map<long long, std::uint64_t> local;
+  for (std::size_t i = 0; i < global.size(); ++i)
+  {
+    local.emplace(global[i], static_cast<std::uint64_t>(i));
+  }
+  for (std::size_t j = 0; j < this->PointIds.size(); ++j)
+  {
+    const auto found = local.find(static_cast<long long>(this->PointIds[j]));
+    if (found != local.end())
+    {
+      ids.push_back(found->second);
+      slots.push_back(j);
+    }
+  }
+  if (dist.Sum(static_cast<double>(ids.size())) < static_cast<double>(this->PointIds.size()))
+  {
+    vtkErrorMacro("A selected point id is out of range: no piece holds a point with that global id (the GlobalIds "
+                  "attribute, else the rank-order numbering of the pieces).");
+    return false;
+  }
+  return true;
+}
+
+bool vtkGLSScaleProfiles::CollectSamples(const std::vector<gls::ScaleSample>& mine,
+  const std::vector<std::size_t>& slots, std::size_t S, std::vector<gls::ScaleSample>& samples)
+{
+  samples.assign(this->PointIds.size() * S, gls::ScaleSample());
+  const vtkGLSDistributedCloud& dist = this->Distributed();
+  if (!dist.IsParallel())
+  {
+    for (std::size_t j = 0; j < slots.size(); ++j)
+    {
+      std::copy(mine.begin() + static_cast<long>(j * S), mine.begin() + static_cast<long>((j + 1) * S),
+        samples.begin() + static_cast<long>(slots[j] * S));
+    }
+    return true;
+  }
+  // Rows of doubles: the slot, then the S samples' bytes.
+  static_assert(std::is_trivially_copyable<gls::ScaleSample>::value, "sent as bytes");
+  const std::size_t words = (sizeof(gls::ScaleSample) * S + sizeof(double) - 1) / sizeof(double);
+  const int width = static_cast<int>(1 + words);
+  std::vector<double> rows(slots.size() * static_cast<std::size_t>(width), 0.0);
+  for (std::size_t j = 0; j < slots.size(); ++j)
+  {
+    double* row = &rows[j * static_cast<std::size_t>(width)];
+    row[0] = static_cast<double>(slots[j]);
+    std::memcpy(row + 1, &mine[j * S], sizeof(gls::ScaleSample) * S);
+  }
+  std::vector<double> all;
+  std::vector<long long> counts;
+  if (!dist.GatherRows(rows, width, 0, all, counts))
+  {
+    vtkErrorMacro("Gathering the profiles on rank 0 failed.");
+    return false;
+  }
+  for (std::size_t r = 0; r < all.size() / static_cast<std::size_t>(width); ++r)
+  {
+    const double* row = &all[r * static_cast<std::size_t>(width)];
+    std::memcpy(&samples[static_cast<std::size_t>(row[0]) * S], row + 1, sizeof(gls::ScaleSample) * S);
+  }
+  return true;
 }
 
 void vtkGLSScaleProfiles::PrintSelf(ostream& os, vtkIndent indent)

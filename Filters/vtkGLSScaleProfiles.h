@@ -9,6 +9,9 @@
  * WKappa). NaN where the fit is undefined. The output is a vtkTable, shown in ParaView's line chart view.
  * The profiles always sample their own scales: ReuseInputScaleSpace is ignored (upstream arrays are never reused).
  * Errors: no point selected, a point id out of range, and the errors of vtkGLSScaleFilterBase.
+ * Distributed runs (see vtkGLSScaleFilterBase): the point ids are global ids (the GlobalIds attribute, else the
+ * rank-order numbering of the pieces); each rank profiles the selected points it holds (with its ghosts) and the
+ * table is assembled on rank 0 (the other ranks output an empty table).
  */
 #ifndef vtkGLSScaleProfiles_h
 #define vtkGLSScaleProfiles_h
@@ -16,9 +19,17 @@
 #include "vtkGLSFiltersModule.h"
 #include "vtkGLSScaleFilterBase.h"
 
+#include <cstddef> // for std::size_t
+#include <cstdint> // for std::uint64_t
 #include <vector>
 
 class vtkTable;
+namespace gls
+{
+template <typename T>
+struct ScaleSampleT;
+using ScaleSample = ScaleSampleT<double>;
+}
 
 class VTKGLSFILTERS_EXPORT vtkGLSScaleProfiles : public vtkGLSScaleFilterBase
 {
@@ -28,7 +39,7 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// The points whose profiles are computed (ids into the input's points).
+  /// The points whose profiles are computed (ids into the input's points; global ids in a distributed run).
   void AddPointId(vtkIdType id);
   void RemoveAllPointIds();
   int GetNumberOfPointIds() const { return static_cast<int>(this->PointIds.size()); }
@@ -44,6 +55,16 @@ protected:
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   bool AcceptsStoredScaleSpace() const override { return false; }
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool SupportsDistributedInput() const override { return true; }
+
+  /// This piece's indices of the selected points it holds (`ids`) and their positions in PointIds (`slots`).
+  /// False (with an error, on every rank) when a selected id is out of range (on every piece).
+  bool LocateSelectedPoints(vtkPolyData* input, std::vector<std::uint64_t>& ids, std::vector<std::size_t>& slots);
+
+  /// The samples of every selected point in PointIds order (S per point) from this piece's (`mine`, in `slots`
+  /// order): a copy, or in a distributed run a gather on rank 0 (the other ranks' `samples` are then meaningless).
+  bool CollectSamples(const std::vector<gls::ScaleSample>& mine, const std::vector<std::size_t>& slots,
+    std::size_t S, std::vector<gls::ScaleSample>& samples);
 
   std::vector<vtkIdType> PointIds;
 

@@ -74,6 +74,7 @@ protected:
   ~vtkGLSScaleSpace() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool SupportsDistributedInput() const override { return true; }
   bool AcceptsStoredScaleSpace() const override { return false; } // it is the producer: it always fits
 
   bool StoreTau;

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 using namespace glstest;
 
@@ -125,4 +127,37 @@ TEST(NormalEstimation, AbortStopsTheRun)
   gls::NormalEstimationResult r;
   EXPECT_FALSE(gls::estimateNormals(c.points.data(), c.size(), s, r));
   EXPECT_GE(calls, 3);
+}
+
+TEST(NormalEstimation, KNearestReachIsTheLargestKthNeighbourDistance)
+{
+  // Points at x = 0, 1, 3, 7 (and a NaN point, ignored): the k-th nearest of each point, itself included.
+  const double nan = std::nan("");
+  const double xyz[] = { 0, 0, 0, 1, 0, 0, 3, 0, 0, 7, 0, 0, nan, 0, 0 };
+  gls::ParallelOptions parallel;
+  EXPECT_DOUBLE_EQ(gls::kNearestReach(xyz, 5, 1, parallel), 0.0); // itself
+  EXPECT_DOUBLE_EQ(gls::kNearestReach(xyz, 5, 2, parallel), 4.0); // 7 -> 3
+  EXPECT_DOUBLE_EQ(gls::kNearestReach(xyz, 5, 3, parallel), 6.0); // 7 -> 1
+  EXPECT_DOUBLE_EQ(gls::kNearestReach(xyz, 5, 4, parallel), 7.0); // 0 -> 7 and 7 -> 0
+  EXPECT_TRUE(std::isinf(gls::kNearestReach(xyz, 5, 5, parallel))); // fewer finite points than k
+  EXPECT_DOUBLE_EQ(gls::kNearestReach(xyz + 12, 1, 3, parallel), 0.0); // no finite point
+  // On a sphere sample: equal to the brute-force largest 16th-nearest distance.
+  const Cloud s = sphere(2000, 1.0);
+  double expected = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+  {
+    std::vector<double> d2;
+    for (std::size_t j = 0; j < s.size(); ++j)
+    {
+      double d = 0.0;
+      for (int a = 0; a < 3; ++a)
+      {
+        d += (s.points[3 * i + a] - s.points[3 * j + a]) * (s.points[3 * i + a] - s.points[3 * j + a]);
+      }
+      d2.push_back(d);
+    }
+    std::nth_element(d2.begin(), d2.begin() + 15, d2.end());
+    expected = std::max(expected, std::sqrt(d2[15]));
+  }
+  EXPECT_NEAR(gls::kNearestReach(s.points.data(), s.size(), 16, parallel), expected, 1e-12);
 }

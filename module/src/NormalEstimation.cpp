@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <queue>
 #include <tuple>
 
@@ -259,6 +260,42 @@ bool estimateNormals(
     }
   }
   return true;
+}
+
+double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOptions& parallel)
+{
+  std::size_t finite = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    finite += finite3(xyz + 3 * i) ? 1 : 0;
+  }
+  if (finite == 0)
+  {
+    return 0.0;
+  }
+  if (finite < static_cast<std::size_t>(k))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  NeighborGrid grid;
+  grid.build(xyz, nullptr, n, NeighborGrid::suggestCellSizeForKNearest(xyz, n, k));
+  const GridView& g = grid.view();
+  const int threads = resolveThreadCount(parallel.threads);
+  std::vector<double> reach(static_cast<std::size_t>(threads), 0.0);
+  std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
+  ParallelOptions options;
+  options.threads = parallel.threads;
+  parallelFor(g.count, options, [&](std::size_t begin, std::size_t end, int t) {
+    for (std::size_t s = begin; s < end; ++s)
+    {
+      grid.kNearest(g.points[s], k, knn[t]);
+      if (!knn[t].empty())
+      {
+        reach[t] = std::max(reach[t], knn[t].back().first);
+      }
+    }
+  });
+  return std::sqrt(*std::max_element(reach.begin(), reach.end()));
 }
 
 bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,

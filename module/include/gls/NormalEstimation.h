@@ -58,6 +58,12 @@ struct NormalEstimationResult
 bool estimateNormals(const double* xyz, std::size_t n, const NormalEstimationSettings& settings,
   NormalEstimationResult& result);
 
+/// The largest distance from a point with finite coordinates to its k-th nearest point (itself included): how far
+/// the k-nearest neighbourhoods of these points reach. Infinity when there are fewer than k finite points, 0 when
+/// there are none. A subset of a cloud over-estimates the reach of its points in the whole cloud, so a piece of a
+/// distributed cloud that fetches the points within this distance of it has every k-nearest neighbourhood.
+double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOptions& parallel);
+
 /// Orients unit normals (3 n, NaN allowed) in place by MST propagation over the k-NN graph of the points (graph
 /// queries on parallel.threads threads). `components` receives the number of connected components. Returns false
 /// if the progress callback asked to abort (the normals are then partly oriented and must not be used).

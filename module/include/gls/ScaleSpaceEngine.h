@@ -57,6 +57,10 @@ public:
 
   std::size_t pointCount() const { return this->Positions.size(); }
   const std::vector<double>& scales() const { return this->Settings.scales; }
+  /// The order a run without ids evaluates the points in (grid order first, for locality; then the points left out
+  /// of the grid). A caller that evaluates a subset (e.g. the owned points of a distributed piece, not its ghosts)
+  /// keeps locality by filtering this order.
+  const std::vector<std::uint64_t>& evaluationOrder() const { return this->Order; }
 
   /// Evaluates the given points (all when ids is null) and feeds the sink. `parallel` overrides the settings'
   /// threads and progress callback for this run. `backend` Auto or CUDA runs the one-pass method on the CUDA

@@ -1,0 +1,294 @@
+#include "vtkGLSDistributedCloud.h"
+
+#include "vtkCommunicator.h"
+#include "vtkDataArray.h"
+#include "vtkMultiProcessController.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+
+namespace
+{
+constexpr int kGhostCountTag = 48211;
+constexpr int kGhostRowsTag = 48212;
+
+bool finite3(const double* p)
+{
+  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
+
+/// Squared distance from p to the box [lo, hi] (0 inside).
+double distance2ToBox(const double* p, const double* lo, const double* hi)
+{
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double d = p[a] < lo[a] ? lo[a] - p[a] : (p[a] > hi[a] ? p[a] - hi[a] : 0.0);
+    d2 += d * d;
+  }
+  return d2;
+}
+
+bool ghostsDisabled()
+{
+  const char* v = std::getenv("GLS_DISTRIBUTED_NO_GHOSTS");
+  return v && std::strcmp(v, "1") == 0;
+}
+}
+
+vtkGLSDistributedCloud::vtkGLSDistributedCloud(vtkMultiProcessController* controller)
+{
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    this->Controller = controller;
+    this->Rank = controller->GetLocalProcessId();
+    this->Size = controller->GetNumberOfProcesses();
+  }
+}
+
+bool vtkGLSDistributedCloud::AllTrue(bool local) const
+{
+  if (!this->Controller)
+  {
+    return local;
+  }
+  return this->Min(local ? 1.0 : 0.0) > 0.5;
+}
+
+double vtkGLSDistributedCloud::Sum(double local) const
+{
+  double global = local;
+  if (this->Controller)
+  {
+    this->Controller->AllReduce(&local, &global, 1, vtkCommunicator::SUM_OP);
+  }
+  return global;
+}
+
+double vtkGLSDistributedCloud::Min(double local) const
+{
+  double global = local;
+  if (this->Controller)
+  {
+    this->Controller->AllReduce(&local, &global, 1, vtkCommunicator::MIN_OP);
+  }
+  return global;
+}
+
+double vtkGLSDistributedCloud::Max(double local) const
+{
+  double global = local;
+  if (this->Controller)
+  {
+    this->Controller->AllReduce(&local, &global, 1, vtkCommunicator::MAX_OP);
+  }
+  return global;
+}
+
+bool vtkGLSDistributedCloud::FiniteBounds(const double* xyz, std::size_t n, double bounds[6]) const
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  double lo[3] = { inf, inf, inf }, negHi[3] = { inf, inf, inf };
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* p = xyz + 3 * i;
+    if (!finite3(p))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], p[a]);
+      negHi[a] = std::min(negHi[a], -p[a]);
+    }
+  }
+  double local[6] = { lo[0], lo[1], lo[2], negHi[0], negHi[1], negHi[2] }, global[6];
+  std::copy(local, local + 6, global);
+  if (this->Controller)
+  {
+    this->Controller->AllReduce(local, global, 6, vtkCommunicator::MIN_OP);
+  }
+  if (!(global[0] < inf))
+  {
+    return false;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = global[a];
+    bounds[2 * a + 1] = -global[3 + a];
+  }
+  return true;
+}
+
+bool vtkGLSDistributedCloud::ExchangeGhosts(const double* rows, std::size_t n, int width, double reach,
+  std::vector<double>& ghosts, std::size_t& ghostCount) const
+{
+  ghostCount = 0;
+  if (!this->Controller)
+  {
+    return true;
+  }
+  // Every rank's box of finite points and the reach it needs (an empty piece has lo > hi: it needs nothing).
+  const double inf = std::numeric_limits<double>::infinity();
+  double mine[7] = { inf, inf, inf, -inf, -inf, -inf, reach };
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* p = rows + static_cast<std::size_t>(width) * i;
+    if (!finite3(p))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      mine[a] = std::min(mine[a], p[a]);
+      mine[3 + a] = std::max(mine[3 + a], p[a]);
+    }
+  }
+  std::vector<double> boxes(7 * static_cast<std::size_t>(this->Size));
+  if (!this->Controller->AllGather(mine, boxes.data(), 7))
+  {
+    return false;
+  }
+  const bool disabled = ghostsDisabled();
+
+  // Round-robin pairing (circle method): in round r, rank i talks to (r - i) mod P; every pair meets once. The
+  // lower rank of a pair sends first, so blocking sends and receives never wait on each other in a cycle.
+  const int P = this->Size % 2 == 0 ? this->Size : this->Size + 1;
+  std::vector<std::vector<double>> received(static_cast<std::size_t>(this->Size));
+  for (int round = 0; round < P; ++round)
+  {
+    const int partner = ((round - this->Rank) % P + P) % P;
+    if (partner == this->Rank || partner >= this->Size)
+    {
+      continue;
+    }
+    // What the partner needs from us.
+    std::vector<double> out;
+    const double* box = &boxes[7 * static_cast<std::size_t>(partner)];
+    const double partnerReach = box[6];
+    const bool partnerHasPoints = box[0] <= box[3];
+    if (!disabled && partnerHasPoints && partnerReach >= 0.0)
+    {
+      const double r2 = partnerReach * partnerReach;
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        const double* p = rows + static_cast<std::size_t>(width) * i;
+        if (finite3(p) && distance2ToBox(p, box, box + 3) <= r2)
+        {
+          out.insert(out.end(), p, p + width);
+        }
+      }
+    }
+    std::vector<double>& in = received[static_cast<std::size_t>(partner)];
+    auto sendOut = [&]() {
+      vtkIdType count = static_cast<vtkIdType>(out.size());
+      return this->Controller->Send(&count, 1, partner, kGhostCountTag) &&
+        (count == 0 || this->Controller->Send(out.data(), count, partner, kGhostRowsTag));
+    };
+    auto receiveIn = [&]() {
+      vtkIdType count = 0;
+      if (!this->Controller->Receive(&count, 1, partner, kGhostCountTag))
+      {
+        return false;
+      }
+      in.resize(static_cast<std::size_t>(count));
+      return count == 0 || this->Controller->Receive(in.data(), count, partner, kGhostRowsTag);
+    };
+    const bool ok = this->Rank < partner ? (sendOut() && receiveIn()) : (receiveIn() && sendOut());
+    if (!ok)
+    {
+      return false;
+    }
+  }
+  for (const std::vector<double>& block : received)
+  {
+    ghosts.insert(ghosts.end(), block.begin(), block.end());
+    ghostCount += block.size() / static_cast<std::size_t>(width);
+  }
+  return true;
+}
+
+std::vector<long long> vtkGLSDistributedCloud::GlobalIds(vtkPolyData* piece) const
+{
+  const vtkIdType n = piece ? piece->GetNumberOfPoints() : 0;
+  std::vector<long long> ids(static_cast<std::size_t>(n));
+  vtkDataArray* given = piece ? piece->GetPointData()->GetGlobalIds() : nullptr;
+  const bool haveGiven = given && given->GetNumberOfComponents() == 1 && given->GetNumberOfTuples() == n;
+  if (this->AllTrue(haveGiven || n == 0) && this->Max(haveGiven ? 1.0 : 0.0) > 0.5)
+  {
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      ids[static_cast<std::size_t>(i)] = static_cast<long long>(given->GetComponent(i, 0));
+    }
+    return ids;
+  }
+  long long offset = 0;
+  if (this->Controller)
+  {
+    std::vector<long long> counts(static_cast<std::size_t>(this->Size));
+    const long long mine = n;
+    this->Controller->AllGather(&mine, counts.data(), 1);
+    for (int r = 0; r < this->Rank; ++r)
+    {
+      offset += counts[static_cast<std::size_t>(r)];
+    }
+  }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    ids[static_cast<std::size_t>(i)] = offset + i;
+  }
+  return ids;
+}
+
+bool vtkGLSDistributedCloud::GatherRows(const std::vector<double>& local, int width, int root,
+  std::vector<double>& all, std::vector<long long>& counts) const
+{
+  const long long mine = static_cast<long long>(local.size() / static_cast<std::size_t>(width));
+  counts.assign(static_cast<std::size_t>(this->Size), mine);
+  if (!this->Controller)
+  {
+    all = local;
+    return true;
+  }
+  if (!this->Controller->AllGather(&mine, counts.data(), 1))
+  {
+    return false;
+  }
+  std::vector<vtkIdType> lengths(counts.size()), offsets(counts.size());
+  vtkIdType total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r)
+  {
+    lengths[r] = static_cast<vtkIdType>(counts[r]) * width;
+    offsets[r] = total;
+    total += lengths[r];
+  }
+  all.assign(this->Rank == root ? static_cast<std::size_t>(total) : 0, 0.0);
+  return this->Controller->GatherV(local.data(), all.data(), static_cast<vtkIdType>(local.size()),
+           lengths.data(), offsets.data(), root) != 0;
+}
+
+bool vtkGLSDistributedCloud::ScatterRows(const std::vector<double>& all, int width, int root,
+  const std::vector<long long>& counts, std::vector<double>& local) const
+{
+  if (!this->Controller)
+  {
+    local = all;
+    return true;
+  }
+  std::vector<vtkIdType> lengths(counts.size()), offsets(counts.size());
+  vtkIdType total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r)
+  {
+    lengths[r] = static_cast<vtkIdType>(counts[r]) * width;
+    offsets[r] = total;
+    total += lengths[r];
+  }
+  local.assign(static_cast<std::size_t>(lengths[static_cast<std::size_t>(this->Rank)]), 0.0);
+  return this->Controller->ScatterV(all.data(), local.data(), lengths.data(), offsets.data(),
+           lengths[static_cast<std::size_t>(this->Rank)], root) != 0;
+}

@@ -1,0 +1,146 @@
+"""The GLS pipeline on the bundled scan, run by pvbatch on one or several MPI ranks; saves every GLS array (ordered by
+global point id) to an .npz file for run_mpi_compare.py.
+
+    [mpiexec -np N] pvbatch mpi_pipeline.py <plugin.so> <scan.obj> <out.npz> [--stride S] [--all-on-rank0]
+    pvpython mpi_pipeline.py ... --server HOST:PORT     (a pvserver started with mpiexec -np N pvserver)
+
+The cloud comes from a programmable source that honours ParaView's piece requests: every rank reads the scan, keeps
+every S-th vertex (the test cloud, in file order), numbers it with a GlobalIds attribute (its serial index) and
+keeps the slab of x it owns (the points sorted by x, cut in N equal counts). On one rank that is the whole cloud in
+serial order. With --all-on-rank0, rank 0 keeps the whole cloud and the other ranks get empty pieces (what a reader
+that ignores pieces gives). The pipeline: oriented normals (minimum spanning tree) -> scale space -> geometric
+variation -> continuous features -> dissimilarity to a point id (these three reuse the stored scale space), and,
+fitting themselves from the normals: geometric variation, continuous features, dissimilarity to a point given by its
+coordinates; normals re-estimated over a radius and made to agree with the first ones; the MLS projection (moved
+points); the scale profiles of three points (a table, assembled on rank 0). Also saved per point: the rank that
+computed it and how many ghost points that rank used. And, for a serial-only filter (adaptive bandwidth), the size
+of its output (on several processes it must refuse to run: an empty output).
+"""
+import argparse
+
+import numpy as np
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+parser = argparse.ArgumentParser()
+parser.add_argument('plugin')
+parser.add_argument('scan')
+parser.add_argument('out')
+parser.add_argument('--stride', type=int, default=3)
+parser.add_argument('--all-on-rank0', action='store_true')
+parser.add_argument('--server', help='HOST:PORT of a running pvserver (the pipeline then runs on its ranks)')
+args = parser.parse_args()
+
+if args.server:
+    host, port = args.server.rsplit(':', 1)
+    Connect(host, int(port))  # noqa: F405
+LoadPlugin(args.plugin, remote=bool(args.server), ns=globals())
+
+SOURCE_SCRIPT = r'''
+import numpy as np
+from vtkmodules.vtkIOGeometry import vtkOBJReader
+from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkCellArray
+from vtkmodules.vtkCommonCore import vtkPoints, vtkIdTypeArray
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+from vtkmodules.util.numpy_support import vtk_to_numpy, numpy_to_vtk, numpy_to_vtkIdTypeArray
+info = self.GetOutputInformation(0)
+piece = info.Get(sddp.UPDATE_PIECE_NUMBER()) if info.Has(sddp.UPDATE_PIECE_NUMBER()) else 0
+pieces = info.Get(sddp.UPDATE_NUMBER_OF_PIECES()) if info.Has(sddp.UPDATE_NUMBER_OF_PIECES()) else 1
+reader = vtkOBJReader()
+reader.SetFileName(SCAN)
+reader.Update()
+xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)[::STRIDE]
+ids = np.arange(len(xyz), dtype=np.int64)
+order = np.argsort(xyz[:, 0], kind='stable')
+mine = np.sort(np.array_split(order, pieces)[piece])
+if ALL_ON_RANK0:
+    mine = ids if piece == 0 else ids[:0]
+out = self.GetPolyDataOutput()
+pts = vtkPoints()
+pts.SetData(numpy_to_vtk(np.ascontiguousarray(xyz[mine]), deep=1))
+out.SetPoints(pts)
+verts = vtkCellArray()
+for i in range(len(mine)):
+    verts.InsertNextCell(1)
+    verts.InsertCellPoint(i)
+out.SetVerts(verts)
+gid = numpy_to_vtkIdTypeArray(np.ascontiguousarray(ids[mine]), deep=1)
+gid.SetName('GlobalIds')
+out.GetPointData().SetGlobalIds(gid)
+'''.replace('SCAN', repr(args.scan)).replace('STRIDE', str(args.stride)).replace(
+    'ALL_ON_RANK0', str(args.all_on_rank0))
+
+INFO_SCRIPT = r'''
+from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
+self.GetOutputInformation(0).Set(vtkAlgorithm.CAN_HANDLE_PIECE_REQUEST(), 1)
+'''
+
+# Per point: the rank that computed it and the ghost points that rank's fit used (field data GLSGhostPoints).
+TAG_SCRIPT = r'''
+import numpy as np
+from vtkmodules.vtkParallelCore import vtkMultiProcessController
+from vtkmodules.util.numpy_support import numpy_to_vtk
+inp = self.GetInput()
+out = self.GetOutput()
+out.ShallowCopy(inp)
+n = inp.GetNumberOfPoints()
+c = vtkMultiProcessController.GetGlobalController()
+rank = c.GetLocalProcessId() if c else 0
+g = inp.GetFieldData().GetArray('GLSGhostPoints')
+ghosts = g.GetValue(0) if g else 0
+for name, value in (('Rank', rank), ('GhostsOnRank', ghosts)):
+    a = numpy_to_vtk(np.full(n, value, dtype=np.float64), deep=1)
+    a.SetName(name)
+    out.GetPointData().AddArray(a)
+'''
+
+scales = dict(MinScale=0.01, MaxScale=0.06, NumberOfScales=6, ScaleSampling='Quadratic')
+cloud = ProgrammableSource(OutputDataSetType='vtkPolyData', Script=SOURCE_SCRIPT,  # noqa: F405
+                           ScriptRequestInformation=INFO_SCRIPT)
+normals = GLSNormalEstimation(Input=cloud, NumberOfNeighbors=16, Orientation='Minimum spanning tree')  # noqa: F405
+space = GLSScaleSpace(Input=normals, **scales)  # noqa: F405
+variation = GLSGeometricVariation(Input=space)  # noqa: F405
+features = GLSContinuousFeatures(Input=variation)  # noqa: F405
+similar = GLSMultiScaleDissimilarity(Input=features, QueryPointId=1234, PriorMinScale=0.02)  # noqa: F405
+fused_variation = GLSGeometricVariation(Input=normals, **scales)  # noqa: F405
+tagged = ProgrammableFilter(Input=fused_variation, OutputDataSetType='vtkPolyData', Script=TAG_SCRIPT)  # noqa: F405
+fused_features = GLSContinuousFeatures(Input=normals, **scales)  # noqa: F405
+fused_similar = GLSMultiScaleDissimilarity(Input=normals, UseQueryPointCoordinates=1,  # noqa: F405
+                                           QueryPoint=[-0.03, 0.12, 0.03], PriorMinScale=0.02, **scales)
+agreeing = GLSNormalEstimation(Input=normals, NeighborhoodType='Radius', Radius=0.006,  # noqa: F405
+                               Orientation='Agree with existing normals', ExistingNormals=['POINTS', 'Normals'])
+projection = GLSProjection(Input=normals, ScaleMode='Fixed scale', Scale=0.02)  # noqa: F405
+
+saved = {}
+for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_features', fused_features),
+                      ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('projection', projection)):
+    proxy.UpdatePipeline()
+    data = servermanager.Fetch(proxy)
+    pd = data.GetPointData()
+    gid = vtk_to_numpy(pd.GetArray('GlobalIds')).astype(np.int64)
+    order = np.argsort(gid)
+    saved[prefix + '/GlobalIds'] = gid[order]
+    saved[prefix + '/Points'] = vtk_to_numpy(data.GetPoints().GetData()).astype(np.float64)[order]
+    for i in range(pd.GetNumberOfArrays()):
+        name = pd.GetArrayName(i)
+        if name and name != 'GlobalIds':
+            saved[prefix + '/' + name] = vtk_to_numpy(pd.GetArray(i)).astype(np.float64)[order]
+    query = data.GetFieldData().GetArray('GLSQueryPointId')
+    if query is not None:
+        saved[prefix + '/GLSQueryPointId'] = np.array([query.GetValue(0)], dtype=np.float64)
+# Scale profiles of three points (global ids), compared column by column.
+profiles = GLSScaleProfiles(Input=normals, PointIds=[5, 6000, 11000], NumberOfScales=10)  # noqa: F405
+profiles.UpdatePipeline()
+table = servermanager.Fetch(profiles)
+for i in range(table.GetNumberOfColumns()):
+    saved['profiles/' + table.GetColumnName(i)] = vtk_to_numpy(table.GetColumn(i)).astype(np.float64)
+# A serial-only filter: its output size (0 when it refused to run).
+bandwidth = GLSAdaptiveBandwidth(Input=normals, **scales)  # noqa: F405
+bandwidth.UpdatePipeline()
+computed = servermanager.Fetch(bandwidth).GetPointData().GetArray('GLSBandwidth')
+saved['serial_only/AdaptiveBandwidthPoints'] = np.array([computed.GetNumberOfTuples() if computed else 0],
+                                                        dtype=np.float64)
+np.savez(args.out, **saved)
+print('saved %d arrays of %d points to %s' % (len(saved), len(saved['chain/GlobalIds']), args.out))
+

@@ -1,0 +1,178 @@
+"""Runs mpi_pipeline.py in pvbatch on N MPI ranks and compares every array with the serial run's (the oracle).
+
+    python3 run_mpi_compare.py --pvbatch P --mpiexec M --plugin SO --scan OBJ --work DIR --np N
+        [--expect-mismatch | --all-on-rank0 | --pvserver PVSERVER --pvpython PVPYTHON]
+
+--np 1 runs pvbatch alone (no mpiexec) and writes DIR/serial.npz, the reference. --np N > 1 runs
+`mpiexec -np N pvbatch` (oversubscribed: N may exceed the cores) and checks, against DIR/serial.npz:
+- the same points with the same global ids;
+- every floating-point array (normals with their sign, every scale-space array, nu, pertinent scales, features,
+  dissimilarity): the same NaN pattern and max |parallel - serial| <= 1e-12 * max |serial| over the array;
+  integer-valued arrays (neighbour counts, pertinent-scale counts, the similar flags) and the query id exactly;
+- every rank computed points and used ghost points (the piece boundaries were exercised);
+- the serial-only filter (adaptive bandwidth) gave output serially and refused to run on N ranks.
+--expect-mismatch (with GLS_DISTRIBUTED_NO_GHOSTS=1 passed to the ranks) inverts the verdict: without the ghost
+exchange the comparison must fail (relative difference above 1e-6), which shows that the test can fail.
+--all-on-rank0 gives rank 0 the whole cloud and the other ranks empty pieces (a reader that ignores pieces): the
+results must still equal the serial ones, rank 0 computing every point without ghosts.
+--pvserver runs the pipeline on `mpiexec -np N pvserver` driven by a pvpython client instead of pvbatch.
+"""
+import argparse
+import os
+import socket
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+TOLERANCE = 1e-12
+INTEGER_ARRAYS = ('GLSNeighborCount', 'GLSPertinentScaleCount', 'GLSSimilar', 'GLSQueryPointId',
+                  'GLSProjectionIterations')
+
+parser = argparse.ArgumentParser()
+parser.add_argument('--pvbatch', required=True)
+parser.add_argument('--mpiexec', required=True)
+parser.add_argument('--plugin', required=True)
+parser.add_argument('--scan', required=True)
+parser.add_argument('--work', required=True)
+parser.add_argument('--np', type=int, required=True)
+parser.add_argument('--expect-mismatch', action='store_true')
+parser.add_argument('--all-on-rank0', action='store_true')
+parser.add_argument('--pvserver')
+parser.add_argument('--pvpython')
+args = parser.parse_args()
+
+here = os.path.dirname(os.path.abspath(__file__))
+os.makedirs(args.work, exist_ok=True)
+reference = os.path.join(args.work, 'serial.npz')
+result = reference if args.np == 1 else os.path.join(
+    args.work, 'np%d%s%s%s.npz' % (args.np, '-no-ghosts' if args.expect_mismatch else '',
+                                   '-all-on-rank0' if args.all_on_rank0 else '', '-pvserver' if args.pvserver else ''))
+if os.path.exists(result):
+    os.remove(result)
+
+command = [args.pvbatch, os.path.join(here, 'mpi_pipeline.py'), args.plugin, args.scan, result]
+if args.all_on_rank0:
+    command.append('--all-on-rank0')
+env = dict(os.environ)
+if args.np > 1:
+    launcher = [args.mpiexec, '-np', str(args.np)]
+    version = subprocess.run([args.mpiexec, '--version'], capture_output=True, text=True).stdout
+    if 'Open MPI' in version or 'OpenRTE' in version:
+        launcher += ['--oversubscribe']
+        if os.geteuid() == 0:
+            launcher += ['--allow-run-as-root']
+        if args.expect_mismatch:
+            launcher += ['-x', 'GLS_DISTRIBUTED_NO_GHOSTS']
+    command = launcher + command
+    if args.expect_mismatch:
+        env['GLS_DISTRIBUTED_NO_GHOSTS'] = '1'
+server = None
+server_log = ''
+if args.pvserver:
+    # N server ranks on a free port; the client is pvpython running the same script with --server.
+    with socket.socket() as probe:
+        probe.bind(('localhost', 0))
+        port = probe.getsockname()[1]
+    server_command = command[:command.index(args.pvbatch)] + [args.pvserver, '--server-port=%d' % port]
+    print('$ %s' % ' '.join(server_command))
+    server = subprocess.Popen(server_command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    for line in server.stdout:
+        server_log += line
+        if 'Accepting connection' in line:
+            break
+    command = [args.pvpython] + command[command.index(args.pvbatch) + 1:] + ['--server', 'localhost:%d' % port]
+start = time.time()
+run = subprocess.run(command, env=env, capture_output=True, text=True, timeout=300)
+elapsed = time.time() - start
+if server:
+    try:
+        server_log += server.communicate(timeout=60)[0]
+    except subprocess.TimeoutExpired:
+        server.kill()
+        server_log += server.communicate()[0]
+    if server.returncode != 0:
+        print(server_log[-4000:])
+        print('FAIL: pvserver exited with %s' % server.returncode)
+        sys.exit(1)
+output = '\n'.join(line for line in (run.stdout + run.stderr).splitlines() if 'vtkDataWriter' not in line)
+print('$ %s\n(%.1f s, exit %d)' % (' '.join(command), elapsed, run.returncode))
+if run.returncode != 0 or not os.path.exists(result):
+    print(output[-6000:])
+    print('FAIL: the pvbatch run failed')
+    sys.exit(1)
+if args.np == 1:
+    print('reference written: %s' % result)
+    sys.exit(0)
+
+serial = np.load(reference)
+parallel = np.load(result)
+failures = []
+worst = 0.0
+if sorted(serial.files) != sorted(parallel.files):
+    failures.append('different arrays: serial only %s, parallel only %s' % (
+        sorted(set(serial.files) - set(parallel.files)), sorted(set(parallel.files) - set(serial.files))))
+for key in sorted(set(serial.files) & set(parallel.files)):
+    name = key.split('/', 1)[1]
+    if name in ('Rank', 'GhostsOnRank'):
+        continue
+    if key.startswith('serial_only/'):
+        if not (serial[key][0] > 0 and parallel[key][0] == 0):
+            failures.append('%s: %d serially, %d on %d ranks (expected > 0, then 0: refused)' % (
+                key, serial[key][0], parallel[key][0], args.np))
+        else:
+            print('%-40s %d serially, refused on %d ranks' % (key, serial[key][0], args.np))
+        continue
+    a, b = serial[key], parallel[key]
+    if a.shape != b.shape:
+        failures.append('%s: shape %s vs %s' % (key, a.shape, b.shape))
+        continue
+    if name == 'GlobalIds' or (name == 'Points' and not key.startswith('projection/')) or name in INTEGER_ARRAYS:
+        if not np.array_equal(a, b, equal_nan=True):
+            same = (a == b) | (np.isnan(a) & np.isnan(b))
+            failures.append('%s: differs (%d of %d values)' % (key, int(np.sum(~same)), a.size))
+        continue
+    nan_a, nan_b = np.isnan(a), np.isnan(b)
+    if not np.array_equal(nan_a, nan_b):
+        failures.append('%s: NaN at %d points in one run only' % (key, int(np.sum(nan_a != nan_b))))
+        worst = max(worst, 1.0)
+        continue
+    finite = ~nan_a
+    if not finite.any():
+        continue
+    scale = np.max(np.abs(a[finite]))
+    relative = np.max(np.abs(a[finite] - b[finite])) / scale if scale > 0 else np.max(np.abs(b[finite]))
+    worst = max(worst, relative)
+    print('%-40s max rel. difference %.3g' % (key, relative))
+    if relative > TOLERANCE:
+        failures.append('%s: relative difference %.3g > %g' % (key, relative, TOLERANCE))
+
+ranks = parallel['fused_variation/Rank']
+ghosts = parallel['fused_variation/GhostsOnRank']
+for r in range(args.np):
+    mine = ranks == r
+    if args.all_on_rank0:
+        if mine.any() != (r == 0) or (r == 0 and not np.all(ghosts[mine] == 0)):
+            failures.append('rank %d: %d points, ghosts %s (expected: all on rank 0, no ghosts)' % (
+                r, int(mine.sum()), np.unique(ghosts[mine])))
+        continue
+    if not mine.any():
+        failures.append('rank %d computed no point' % r)
+    elif not args.expect_mismatch and not np.all(ghosts[mine] > 0):
+        failures.append('rank %d used no ghost point' % r)
+    else:
+        print('rank %d: %d points, %d ghost points' % (r, int(mine.sum()), int(ghosts[mine][0]) if mine.any() else 0))
+
+if args.expect_mismatch:
+    if worst > 1e-6 and failures:
+        print('PASS: without the ghost exchange the comparison fails as it must (worst relative difference %.3g; '
+              '%d arrays flagged)' % (worst, len(failures)))
+        sys.exit(0)
+    print('FAIL: without the ghost exchange the results still match the serial run: the test cannot fail')
+    sys.exit(1)
+for f in failures:
+    print('FAIL: ' + f)
+print('%d ranks vs serial: %s (worst relative difference %.3g, tolerance %g)' % (
+    args.np, 'FAIL' if failures else 'PASS', worst, TOLERANCE))
+sys.exit(1 if failures else 0)
