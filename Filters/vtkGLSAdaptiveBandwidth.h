@@ -52,6 +52,10 @@ protected:
   vtkGLSAdaptiveBandwidth();
   ~vtkGLSAdaptiveBandwidth() override;
 
+  /// Distributed runs: the fit uses the ghosts within the largest scale, the smoothing the ghosts' raw bandwidths
+  /// within SmoothingRadius (see vtkGLSScaleFilterBase).
+  bool SupportsDistributedInput() const override { return true; }
+
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   double Threshold;

@@ -20,7 +20,7 @@
  * Distributed runs (pvbatch / pvserver on N MPI ranks): when the Controller has more than one process, each rank
  * holds a piece of the cloud. The filters that support it (SupportsDistributedInput: vtkGLSScaleSpace,
  * vtkGLSGeometricVariation, vtkGLSContinuousFeatures, vtkGLSMultiScaleDissimilarity, vtkGLSScaleProfiles,
- * vtkGLSProjection) fetch the other ranks' points
+ * vtkGLSAdaptiveBandwidth, vtkGLSProjection) fetch the other ranks' points
  * within the largest scale of their piece's bounding box (ghosts, see vtkGLSDistributedCloud), fit their own points
  * only, and write arrays for their own points only; the bounding-box diagonal (for relative scales) and the
  * automatic MinimumNeighbors are reduced over all ranks, so the results equal a serial run's (to the summation order

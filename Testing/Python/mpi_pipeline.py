@@ -12,9 +12,10 @@ that ignores pieces gives). The pipeline: oriented normals (minimum spanning tre
 variation -> continuous features -> dissimilarity to a point id (these three reuse the stored scale space), and,
 fitting themselves from the normals: geometric variation, continuous features, dissimilarity to a point given by its
 coordinates; normals re-estimated over a radius and made to agree with the first ones; the MLS projection (moved
-points); the scale profiles of three points (a table, assembled on rank 0). Also saved per point: the rank that
-computed it and how many ghost points that rank used. And, for a serial-only filter (adaptive bandwidth), the size
-of its output (on several processes it must refuse to run: an empty output).
+points); the adaptive bandwidth and the projection with it; the scale profiles of three points (a table,
+assembled on rank 0). Also saved per point: the rank that computed it and how many ghost points that rank used.
+And, for a serial-only filter (the scale-space image of a curve), the size of its output (on several processes it
+must refuse to run: an empty output).
 """
 import argparse
 
@@ -111,10 +112,14 @@ fused_similar = GLSMultiScaleDissimilarity(Input=normals, UseQueryPointCoordinat
 agreeing = GLSNormalEstimation(Input=normals, NeighborhoodType='Radius', Radius=0.006,  # noqa: F405
                                Orientation='Agree with existing normals', ExistingNormals=['POINTS', 'Normals'])
 projection = GLSProjection(Input=normals, ScaleMode='Fixed scale', Scale=0.02)  # noqa: F405
+bandwidth = GLSAdaptiveBandwidth(Input=normals, MinScale=0.005, MaxScale=0.03, NumberOfScales=8,  # noqa: F405
+                                 ScaleSampling='Logarithmic', SmoothingRadius=0.02)
+adaptive = GLSProjection(Input=bandwidth)  # noqa: F405  (the per-point GLSBandwidth)
 
 saved = {}
 for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_features', fused_features),
-                      ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('projection', projection)):
+                      ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('projection', projection),
+                      ('adaptive_projection', adaptive)):
     proxy.UpdatePipeline()
     data = servermanager.Fetch(proxy)
     pd = data.GetPointData()
@@ -135,12 +140,12 @@ profiles.UpdatePipeline()
 table = servermanager.Fetch(profiles)
 for i in range(table.GetNumberOfColumns()):
     saved['profiles/' + table.GetColumnName(i)] = vtk_to_numpy(table.GetColumn(i)).astype(np.float64)
-# A serial-only filter: its output size (0 when it refused to run).
-bandwidth = GLSAdaptiveBandwidth(Input=normals, **scales)  # noqa: F405
-bandwidth.UpdatePipeline()
-computed = servermanager.Fetch(bandwidth).GetPointData().GetArray('GLSBandwidth')
-saved['serial_only/AdaptiveBandwidthPoints'] = np.array([computed.GetNumberOfTuples() if computed else 0],
-                                                        dtype=np.float64)
+# A serial-only filter: its output size (0 when it refused to run). The scale-space image of the cloud taken as a
+# curve in point order (a curve cut into pieces has no meaning).
+image = GLSScaleSpaceImage(Input=normals, NumberOfScales=4, NumberOfArclengthSamples=50)  # noqa: F405
+image.UpdatePipeline()
+saved['serial_only/ScaleSpaceImagePoints'] = np.array([servermanager.Fetch(image, idx=0).GetNumberOfPoints()],
+                                                      dtype=np.float64)
 np.savez(args.out, **saved)
 print('saved %d arrays of %d points to %s' % (len(saved), len(saved['chain/GlobalIds']), args.out))
 
