@@ -1,5 +1,7 @@
 #include "vtkGLSScaleSpaceImage.h"
 
+#include "vtkGLSDistributedCloud.h"
+
 #include "vtkGLSArrayNames.h"
 #include "vtkGLSCurve.h"
 
@@ -212,12 +214,35 @@ int vtkGLSScaleSpaceImage::RequestInformation(
 }
 
 int vtkGLSScaleSpaceImage::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkImageData* image = vtkImageData::GetData(outputVector, 0);
   vtkPolyData* crossings = vtkPolyData::GetData(outputVector, 1);
   this->LastBackendUsed.clear();
+  const vtkGLSDistributedCloud distributed(this->Controller);
+  if (distributed.IsParallel())
+  {
+    // A curve is not cut into pieces: the one rank that holds it (a source that ignores piece requests gives it
+    // all to rank 0) computes the image as a serial run; the other ranks give empty outputs.
+    const vtkIdType local = input ? input->GetNumberOfPoints() : 0;
+    const double holders = distributed.Sum(local > 0 ? 1.0 : 0.0);
+    if (holders != 1.0)
+    {
+      vtkErrorMacro("In a distributed run the curve must be on one process; "
+        << holders << " of the " << distributed.GetSize() << " processes hold points.");
+      return 0;
+    }
+    if (local == 0)
+    {
+      return 1;
+    }
+    vtkMultiProcessController* controller = this->Controller; // kept registered: set back below
+    this->Controller = nullptr;
+    const int result = this->RequestData(request, inputVector, outputVector);
+    this->Controller = controller;
+    return result;
+  }
   if (!input || input->GetNumberOfPoints() < 1)
   {
     vtkErrorMacro("The input has no points.");

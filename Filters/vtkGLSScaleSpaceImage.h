@@ -43,6 +43,10 @@
  * curve, a non-planar curve without normals, mis-sized normals, unequally spaced explicit scales, and the scale
  * errors of vtkGLSScaleFilterBase. Progress is reported; an aborted run leaves both outputs empty.
  * ReuseInputScaleSpace is ignored (the filter always fits its own scales).
+ *
+ * Distributed runs (several MPI processes, see vtkGLSScaleFilterBase): the curve must be on one process (a curve
+ * source that ignores piece requests puts it on rank 0); that process computes the image as a serial run would and
+ * the others give empty outputs. A curve spread over several processes is an error.
  */
 #ifndef vtkGLSScaleSpaceImage_h
 #define vtkGLSScaleSpaceImage_h
@@ -103,6 +107,8 @@ protected:
   bool AcceptsStoredScaleSpace() const override { return false; }
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// Distributed runs: the rank holding the whole curve computes; see RequestData.
+  bool SupportsDistributedInput() const override { return true; }
 
   int Closed;
   int NumberOfArclengthSamples;

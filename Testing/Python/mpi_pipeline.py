@@ -14,8 +14,9 @@ fitting themselves from the normals: geometric variation, continuous features, d
 coordinates; normals re-estimated over a radius and made to agree with the first ones; the MLS projection (moved
 points); the adaptive bandwidth and the projection with it; the scale profiles of three points (a table,
 assembled on rank 0). Also saved per point: the rank that computed it and how many ghost points that rank used.
-And, for a serial-only filter (the scale-space image of a curve), the size of its output (on several processes it
-must refuse to run: an empty output).
+The scale-space image of a closed curve from a source that ignores pieces (all on rank 0). And, for a serial-only
+filter (normal estimation of a planar input), the size of its output (on several processes it must refuse to run:
+an empty output).
 """
 import argparse
 
@@ -140,12 +141,26 @@ profiles.UpdatePipeline()
 table = servermanager.Fetch(profiles)
 for i in range(table.GetNumberOfColumns()):
     saved['profiles/' + table.GetColumnName(i)] = vtk_to_numpy(table.GetColumn(i)).astype(np.float64)
-# A serial-only filter: its output size (0 when it refused to run). The scale-space image of the cloud taken as a
-# curve in point order (a curve cut into pieces has no meaning).
-image = GLSScaleSpaceImage(Input=normals, NumberOfScales=4, NumberOfArclengthSamples=50)  # noqa: F405
+# A curve (a source that ignores pieces: all of it on rank 0): its scale-space image, computed on the rank holding
+# it, compared value by value; and a serial-only filter, normal estimation of a planar input: its output size (0
+# when it refused to run on several processes).
+theta = 2 * np.pi * np.arange(300) / 300
+radius = 1 + 0.25 * np.cos(5 * theta)
+flower = PolyLineSource(Closed=1, Points=np.stack([radius * np.cos(theta), radius * np.sin(theta),  # noqa: F405
+                                                   0 * theta], axis=1).ravel().tolist())
+image = GLSScaleSpaceImage(Input=flower, ScaleUnits='Absolute', MinScale=0.05, MaxScale=1.0,  # noqa: F405
+                           NumberOfScales=20, NumberOfArclengthSamples=200)
 image.UpdatePipeline()
-saved['serial_only/ScaleSpaceImagePoints'] = np.array([servermanager.Fetch(image, idx=0).GetNumberOfPoints()],
-                                                      dtype=np.float64)
+picture = servermanager.Fetch(image, idx=0)
+saved['image/Dimensions'] = np.array(picture.GetDimensions(), dtype=np.float64)
+for name in ('GLSKappa', 'GLSNu'):
+    array = picture.GetPointData().GetArray(name)
+    saved['image/' + name] = vtk_to_numpy(array).astype(np.float64) if array else np.zeros(0)
+planar = GLSNormalEstimation(Input=flower, NumberOfNeighbors=8)  # noqa: F405
+planar.UpdatePipeline()
+computed = servermanager.Fetch(planar).GetPointData().GetArray('Normals')
+saved['serial_only/PlanarNormalEstimationPoints'] = np.array([computed.GetNumberOfTuples() if computed else 0],
+                                                             dtype=np.float64)
 np.savez(args.out, **saved)
 print('saved %d arrays of %d points to %s' % (len(saved), len(saved['chain/GlobalIds']), args.out))
 
