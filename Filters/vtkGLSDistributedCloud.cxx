@@ -39,6 +39,22 @@ bool ghostsDisabled()
   const char* v = std::getenv("GLS_DISTRIBUTED_NO_GHOSTS");
   return v && std::strcmp(v, "1") == 0;
 }
+
+/// Per-rank lengths (in doubles) and offsets of `counts` rows of `width` doubles laid end to end; returns the total.
+vtkIdType rowBlocks(const std::vector<long long>& counts, int width, std::vector<vtkIdType>& lengths,
+  std::vector<vtkIdType>& offsets)
+{
+  lengths.resize(counts.size());
+  offsets.resize(counts.size());
+  vtkIdType total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r)
+  {
+    lengths[r] = static_cast<vtkIdType>(counts[r]) * width;
+    offsets[r] = total;
+    total += lengths[r];
+  }
+  return total;
+}
 }
 
 vtkGLSDistributedCloud::vtkGLSDistributedCloud(vtkMultiProcessController* controller)
@@ -259,14 +275,8 @@ bool vtkGLSDistributedCloud::GatherRows(const std::vector<double>& local, int wi
   {
     return false;
   }
-  std::vector<vtkIdType> lengths(counts.size()), offsets(counts.size());
-  vtkIdType total = 0;
-  for (std::size_t r = 0; r < counts.size(); ++r)
-  {
-    lengths[r] = static_cast<vtkIdType>(counts[r]) * width;
-    offsets[r] = total;
-    total += lengths[r];
-  }
+  std::vector<vtkIdType> lengths, offsets;
+  const vtkIdType total = rowBlocks(counts, width, lengths, offsets);
   all.assign(this->Rank == root ? static_cast<std::size_t>(total) : 0, 0.0);
   return this->Controller->GatherV(local.data(), all.data(), static_cast<vtkIdType>(local.size()),
            lengths.data(), offsets.data(), root) != 0;
@@ -280,14 +290,8 @@ bool vtkGLSDistributedCloud::ScatterRows(const std::vector<double>& all, int wid
     local = all;
     return true;
   }
-  std::vector<vtkIdType> lengths(counts.size()), offsets(counts.size());
-  vtkIdType total = 0;
-  for (std::size_t r = 0; r < counts.size(); ++r)
-  {
-    lengths[r] = static_cast<vtkIdType>(counts[r]) * width;
-    offsets[r] = total;
-    total += lengths[r];
-  }
+  std::vector<vtkIdType> lengths, offsets;
+  rowBlocks(counts, width, lengths, offsets);
   local.assign(static_cast<std::size_t>(lengths[static_cast<std::size_t>(this->Rank)]), 0.0);
   return this->Controller->ScatterV(all.data(), local.data(), lengths.data(), offsets.data(),
            lengths[static_cast<std::size_t>(this->Rank)], root) != 0;
