@@ -4,18 +4,23 @@
         [--orientation 'Minimum spanning tree' | 'Towards point' | ...]
 
 The cloud: C copies of the scan side by side along x (a strip of constant density, like a survey), cut into N
-slabs of x by a programmable source that honours ParaView's piece requests (every rank builds it and keeps its
-slab). Scales are absolute: 0.8% to 8% of one copy's diagonal (S quadratic scales, default 20), so the ghost band
+slabs of x by Testing/Python/gls_piece_source (a programmable source that honours ParaView's piece requests:
+every rank builds it and keeps its slab). Scales are absolute: 0.8% to 8% of one copy's diagonal (S quadratic scales, default 20), so the ghost band
 does not grow with the cloud. Times, on rank 0 (wall clock, every rank working): normal estimation (16 nearest,
 minimum spanning tree, gathered on rank 0), the scale space (every array stored) and the fused continuous features;
 then every rank's owned and ghost points (the scale space's field data GLSGhostPoints).
 Each filter runs on T threads per rank (default 1: N ranks = N cores).
 """
 import argparse
+import os
+import sys
 import time
 
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'Python'))
+from gls_piece_source import piece_source  # noqa: E402
 
 parser = argparse.ArgumentParser()
 parser.add_argument('plugin')
@@ -27,43 +32,7 @@ parser.add_argument('--orientation', default='Minimum spanning tree')
 args = parser.parse_args()
 LoadPlugin(args.plugin, remote=False, ns=globals())
 
-SOURCE_SCRIPT = r'''
-import numpy as np
-from vtkmodules.vtkIOGeometry import vtkOBJReader
-from vtkmodules.vtkCommonDataModel import vtkCellArray
-from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
-from vtkmodules.util.numpy_support import vtk_to_numpy, numpy_to_vtk, numpy_to_vtkIdTypeArray
-info = self.GetOutputInformation(0)
-piece = info.Get(sddp.UPDATE_PIECE_NUMBER()) if info.Has(sddp.UPDATE_PIECE_NUMBER()) else 0
-pieces = info.Get(sddp.UPDATE_NUMBER_OF_PIECES()) if info.Has(sddp.UPDATE_NUMBER_OF_PIECES()) else 1
-reader = vtkOBJReader()
-reader.SetFileName(SCAN)
-reader.Update()
-one = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)
-width = 1.05 * (one[:, 0].max() - one[:, 0].min())
-xyz = np.concatenate([one + np.array([c * width, 0.0, 0.0]) for c in range(COPIES)])
-order = np.argsort(xyz[:, 0], kind='stable')
-mine = np.sort(np.array_split(order, pieces)[piece])
-out = self.GetPolyDataOutput()
-pts = vtkPoints()
-pts.SetData(numpy_to_vtk(np.ascontiguousarray(xyz[mine]), deep=1))
-out.SetPoints(pts)
-verts = vtkCellArray()
-verts.SetData(numpy_to_vtkIdTypeArray(np.arange(len(mine) + 1, dtype=np.int64), deep=1),
-              numpy_to_vtkIdTypeArray(np.arange(len(mine), dtype=np.int64), deep=1))
-out.SetVerts(verts)
-gid = numpy_to_vtkIdTypeArray(np.ascontiguousarray(mine.astype(np.int64)), deep=1)
-gid.SetName('GlobalIds')
-out.GetPointData().SetGlobalIds(gid)
-'''.replace('SCAN', repr(args.scan)).replace('COPIES', str(args.copies))
-INFO_SCRIPT = r'''
-from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
-self.GetOutputInformation(0).Set(vtkAlgorithm.CAN_HANDLE_PIECE_REQUEST(), 1)
-'''
-
-cloud = ProgrammableSource(OutputDataSetType='vtkPolyData', Script=SOURCE_SCRIPT,  # noqa: F405
-                           ScriptRequestInformation=INFO_SCRIPT)
+cloud = piece_source(args.scan, copies=args.copies)
 cloud.UpdatePipeline()
 n = cloud.GetDataInformation().GetNumberOfPoints()
 # One copy's bounding-box diagonal is about 0.25 (the bunny: 0.155 x 0.154 x 0.120).

@@ -4,11 +4,9 @@ global point id) to an .npz file for run_mpi_compare.py.
     [mpiexec -np N] pvbatch mpi_pipeline.py <plugin.so> <scan.obj> <out.npz> [--stride S] [--all-on-rank0]
     pvpython mpi_pipeline.py ... --server HOST:PORT     (a pvserver started with mpiexec -np N pvserver)
 
-The cloud comes from a programmable source that honours ParaView's piece requests: every rank reads the scan, keeps
-every S-th vertex (the test cloud, in file order), numbers it with a GlobalIds attribute (its serial index) and
-keeps the slab of x it owns (the points sorted by x, cut in N equal counts). On one rank that is the whole cloud in
-serial order. With --all-on-rank0, rank 0 keeps the whole cloud and the other ranks get empty pieces (what a reader
-that ignores pieces gives). The pipeline: oriented normals (minimum spanning tree) -> scale space -> geometric
+The cloud comes from gls_piece_source (a programmable source that honours ParaView's piece requests): every S-th
+vertex of the scan, numbered with GlobalIds, one slab of x per rank; with --all-on-rank0, all of it on rank 0 and
+empty pieces elsewhere. The pipeline: oriented normals (minimum spanning tree) -> scale space -> geometric
 variation -> continuous features -> dissimilarity to a point id (these three reuse the stored scale space), and,
 fitting themselves from the normals: geometric variation, continuous features, dissimilarity to a point given by its
 coordinates; normals re-estimated over a radius and made to agree with the first ones; the MLS projection (moved
@@ -19,11 +17,16 @@ filter (normal estimation of a planar input), the size of its output (on several
 an empty output).
 """
 import argparse
+import os
+import sys
 
 import numpy as np
 from paraview.simple import *  # noqa: F401,F403
 from paraview import servermanager
 from vtkmodules.util.numpy_support import vtk_to_numpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gls_piece_source import piece_source  # noqa: E402
 
 parser = argparse.ArgumentParser()
 parser.add_argument('plugin')
@@ -38,45 +41,6 @@ if args.server:
     host, port = args.server.rsplit(':', 1)
     Connect(host, int(port))  # noqa: F405
 LoadPlugin(args.plugin, remote=bool(args.server), ns=globals())
-
-SOURCE_SCRIPT = r'''
-import numpy as np
-from vtkmodules.vtkIOGeometry import vtkOBJReader
-from vtkmodules.vtkCommonDataModel import vtkPolyData, vtkCellArray
-from vtkmodules.vtkCommonCore import vtkPoints, vtkIdTypeArray
-from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
-from vtkmodules.util.numpy_support import vtk_to_numpy, numpy_to_vtk, numpy_to_vtkIdTypeArray
-info = self.GetOutputInformation(0)
-piece = info.Get(sddp.UPDATE_PIECE_NUMBER()) if info.Has(sddp.UPDATE_PIECE_NUMBER()) else 0
-pieces = info.Get(sddp.UPDATE_NUMBER_OF_PIECES()) if info.Has(sddp.UPDATE_NUMBER_OF_PIECES()) else 1
-reader = vtkOBJReader()
-reader.SetFileName(SCAN)
-reader.Update()
-xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)[::STRIDE]
-ids = np.arange(len(xyz), dtype=np.int64)
-order = np.argsort(xyz[:, 0], kind='stable')
-mine = np.sort(np.array_split(order, pieces)[piece])
-if ALL_ON_RANK0:
-    mine = ids if piece == 0 else ids[:0]
-out = self.GetPolyDataOutput()
-pts = vtkPoints()
-pts.SetData(numpy_to_vtk(np.ascontiguousarray(xyz[mine]), deep=1))
-out.SetPoints(pts)
-verts = vtkCellArray()
-for i in range(len(mine)):
-    verts.InsertNextCell(1)
-    verts.InsertCellPoint(i)
-out.SetVerts(verts)
-gid = numpy_to_vtkIdTypeArray(np.ascontiguousarray(ids[mine]), deep=1)
-gid.SetName('GlobalIds')
-out.GetPointData().SetGlobalIds(gid)
-'''.replace('SCAN', repr(args.scan)).replace('STRIDE', str(args.stride)).replace(
-    'ALL_ON_RANK0', str(args.all_on_rank0))
-
-INFO_SCRIPT = r'''
-from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
-self.GetOutputInformation(0).Set(vtkAlgorithm.CAN_HANDLE_PIECE_REQUEST(), 1)
-'''
 
 # Per point: the rank that computed it and the ghost points that rank's fit used (field data GLSGhostPoints).
 TAG_SCRIPT = r'''
@@ -98,8 +62,7 @@ for name, value in (('Rank', rank), ('GhostsOnRank', ghosts)):
 '''
 
 scales = dict(MinScale=0.01, MaxScale=0.06, NumberOfScales=6, ScaleSampling='Quadratic')
-cloud = ProgrammableSource(OutputDataSetType='vtkPolyData', Script=SOURCE_SCRIPT,  # noqa: F405
-                           ScriptRequestInformation=INFO_SCRIPT)
+cloud = piece_source(args.scan, stride=args.stride, all_on_rank0=args.all_on_rank0)
 normals = GLSNormalEstimation(Input=cloud, NumberOfNeighbors=16, Orientation='Minimum spanning tree')  # noqa: F405
 space = GLSScaleSpace(Input=normals, **scales)  # noqa: F405
 variation = GLSGeometricVariation(Input=space)  # noqa: F405

@@ -49,6 +49,11 @@ def with_noise(polydata, sigma, seed=1):
     return noisy, points, normals
 
 
+def signed_offsets(points, reference, normals):
+    """Signed distance of each point from its reference position along the reference unit normal (length)."""
+    return np.einsum('ij,ij->i', points - reference, normals)
+
+
 def offset_cloud(points, reference, normals, shift):
     """Points (shifted by `shift` for a side-by-side view) carrying GLSOffset: the signed distance along the
     reference normal from the reference position (length)."""
@@ -64,7 +69,7 @@ def offset_cloud(points, reference, normals, shift):
         verts.InsertNextCell(1)
         verts.InsertCellPoint(i)
     pd.SetVerts(verts)
-    offset = numpy_to_vtk(np.ascontiguousarray(np.einsum('ij,ij->i', points - reference, normals)), deep=True)
+    offset = numpy_to_vtk(np.ascontiguousarray(signed_offsets(points, reference, normals)), deep=True)
     offset.SetName('GLSOffset')
     pd.GetPointData().SetScalars(offset)
     return pd
@@ -112,7 +117,7 @@ def offsets(stage):
     out = {}
     for key in ('noisy', 'denoised'):
         p = vtk_to_numpy(stage[key].GetPoints().GetData()).astype(float)
-        out[key] = float(np.sqrt(np.mean(np.einsum('ij,ij->i', p - stage['reference'], stage['normals']) ** 2)))
+        out[key] = float(np.sqrt(np.mean(signed_offsets(p, stage['reference'], stage['normals']) ** 2)))
     return out
 
 

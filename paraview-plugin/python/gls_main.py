@@ -244,7 +244,9 @@ def main(argv):
                   vtk_to_numpy(pd.GetArray('GLSPertinentScales')))
     print('wrote %s' % chart)
 
-    stage = gls_denoising.denoise(gls_filter, simple.servermanager.Fetch(upstream), args.noise, progress)
+    mesh = simple.servermanager.Fetch(source)
+    cloud = mesh if upstream is source else simple.servermanager.Fetch(upstream)
+    stage = gls_denoising.denoise(gls_filter, cloud, args.noise, progress)
     rms = gls_denoising.offsets(stage)
     print('denoising: %.2f s; bandwidth searched from %.4g to %.4g; RMS distance to the input surface %.4g -> %.4g'
           % (stage['seconds'], 1.5 * stage['spacing'], 8.0 * stage['spacing'], rms['noisy'], rms['denoised']))
@@ -253,7 +255,7 @@ def main(argv):
                          % (name, ' + noise %.3g x diagonal' % args.noise if args.noise > 0 else ''))
     print('wrote %s' % picture)
 
-    curve, axis = gls_cross_section.longest_section(simple.servermanager.Fetch(source))
+    curve, axis = gls_cross_section.longest_section(mesh)
     if curve is None:
         print('scale-space image: skipped (the input has no polygons to cut a cross-section from)')
     else:
