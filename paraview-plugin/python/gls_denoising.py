@@ -57,17 +57,16 @@ def signed_offsets(points, reference, normals):
 def offset_cloud(points, reference, normals, shift):
     """Points (shifted by `shift` for a side-by-side view) carrying GLSOffset: the signed distance along the
     reference normal from the reference position (length)."""
-    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
     from vtkmodules.vtkCommonCore import vtkPoints
     from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
     pd = vtkPolyData()
     pts = vtkPoints()
     pts.SetData(numpy_to_vtk(np.ascontiguousarray(points + np.asarray(shift)), deep=True))
     pd.SetPoints(pts)
-    verts = vtkCellArray()
-    for i in range(len(points)):
-        verts.InsertNextCell(1)
-        verts.InsertCellPoint(i)
+    verts = vtkCellArray()  # one vertex cell per point: offsets 0..n, connectivity 0..n-1
+    verts.SetData(numpy_to_vtkIdTypeArray(np.arange(len(points) + 1, dtype=np.int64), deep=True),
+                  numpy_to_vtkIdTypeArray(np.arange(len(points), dtype=np.int64), deep=True))
     pd.SetVerts(verts)
     offset = numpy_to_vtk(np.ascontiguousarray(signed_offsets(points, reference, normals)), deep=True)
     offset.SetName('GLSOffset')
