@@ -1,7 +1,7 @@
 // The performance benchmarks P1-P5 (issue "Performance"), on the bundled bunny sampled by area to 173,000 and
 // 1,000,000 points with normals interpolated from the mesh; scales are fractions of the bounding-box diagonal.
 //
-//   glsBenchmarks --case all|P1|P2|P3|P4|P5 [--threads T]
+//   glsBenchmarks --case all|P1|P2|P3|P4|P5|P1-one-pass [--threads T]
 //
 //   P1  scale space + nu, 20 quadratic scales 0.8%-8%, 173k points; against the per-scale evaluation (one ball
 //       query and one fit per scale) in the same run, and against a single-thread run (bitwise identical?).
@@ -11,6 +11,7 @@
 //       same normals up to sign; and a radius giving about 30 neighbours (VTK 9.2's filter has no radius mode).
 //   P5  continuous features alone (fused: nothing stored per scale), 1M points, 100 quadratic scales from 0.08% to
 //       0.8% of the diagonal: peak memory. Run it in a process of its own (--case P5) so that the peak is its own.
+//   P1-one-pass  P1's one-pass row alone (for tuning the kernel).
 // Each prints wall time, points x scales per second, neighbour visits per second, CPU utilisation and peak memory.
 #include "MeshSampler.h"
 
@@ -188,7 +189,7 @@ int main(int argc, char* argv[])
     }
     else
     {
-      std::fprintf(stderr, "usage: %s [--case all|P1|P2|P3|P4|P5] [--threads T]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--case all|P1|P2|P3|P4|P5|P1-one-pass] [--threads T]\n", argv[0]);
       return 2;
     }
   }
@@ -196,7 +197,7 @@ int main(int argc, char* argv[])
   std::printf("threads: %d\n", gls::resolveThreadCount(threads));
   std::map<std::string, double> seconds;
 
-  if (all || which == "P1" || which == "P2" || which == "P3")
+  if (all || which == "P1" || which == "P2" || which == "P3" || which == "P1-one-pass")
   {
     const Cloud c = bunny(173000);
     const auto scales = relativeScales(c, 20, gls::ScaleSampling::Quadratic);

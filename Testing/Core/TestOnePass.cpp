@@ -3,12 +3,15 @@
 #include "CollectingSink.h"
 #include "TestClouds.h"
 
+#include "gls/NeighborGrid.h"
 #include "gls/NormalEstimation.h"
+#include "gls/OnePassKernel.h"
 #include "gls/ScaleSampling.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 
@@ -16,6 +19,21 @@ using namespace glstest;
 
 namespace
 {
+
+/// Largest relative difference between two samples of scale t over the dimensionless descriptors.
+double descriptorDifference(const gls::ScaleSample& p, const gls::ScaleSample& q, double t)
+{
+  const double pairs[][2] = { { p.tau / t, q.tau / t }, { p.kappa * t, q.kappa * t }, { p.phi, q.phi },
+    { p.dtau, q.dtau }, { p.dkappa * t * t, q.dkappa * t * t }, { p.eta.x, q.eta.x }, { p.eta.y, q.eta.y },
+    { p.eta.z, q.eta.z }, { p.deta.x * t, q.deta.x * t }, { p.deta.y * t, q.deta.y * t },
+    { p.deta.z * t, q.deta.z * t } };
+  double worst = 0.0;
+  for (const auto& v : pairs)
+  {
+    worst = std::max(worst, std::abs(v[0] - v[1]) / std::max(1.0, std::abs(v[1])));
+  }
+  return worst;
+}
 
 /// Largest relative difference between the two evaluations over the dimensionless descriptors.
 double maxRelativeDifference(const Cloud& c, const std::vector<double>& scales, int& compared)
@@ -38,15 +56,7 @@ double maxRelativeDifference(const Cloud& c, const std::vector<double>& scales, 
         continue;
       }
       ++compared;
-      const double t = scales[k];
-      const double pairs[][2] = { { p.tau / t, q.tau / t }, { p.kappa * t, q.kappa * t }, { p.phi, q.phi },
-        { p.dtau, q.dtau }, { p.dkappa * t * t, q.dkappa * t * t }, { p.eta.x, q.eta.x }, { p.eta.y, q.eta.y },
-        { p.eta.z, q.eta.z }, { p.deta.x * t, q.deta.x * t }, { p.deta.y * t, q.deta.y * t },
-        { p.deta.z * t, q.deta.z * t } };
-      for (const auto& v : pairs)
-      {
-        worst = std::max(worst, std::abs(v[0] - v[1]) / std::max(1.0, std::abs(v[1])));
-      }
+      worst = std::max(worst, descriptorDifference(p, q, scales[k]));
     }
   }
   return worst;
@@ -78,6 +88,66 @@ TEST(OnePass, AgreesWithPerScaleEvaluationOnTheBunnyScan)
     maxRelativeDifference(c, gls::sampleScales(0.002, 0.02, 8, gls::ScaleSampling::Quadratic), compared);
   EXPECT_GT(compared, 250000);
   EXPECT_LT(worst, 1e-10);
+}
+
+TEST(OnePass, CpuKernelAgreesWithTheDeviceLoop)
+{
+  // The CPU kernel (batched, branch-free ball test and binning, vector sums) against evaluateAllScales, the loop the
+  // CUDA kernel runs, here compiled for the host: the portable build performs the same operations in the same order
+  // (bitwise equal where the compiler cannot fuse multiply-adds), the AVX2 build fuses them (close).
+  const Cloud c = paraboloid(70, 1.0, 0.7, 0.3, 0.02, 0.1, 11);
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 20, gls::ScaleSampling::Quadratic);
+  std::vector<double> squared, unitNormals;
+  for (double t : scales)
+  {
+    squared.push_back(t * t);
+  }
+  const gls::BinningTable table = gls::makeBinningTable(squared);
+  gls::ScaleBinning b;
+  b.scales = scales.data();
+  b.squaredScales = squared.data();
+  b.count = static_cast<int>(scales.size());
+  b.table = table.cells.data();
+  b.tableSize = static_cast<int>(table.cells.size());
+  b.inverseCellWidth = table.inverseCellWidth;
+  std::vector<unsigned char> admit;
+  gls::normalizeAndAdmit(c.points.data(), c.normals.data(), c.size(), unitNormals, admit);
+  gls::NeighborGrid grid;
+  grid.build(c.points.data(), unitNormals.data(), c.size(), 0.25 * scales.back(), admit.data());
+  const std::size_t S = scales.size();
+  std::vector<gls::Moments> bins(S);
+  std::vector<gls::ScaleSample> device(S), portable(S), fastest(S);
+  double worstPortable = 0.0, worstFastest = 0.0;
+  int compared = 0;
+  for (std::size_t i = 0; i < c.size(); i += 7)
+  {
+    // Data points and points off the cloud.
+    const gls::Vec3 p = { c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] + (i % 2 ? 0.0 : 0.05) };
+    gls::evaluateAllScales(grid.view(), p, b, 6.0, bins.data(), device.data());
+    gls::evaluateAllScalesOnCpu(grid.view(), p, b, 6.0, bins.data(), portable.data(), gls::CpuKernelBuild::Portable);
+    gls::evaluateAllScalesOnCpu(grid.view(), p, b, 6.0, bins.data(), fastest.data(), gls::CpuKernelBuild::Fastest);
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      ASSERT_EQ(device[k].neighbors, portable[k].neighbors);
+      ASSERT_EQ(device[k].neighbors, fastest[k].neighbors);
+      ASSERT_EQ(device[k].valid, fastest[k].valid);
+      if (device[k].valid)
+      {
+        ++compared;
+        worstPortable = std::max(worstPortable, descriptorDifference(portable[k], device[k], scales[k]));
+        worstFastest = std::max(worstFastest, descriptorDifference(fastest[k], device[k], scales[k]));
+      }
+    }
+  }
+  EXPECT_GT(compared, 10000);
+#if (defined(__x86_64__) || defined(__i386__)) && !defined(__FMA__)
+  EXPECT_EQ(worstPortable, 0.0);
+#else
+  EXPECT_LT(worstPortable, 1e-10);
+#endif
+  EXPECT_LT(worstFastest, 1e-10);
+  std::printf("CPU kernel (%s) vs device loop: portable %.3g, fastest %.3g over %d samples\n",
+    gls::onePassKernelBuild(), worstPortable, worstFastest, compared);
 }
 
 TEST(OnePass, ResultsAreBitwiseIdenticalForAnyThreadCount)
@@ -118,23 +188,46 @@ TEST(OnePass, BinningTableAgreesWithBinarySearch)
     {
       squared.push_back(t * t);
     }
-    std::vector<int> table(std::max<std::size_t>(1024, 64 * scales.size()));
-    const double width = squared.back() / table.size();
-    for (std::size_t j = 0; j < table.size(); ++j)
-    {
-      table[j] = gls::firstScaleHoldingBySearch(squared.data(), static_cast<int>(squared.size()), j * width);
-    }
+    const gls::BinningTable table = gls::makeBinningTable(squared);
     gls::ScaleBinning b;
     b.scales = scales.data();
     b.squaredScales = squared.data();
     b.count = static_cast<int>(scales.size());
-    b.table = table.data();
-    b.tableSize = static_cast<int>(table.size());
-    b.inverseCellWidth = table.size() / squared.back();
+    b.table = table.cells.data();
+    b.tableSize = static_cast<int>(table.cells.size());
+    b.inverseCellWidth = table.inverseCellWidth;
+    // Cells narrower than the smallest gap hold at most one squared scale, unless the table is at its size limit.
+    int ambiguous = 0;
+    for (const gls::BinningCell& cell : table.cells)
+    {
+      ambiguous += cell.base < 0 ? 1 : 0;
+    }
+    if (table.cells.size() < 32768)
+    {
+      EXPECT_EQ(ambiguous, 0);
+    }
+    // Random squared distances, the squared scales and their neighbouring doubles, and the cell edges.
+    std::vector<double> probes;
     std::uniform_real_distribution<double> u(0.0, squared.back());
     for (int i = 0; i < 100000; ++i)
     {
-      const double d2 = i < static_cast<int>(squared.size()) ? squared[i] * (1 - 1e-16) : u(rng);
+      probes.push_back(u(rng));
+    }
+    for (double q : squared)
+    {
+      probes.insert(probes.end(), { q, std::nextafter(q, 0.0), std::nextafter(q, 1e300) });
+    }
+    for (std::size_t j = 0; j < table.cells.size(); ++j)
+    {
+      const double edge = j / table.inverseCellWidth;
+      probes.insert(probes.end(), { edge, std::nextafter(edge, 0.0), std::nextafter(edge, 1e300) });
+    }
+    for (double d2 : probes)
+    {
+      if (!(d2 < squared.back()))
+      {
+        continue;
+      }
       const int k = gls::firstScaleHolding(b, d2);
       ASSERT_EQ(k, gls::firstScaleHoldingBySearch(squared.data(), b.count, d2)) << d2;
       ASSERT_LT(d2, squared[k]);

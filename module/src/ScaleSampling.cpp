@@ -1,6 +1,10 @@
 #include "gls/ScaleSampling.h"
 
+#include "gls/PointScaleSpace.h"
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace gls
@@ -78,6 +82,45 @@ std::string checkScaleList(const std::vector<double>& scales)
     }
   }
   return why.str();
+}
+
+BinningTable makeBinningTable(const std::vector<double>& squaredScales)
+{
+  BinningTable t;
+  const int S = static_cast<int>(squaredScales.size());
+  if (S == 0)
+  {
+    return t;
+  }
+  const double top = squaredScales.back();
+  double gap = squaredScales.front();
+  for (int k = 1; k < S; ++k)
+  {
+    gap = std::min(gap, squaredScales[k] - squaredScales[k - 1]);
+  }
+  const double wanted = gap > 0.0 ? std::ceil(top / gap) + 1.0 : 32768.0;
+  const int size = static_cast<int>(std::min(32768.0, std::max(1024.0, wanted)));
+  t.inverseCellWidth = size / top;
+  t.cells.assign(static_cast<std::size_t>(size), BinningCell{ std::numeric_limits<double>::infinity(), 0, 0 });
+  // The cell of each squared scale, computed as the lookup computes the cell of a squared distance.
+  std::vector<int> holding(static_cast<std::size_t>(size), 0);
+  for (int k = 0; k < S; ++k)
+  {
+    const double u = squaredScales[k] * t.inverseCellWidth;
+    if (u >= 0.0 && u < static_cast<double>(size))
+    {
+      const int j = static_cast<int>(u);
+      ++holding[j];
+      t.cells[j].edge = squaredScales[k];
+    }
+  }
+  int before = 0;
+  for (int j = 0; j < size; ++j)
+  {
+    t.cells[j].base = holding[j] > 1 ? -1 : before;
+    before += holding[j];
+  }
+  return t;
 }
 
 } // namespace gls

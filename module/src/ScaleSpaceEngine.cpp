@@ -1,7 +1,9 @@
 #include "gls/ScaleSpaceEngine.h"
 
 #include "gls/Numeric.h"
+#include "gls/OnePassKernel.h"
 #include "gls/PointScaleSpace.h"
+#include "gls/ScaleSampling.h"
 
 #include <algorithm>
 #include <utility>
@@ -17,18 +19,7 @@ ScaleSpaceEngine::ScaleSpaceEngine(
   {
     this->SquaredScales.push_back(t * t);
   }
-  // Binning table: 64 cells per scale (at least 1024), each holding the first scale at or beyond its left edge.
-  const int S = static_cast<int>(this->SquaredScales.size());
-  if (S > 0)
-  {
-    const int size = std::max(1024, 64 * S);
-    const double width = this->SquaredScales.back() / size;
-    this->BinTable.resize(static_cast<std::size_t>(size));
-    for (int j = 0; j < size; ++j)
-    {
-      this->BinTable[j] = firstScaleHoldingBySearch(this->SquaredScales.data(), S, j * width);
-    }
-  }
+  this->BinTable = makeBinningTable(this->SquaredScales);
   // Unit normals; points whose normal cannot be normalized stay out of every neighbourhood.
   std::vector<double> unitNormals;
   std::vector<unsigned char> admit;
@@ -59,9 +50,9 @@ ScaleBinning ScaleSpaceEngine::binning() const
   b.scales = this->Settings.scales.data();
   b.squaredScales = this->SquaredScales.data();
   b.count = static_cast<int>(this->SquaredScales.size());
-  b.table = this->BinTable.data();
-  b.tableSize = static_cast<int>(this->BinTable.size());
-  b.inverseCellWidth = b.count > 0 ? b.tableSize / this->SquaredScales.back() : 0.0;
+  b.table = this->BinTable.cells.data();
+  b.tableSize = static_cast<int>(this->BinTable.cells.size());
+  b.inverseCellWidth = this->BinTable.inverseCellWidth;
   return b;
 }
 
@@ -171,7 +162,7 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
       }
       else if (method == EvaluationMethod::OnePass)
       {
-        evaluateAllScales(g, p, binning, this->Settings.minNeighbors, b.data(), out.data());
+        evaluateAllScalesOnCpu(g, p, binning, this->Settings.minNeighbors, b.data(), out.data());
       }
       else
       {
@@ -198,7 +189,7 @@ void ScaleSpaceEngine::evaluatePosition(const Vec3& p, std::vector<ScaleSample>&
     }
     return;
   }
-  evaluateAllScales(this->Grid.view(), p, this->binning(), this->Settings.minNeighbors, b.data(), out.data());
+  evaluateAllScalesOnCpu(this->Grid.view(), p, this->binning(), this->Settings.minNeighbors, b.data(), out.data());
 }
 
 } // namespace gls

@@ -38,9 +38,34 @@ GLS_INLINE std::int64_t gridCellCoordinate(double v, double origin, double invCe
   return static_cast<std::int64_t>(c);
 }
 
+/// The block of cells [x0, x1] x [y0, y1] x [z0, z1] that a ball of radius r around c overlaps (clamped to the grid).
+struct CellBlock
+{
+  std::int64_t x0, x1, y0, y1, z0, z1;
+};
+
+GLS_INLINE CellBlock ballCellBlock(const GridView& g, const Vec3& c, double r)
+{
+  return { gridCellCoordinate(c.x - r, g.origin.x, g.invCellSize, g.dims[0]),
+    gridCellCoordinate(c.x + r, g.origin.x, g.invCellSize, g.dims[0]),
+    gridCellCoordinate(c.y - r, g.origin.y, g.invCellSize, g.dims[1]),
+    gridCellCoordinate(c.y + r, g.origin.y, g.invCellSize, g.dims[1]),
+    gridCellCoordinate(c.z - r, g.origin.z, g.invCellSize, g.dims[2]),
+    gridCellCoordinate(c.z + r, g.origin.z, g.invCellSize, g.dims[2]) };
+}
+
+/// The sorted points of one grid row (z, y) of the block: [*begin, *end). Cells of one grid row are contiguous in
+/// memory, so each row of the cell block is one run of points.
+GLS_INLINE void blockRow(
+  const GridView& g, const CellBlock& b, std::int64_t z, std::int64_t y, std::uint64_t* begin, std::uint64_t* end)
+{
+  const std::int64_t row = (z * g.dims[1] + y) * g.dims[0];
+  *begin = g.cellStart[row + b.x0];
+  *end = g.cellStart[row + b.x1 + 1];
+}
+
 /// Calls f(sortedIndex, x, d2) for every grid point strictly inside the ball of radius r around c, where
-/// x = point - c (local coordinates) and d2 = |x|^2. Cells of one grid row are contiguous in memory, so each row of
-/// the cell block is one run of points.
+/// x = point - c (local coordinates) and d2 = |x|^2.
 template <typename F>
 GLS_INLINE void forEachInBall(const GridView& g, const Vec3& c, double r, F&& f)
 {
@@ -49,19 +74,13 @@ GLS_INLINE void forEachInBall(const GridView& g, const Vec3& c, double r, F&& f)
     return;
   }
   const double r2 = r * r;
-  const std::int64_t x0 = gridCellCoordinate(c.x - r, g.origin.x, g.invCellSize, g.dims[0]);
-  const std::int64_t x1 = gridCellCoordinate(c.x + r, g.origin.x, g.invCellSize, g.dims[0]);
-  const std::int64_t y0 = gridCellCoordinate(c.y - r, g.origin.y, g.invCellSize, g.dims[1]);
-  const std::int64_t y1 = gridCellCoordinate(c.y + r, g.origin.y, g.invCellSize, g.dims[1]);
-  const std::int64_t z0 = gridCellCoordinate(c.z - r, g.origin.z, g.invCellSize, g.dims[2]);
-  const std::int64_t z1 = gridCellCoordinate(c.z + r, g.origin.z, g.invCellSize, g.dims[2]);
-  for (std::int64_t z = z0; z <= z1; ++z)
+  const CellBlock b = ballCellBlock(g, c, r);
+  for (std::int64_t z = b.z0; z <= b.z1; ++z)
   {
-    for (std::int64_t y = y0; y <= y1; ++y)
+    for (std::int64_t y = b.y0; y <= b.y1; ++y)
     {
-      const std::int64_t row = (z * g.dims[1] + y) * g.dims[0];
-      const std::uint64_t begin = g.cellStart[row + x0];
-      const std::uint64_t end = g.cellStart[row + x1 + 1];
+      std::uint64_t begin, end;
+      blockRow(g, b, z, y, &begin, &end);
       for (std::uint64_t i = begin; i < end; ++i)
       {
         const Vec3 x = g.points[i] - c;

@@ -1,7 +1,7 @@
 // The one-pass moment formulation (gls-math.md "All scales in one pass"). Inside the ball,
 // w = 1 - 2 d^2/t^2 + d^4/t^4 and dw/dt = 4 d^2/t^3 - 4 d^4/t^5, so every weighted sum at scale t is a combination
 // of the un-weighted moments A_k(t) = sum_{d_i < t} d_i^(2k) f_i, k = 0, 1, 2, of the nine values
-// f_i = (1, x_i, n_i, x_i . n_i, |x_i|^2). A neighbour is added once, into the bin of the first scale whose open
+// f_i = (1, x_i, n_i, x_i . n_i, |x_i|^2) (25 distinct sums, since |x_i|^2 = d_i^2). A neighbour is added once, into the bin of the first scale whose open
 // ball holds it; a prefix sum over the bins gives A_k at every scale.
 #pragma once
 
@@ -10,13 +10,15 @@
 namespace gls
 {
 
-constexpr int kMomentValues = 9;                     ///< f = 1, x (3), n (3), x.n, |x|^2
-constexpr int kMomentCount = 3 * kMomentValues;      ///< k = 0, 1, 2
+constexpr int kMomentValues = 8;                        ///< f = 1, x (3), n (3), x.n
+constexpr int kMomentCount = 3 * kMomentValues + 1;     ///< k = 0, 1, 2, and sum d^6 (= sum d^4 |x|^2)
 
-/// The 27 moments of one bin (or, after the prefix sum, of one ball): m[k * 9 + j] = sum d^(2k) f_j.
-struct Moments
+/// The 25 moments of one bin (or, after the prefix sum, of one ball): m[k * 8 + j] = sum d^(2k) f_j, and
+/// m[24] = sum d^6. The sums of |x|^2 d^(2k) are m[8], m[16] and m[24] (|x|^2 = d^2), so they are not stored twice.
+/// Eight values per power: one 512-bit or two 256-bit vectors.
+struct alignas(64) Moments
 {
-  double m[kMomentCount];
+  double m[kMomentCount + 7]; // padded to a whole number of 64-byte lines
 };
 
 GLS_INLINE void clearMoments(Moments& a)
@@ -27,11 +29,10 @@ GLS_INLINE void clearMoments(Moments& a)
   }
 }
 
-/// Adds one neighbour with local position x (d2 = |x|^2) and normal n.
-GLS_INLINE void addToMoments(Moments& a, const Vec3& x, const Vec3& n)
+/// Adds one neighbour with local position x, squared distance d2 = |x|^2 and normal n.
+GLS_INLINE void addToMoments(Moments& a, const Vec3& x, double d2, const Vec3& n)
 {
-  const double d2 = squaredNorm(x);
-  const double f[kMomentValues] = { 1.0, x.x, x.y, x.z, n.x, n.y, n.z, dot(x, n), d2 };
+  const double f[kMomentValues] = { 1.0, x.x, x.y, x.z, n.x, n.y, n.z, dot(x, n) };
   const double d4 = d2 * d2;
   for (int j = 0; j < kMomentValues; ++j)
   {
@@ -39,6 +40,7 @@ GLS_INLINE void addToMoments(Moments& a, const Vec3& x, const Vec3& n)
     a.m[kMomentValues + j] += d2 * f[j];
     a.m[2 * kMomentValues + j] += d4 * f[j];
   }
+  a.m[3 * kMomentValues] += d4 * d2;
 }
 
 /// a += b (used by the prefix sum over scale bins).
@@ -63,11 +65,14 @@ GLS_INLINE void weightedSumsFromMoments(const Moments& a, double t, WeightedSums
   const double it4 = it2 * it2;
   const double c0 = 1.0, c1 = -2.0 * it2, c2 = it4;          // w    = c0 + c1 d^2 + c2 d^4
   const double e1 = 4.0 * it2 / t, e2 = -4.0 * it4 / t;      // dw/dt =      e1 d^2 + e2 d^4
-  double v[kMomentValues];
-  double dv[kMomentValues];
-  for (int j = 0; j < kMomentValues; ++j)
+  double v[kMomentValues + 1];
+  double dv[kMomentValues + 1];
+  for (int j = 0; j <= kMomentValues; ++j)
   {
-    const double a0 = a.m[j], a1 = a.m[kMomentValues + j], a2 = a.m[2 * kMomentValues + j];
+    // j = 8 is |x|^2: its moments are sum d^2, sum d^4, sum d^6.
+    const double a0 = j < kMomentValues ? a.m[j] : a.m[kMomentValues];
+    const double a1 = j < kMomentValues ? a.m[kMomentValues + j] : a.m[2 * kMomentValues];
+    const double a2 = j < kMomentValues ? a.m[2 * kMomentValues + j] : a.m[3 * kMomentValues];
     v[j] = c0 * a0 + c1 * a1 + c2 * a2;
     dv[j] = e1 * a1 + e2 * a2;
   }

@@ -10,15 +10,26 @@
 namespace gls
 {
 
-/// The sampled scales and a lookup table that bins a squared distance without a data-dependent binary search:
-/// table[j] is the first scale k with squaredScales[k] > j * cellWidth, so the scale of d2 is found from
-/// table[floor(d2 / cellWidth)] by a short forward scan (usually zero or one step).
+/// One cell of the binning table: the squared distances v with floor(v * inverseCellWidth) == j. `base` is the
+/// number of squared scales whose own cell is before j (so all of them are below any v of the cell), `edge` the one
+/// squared scale whose cell is j (+infinity if none). base = -1 marks a cell holding several squared scales, where
+/// the lookup falls back to the binary search.
+struct BinningCell
+{
+  double edge;
+  int base;
+  int unused;
+};
+
+/// The sampled scales and a lookup table that bins a squared distance without a data-dependent search: the first
+/// scale whose open ball holds d2 is table[j].base + (d2 >= table[j].edge), j = floor(d2 * inverseCellWidth).
+/// Exact: the cell index is a monotone function of d2, computed the same way when the table is built.
 struct ScaleBinning
 {
   const double* scales = nullptr;
   const double* squaredScales = nullptr;
   int count = 0;
-  const int* table = nullptr;
+  const BinningCell* table = nullptr;
   int tableSize = 0;
   double inverseCellWidth = 0.0; ///< tableSize / squaredScales[count - 1]
 };
@@ -42,8 +53,8 @@ GLS_INLINE int firstScaleHoldingBySearch(const double* squaredScales, int count,
   return lo;
 }
 
-/// Index of the first scale whose open ball holds a neighbour at squared distance d2 (d2 < squaredScales[S-1]).
-/// Exact whatever the rounding of the table index: the start is corrected backwards as well as forwards.
+/// Index of the first scale whose open ball holds a neighbour at squared distance d2 (d2 < squaredScales[S-1]):
+/// one table load and one comparison, the binary search only for cells holding several scales.
 GLS_INLINE int firstScaleHolding(const ScaleBinning& b, double d2)
 {
   const double u = d2 * b.inverseCellWidth;
@@ -51,42 +62,45 @@ GLS_INLINE int firstScaleHolding(const ScaleBinning& b, double d2)
   {
     return firstScaleHoldingBySearch(b.squaredScales, b.count, d2); // degenerate scales (squares underflow)
   }
-  int k = b.table[static_cast<int>(u)];
-  while (k < b.count - 1 && !(d2 < b.squaredScales[k]))
+  const BinningCell cell = b.table[static_cast<int>(u)];
+  if (cell.base < 0)
   {
-    ++k;
+    return firstScaleHoldingBySearch(b.squaredScales, b.count, d2);
   }
-  while (k > 0 && d2 < b.squaredScales[k - 1])
-  {
-    --k;
-  }
-  return k;
+  const int k = cell.base + (d2 >= cell.edge ? 1 : 0);
+  return k < b.count - 1 ? k : b.count - 1;
 }
 
-/// Fits every scale of the evaluation point p (any position; normally a data point) in one pass.
-/// b: the S increasing scales and their binning table; bins: S scratch moment sets; out: S samples.
-GLS_INLINE void evaluateAllScales(
-  const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors, Moments* bins, ScaleSample* out)
+/// Turns the S bins of one evaluation point into its S samples: the prefix sum over the bins (bins[k] becomes the
+/// moments of the ball of scales[k]) and one fit per scale.
+GLS_INLINE void fitAllScalesFromBins(const ScaleBinning& b, double minNeighbors, Moments* bins, ScaleSample* out)
 {
-  const int count = b.count;
-  const double* scales = b.scales;
-  for (int k = 0; k < count; ++k)
-  {
-    clearMoments(bins[k]);
-  }
-  forEachInBall(g, p, scales[count - 1], [&](std::uint64_t i, const Vec3& x, double d2) {
-    addToMoments(bins[firstScaleHolding(b, d2)], x, g.normals[i]);
-  });
-  for (int k = 0; k < count; ++k)
+  for (int k = 0; k < b.count; ++k)
   {
     if (k > 0)
     {
       addMoments(bins[k], bins[k - 1]);
     }
     WeightedSums s, ds;
-    weightedSumsFromMoments(bins[k], scales[k], s, ds);
+    weightedSumsFromMoments(bins[k], b.scales[k], s, ds);
     out[k] = fitOrientedSphere(s, ds, neighborCount(bins[k]), minNeighbors);
   }
+}
+
+/// Fits every scale of the evaluation point p (any position; normally a data point) in one pass.
+/// b: the S increasing scales and their binning table; bins: S scratch moment sets; out: S samples.
+/// This is the CUDA kernel's loop; the CPU engine runs the batched form of the same arithmetic (OnePassKernel.h).
+GLS_INLINE void evaluateAllScales(
+  const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors, Moments* bins, ScaleSample* out)
+{
+  for (int k = 0; k < b.count; ++k)
+  {
+    clearMoments(bins[k]);
+  }
+  forEachInBall(g, p, b.scales[b.count - 1], [&](std::uint64_t i, const Vec3& x, double d2) {
+    addToMoments(bins[firstScaleHolding(b, d2)], x, d2, g.normals[i]);
+  });
+  fitAllScalesFromBins(b, minNeighbors, bins, out);
 }
 
 /// Fits one scale t of the evaluation point p directly: a ball query of radius t and the weighted sums.

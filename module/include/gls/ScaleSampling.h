@@ -1,6 +1,8 @@
 // Scale sampling (gls-math.md "Scale sampling"): absolute scales t_0 < ... < t_{S-1} in length units.
 #pragma once
 
+#include "gls/PointScaleSpace.h"
+
 #include <string>
 #include <vector>
 
@@ -23,5 +25,16 @@ std::string checkScaleRange(double minScale, double maxScale, int count);
 
 /// Empty when the list is non-empty, finite, positive and strictly increasing; else the reason.
 std::string checkScaleList(const std::vector<double>& scales);
+
+/// The binning table of ScaleBinning (PointScaleSpace.h) for increasing positive squared scales, and its
+/// inverseCellWidth (size / squaredScales.back()). The size makes a cell narrower than the smallest gap between
+/// squared scales, so that a cell holds at most one of them, within 1,024 and 32,768 cells (beyond that, the cells
+/// holding several fall back to the binary search).
+struct BinningTable
+{
+  std::vector<BinningCell> cells;
+  double inverseCellWidth = 0.0;
+};
+BinningTable makeBinningTable(const std::vector<double>& squaredScales);
 
 } // namespace gls

@@ -9,6 +9,7 @@
 #include "gls/ParallelFor.h"
 #include "gls/PointScaleSpace.h"
 #include "gls/ScaleSample.h"
+#include "gls/ScaleSampling.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -82,7 +83,7 @@ private:
 
   ScaleSpaceSettings Settings;
   std::vector<double> SquaredScales;
-  std::vector<int> BinTable;
+  BinningTable BinTable;
   std::vector<Vec3> Positions;          ///< all input positions (NaN allowed)
   std::vector<std::uint64_t> Order;     ///< evaluation order: grid order first (locality), then the rest
   NeighborGrid Grid;

@@ -178,7 +178,7 @@ struct CudaScaleSpace::Device
   DeviceArray<Vec3> Points, Normals;
   DeviceArray<std::uint64_t> Ids, CellStart;
   DeviceArray<double> Scales, SquaredScales;
-  DeviceArray<int> Table;
+  DeviceArray<BinningCell> Table;
   DeviceArray<Vec3> Positions;
   DeviceArray<Moments> Bins;
   DeviceArray<ScaleSample> Out;

@@ -1,0 +1,163 @@
+#include "gls/OnePassKernel.h"
+
+#include <cstring>
+
+namespace gls
+{
+namespace
+{
+
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define GLS_KERNEL_DISPATCH 1
+#define GLS_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define GLS_KERNEL_DISPATCH 0
+#define GLS_ALWAYS_INLINE inline
+#endif
+
+constexpr int kBatch = 64;
+
+/// Four doubles (GCC/clang vector extension: two SSE2 registers in the baseline build, one AVX register in the
+/// AVX2 build). Loaded and stored through memcpy, so no aliasing rule is bent. The helpers are always inlined, so
+/// the vector-argument ABI that -Wpsabi warns about never applies.
+typedef double Double4 __attribute__((vector_size(32)));
+
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+GLS_ALWAYS_INLINE Double4 load4(const double* m)
+{
+  Double4 v;
+  std::memcpy(&v, m, sizeof(v));
+  return v;
+}
+
+GLS_ALWAYS_INLINE void store4(double* m, Double4 v)
+{
+  std::memcpy(m, &v, sizeof(v));
+}
+
+/// addToMoments (MomentBins.h) with the eight values f = (1, x, n, x.n) held as two vectors of four: the same
+/// products and sums, element by element (fused into multiply-adds in the AVX2 build).
+GLS_ALWAYS_INLINE void addToMomentsVectorized(Moments& a, const Vec3& x, double d2, const Vec3& n)
+{
+  const double d4 = d2 * d2;
+  const Double4 f0 = { 1.0, x.x, x.y, x.z };
+  const Double4 f1 = { n.x, n.y, n.z, dot(x, n) };
+  double* m = a.m;
+  store4(m, load4(m) + f0);
+  store4(m + 4, load4(m + 4) + f1);
+  store4(m + 8, load4(m + 8) + d2 * f0);
+  store4(m + 12, load4(m + 12) + d2 * f1);
+  store4(m + 16, load4(m + 16) + d4 * f0);
+  store4(m + 20, load4(m + 20) + d4 * f1);
+  m[24] += d4 * d2;
+}
+
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
+/// Adds the candidates [begin, end) of one grid row that lie inside the open ball of squared radius r2 around p.
+GLS_ALWAYS_INLINE void addRun(const GridView& g, const Vec3& p, const ScaleBinning& b, double r2,
+  std::uint64_t begin, std::uint64_t end, Moments* bins)
+{
+  std::uint64_t inside[kBatch];
+  int scale[kBatch];
+  for (std::uint64_t c = begin; c < end; c += kBatch)
+  {
+    // The ball test only advances the write index: no branch to mispredict at the ball's edge.
+    const int m = static_cast<int>(end - c < kBatch ? end - c : kBatch);
+    int n = 0;
+    for (int j = 0; j < m; ++j)
+    {
+      inside[n] = c + j;
+      n += squaredNorm(g.points[c + j] - p) < r2 ? 1 : 0;
+    }
+    for (int j = 0; j < n; ++j)
+    {
+      scale[j] = firstScaleHolding(b, squaredNorm(g.points[inside[j]] - p));
+    }
+    for (int j = 0; j < n; ++j)
+    {
+      const std::uint64_t i = inside[j];
+      const Vec3 x = g.points[i] - p;
+      addToMomentsVectorized(bins[scale[j]], x, squaredNorm(x), g.normals[i]);
+    }
+  }
+}
+
+GLS_ALWAYS_INLINE void evaluate(
+  const GridView& g, const Vec3& p, const ScaleBinning& shared, double minNeighbors, Moments* bins, ScaleSample* out)
+{
+  const ScaleBinning b = shared; // a local copy: the stores to the bins cannot alias it
+  for (int k = 0; k < b.count; ++k)
+  {
+    clearMoments(bins[k]);
+  }
+  const double r = b.scales[b.count - 1];
+  if (g.count > 0 && r > 0.0)
+  {
+    const CellBlock block = ballCellBlock(g, p, r);
+    for (std::int64_t z = block.z0; z <= block.z1; ++z)
+    {
+      for (std::int64_t y = block.y0; y <= block.y1; ++y)
+      {
+        std::uint64_t begin, end;
+        blockRow(g, block, z, y, &begin, &end);
+        addRun(g, p, b, r * r, begin, end, bins);
+      }
+    }
+  }
+  fitAllScalesFromBins(b, minNeighbors, bins, out);
+}
+
+void evaluateBaseline(
+  const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors, Moments* bins, ScaleSample* out)
+{
+  evaluate(g, p, b, minNeighbors, bins, out);
+}
+
+#if GLS_KERNEL_DISPATCH
+__attribute__((target("avx2,fma"))) void evaluateAvx2(
+  const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors, Moments* bins, ScaleSample* out)
+{
+  evaluate(g, p, b, minNeighbors, bins, out);
+}
+
+bool hasAvx2()
+{
+  static const bool yes = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return yes;
+}
+#endif
+
+} // namespace
+
+void evaluateAllScalesOnCpu(const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors,
+  Moments* bins, ScaleSample* out, CpuKernelBuild build)
+{
+#if GLS_KERNEL_DISPATCH
+  if (build == CpuKernelBuild::Fastest && hasAvx2())
+  {
+    evaluateAvx2(g, p, b, minNeighbors, bins, out);
+    return;
+  }
+#endif
+  evaluateBaseline(g, p, b, minNeighbors, bins, out);
+}
+
+const char* onePassKernelBuild()
+{
+#if GLS_KERNEL_DISPATCH
+  if (hasAvx2())
+  {
+    return "avx2+fma";
+  }
+#endif
+  return "baseline";
+}
+
+} // namespace gls
