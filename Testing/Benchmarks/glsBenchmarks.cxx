@@ -39,6 +39,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -100,7 +101,8 @@ class VariationSink : public gls::ScaleSampleSink
 public:
   VariationSink(std::size_t n, const std::vector<double>& scales, int threads)
     : Scales(scales)
-    , Nu(n * scales.size())
+    , Nu(new double[n * scales.size()]) // not zeroed: the threads first-touch their own rows, as in the filters
+    , Size(n * scales.size())
     , Visits(static_cast<std::size_t>(threads), 0.0)
   {
   }
@@ -123,7 +125,8 @@ public:
     return v;
   }
   const std::vector<double>& Scales;
-  std::vector<double> Nu;
+  std::unique_ptr<double[]> Nu;
+  std::size_t Size;
   std::vector<double> Visits;
 };
 
@@ -145,7 +148,7 @@ Measure scaleSpaceAndNu(const Cloud& c, const std::vector<double>& scales, int t
   Measure m{ t.seconds(), t.utilisation(), sink.visits() };
   if (nu)
   {
-    *nu = std::move(sink.Nu);
+    nu->assign(sink.Nu.get(), sink.Nu.get() + sink.Size);
   }
   return m;
 }

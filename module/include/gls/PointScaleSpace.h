@@ -71,19 +71,18 @@ GLS_INLINE int firstScaleHolding(const ScaleBinning& b, double d2)
   return k < b.count - 1 ? k : b.count - 1;
 }
 
-/// Turns the S bins of one evaluation point into its S samples: the prefix sum over the bins (bins[k] becomes the
-/// moments of the ball of scales[k]) and one fit per scale.
-GLS_INLINE void fitAllScalesFromBins(const ScaleBinning& b, double minNeighbors, Moments* bins, ScaleSample* out)
+/// Turns the S bins of one evaluation point into its S samples: a running sum over the bins gives the moments of
+/// the ball of each scales[k] (the bins are left as they are), and one fit per scale.
+GLS_INLINE void fitAllScalesFromBins(const ScaleBinning& b, double minNeighbors, const Moments* bins, ScaleSample* out)
 {
+  Moments ball;
+  clearMoments(ball);
   for (int k = 0; k < b.count; ++k)
   {
-    if (k > 0)
-    {
-      addMoments(bins[k], bins[k - 1]);
-    }
+    addMoments(ball, bins[k]);
     WeightedSums s, ds;
-    weightedSumsFromMoments(bins[k], b.scales[k], s, ds);
-    out[k] = fitOrientedSphere(s, ds, neighborCount(bins[k]), minNeighbors);
+    weightedSumsFromMoments(ball, b.scales[k], s, ds);
+    out[k] = fitOrientedSphere(s, ds, neighborCount(ball), minNeighbors);
   }
 }
 

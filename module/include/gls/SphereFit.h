@@ -61,14 +61,15 @@ GLS_INLINE ScaleSampleT<T> fitOrientedSphere(
   }
   else
   {
-    uq = nume / (T(2) * deno);
+    const T halfInvDeno = T(1) / (T(2) * deno);
+    uq = nume * halfInvDeno;
     ul = invW * (s.N - (T(2) * uq) * s.P);
     uc = -(dot(ul, s.P) + uq * s.PP) * invW;
 
     const T invW2 = invW * invW;
     const T dnume = ds.PN - (dot(ds.P, s.N) + dot(s.P, ds.N)) * invW + PdotN * ds.W * invW2;
     const T ddeno = ds.PP - T(2) * dot(s.P, ds.P) * invW + PdotP * ds.W * invW2;
-    duq = (dnume * deno - nume * ddeno) / (T(2) * deno * deno);
+    duq = (dnume - T(2) * uq * ddeno) * halfInvDeno;
     dul = invW * (ds.N - (T(2) * duq) * s.P - (T(2) * uq) * ds.P - ds.W * ul);
     duc = -(dot(dul, s.P) + dot(ul, ds.P) + duq * s.PP + uq * ds.PP + uc * ds.W) * invW;
   }
@@ -79,18 +80,20 @@ GLS_INLINE ScaleSampleT<T> fitOrientedSphere(
   {
     return invalidSample<T>(neighbors);
   }
-  const T sqrtPhi = squareRoot(phi);
-  const T ulNorm = squareRoot(ulNorm2);
+  // Four divisions and two square roots in all (their throughput bounds the cost of a fit).
+  const T invSqrtPhi = T(1) / squareRoot(phi);
+  const T invUlNorm = T(1) / squareRoot(ulNorm2);
   const T dphi = T(2) * dot(ul, dul) - T(4) * (duc * uq + uc * duq);
+  const T halfDphiOverPhi = T(0.5) * dphi * invSqrtPhi * invSqrtPhi;
 
   ScaleSampleT<T> r;
   r.phi = phi;
-  r.tau = uc / sqrtPhi;
-  r.kappa = T(2) * uq / sqrtPhi;
-  r.eta = (T(1) / ulNorm) * ul;
-  r.dtau = duc / sqrtPhi - r.tau * dphi / (T(2) * phi);
-  r.dkappa = T(2) * duq / sqrtPhi - r.kappa * dphi / (T(2) * phi);
-  r.deta = (T(1) / ulNorm) * (dul - dot(r.eta, dul) * r.eta);
+  r.tau = uc * invSqrtPhi;
+  r.kappa = T(2) * uq * invSqrtPhi;
+  r.eta = invUlNorm * ul;
+  r.dtau = duc * invSqrtPhi - r.tau * halfDphiOverPhi;
+  r.dkappa = T(2) * duq * invSqrtPhi - r.kappa * halfDphiOverPhi;
+  r.deta = invUlNorm * (dul - dot(r.eta, dul) * r.eta);
   r.neighbors = neighbors;
   r.valid = true;
 
