@@ -9,11 +9,15 @@
 //   P3  P1 on 1M points (ratio to P1).
 //   P4  normal estimation on 1M points: k = 16 against vtkPCANormalEstimation (SampleSize 16, vtkSMPTools STDThread),
 //       same normals up to sign; and a radius giving about 30 neighbours (VTK 9.2's filter has no radius mode).
+//       When CMake finds CGAL and TBB, also CGAL's pca_estimate_normals (k = 16, TBB) in the same run.
 //   P5  continuous features alone (fused: nothing stored per scale), 1M points, 100 quadratic scales from 0.08% to
 //       0.8% of the diagonal: peak memory. Run it in a process of its own (--case P5) so that the peak is its own.
 //   P1-one-pass  P1's one-pass row alone (for tuning the kernel).
 // Each prints wall time, points x scales per second, neighbour visits per second, CPU utilisation and peak memory.
 #include "MeshSampler.h"
+#ifdef GLS_BENCHMARK_WITH_CGAL
+#include "CgalNormals.h"
+#endif
 
 #include "vtkGLSContinuousFeatures.h"
 #include "vtkGLSNormalEstimation.h"
@@ -284,10 +288,32 @@ int main(int argc, char* argv[])
     std::printf("P4: vtkPCANormalEstimation / GLS = %.2fx (target >= 2); 1 - |n_gls . n_vtk|: max %.2e, above 1e-9 "
                 "at %lld of %lld points\n",
       mv.seconds / m.seconds, worst, static_cast<long long>(above), static_cast<long long>(a->GetNumberOfTuples()));
+    std::vector<double> cgal; // CGAL's normals, when the optional column is built
+#ifdef GLS_BENCHMARK_WITH_CGAL
+    {
+      Timer tc;
+      cgalPcaNormals(c.xyz, 16, threads, cgal);
+      Measure mc{ tc.seconds(), tc.utilisation(), 16e6 };
+      row("P4 CGAL pca_estimate_normals k = 16 (TBB)", 1e6, 1, mc);
+      double worstCgal = 0.0;
+      vtkIdType aboveCgal = 0;
+      for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+      {
+        double u[3];
+        a->GetTuple(i, u);
+        const double* v = &cgal[3 * i];
+        const double gap = 1.0 - std::abs(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
+        worstCgal = std::max(worstCgal, gap);
+        aboveCgal += gap > 1e-9 ? 1 : 0;
+      }
+      std::printf("P4: CGAL / GLS = %.2fx; 1 - |n_gls . n_cgal|: max %.2e, above 1e-9 at %lld points\n",
+        mc.seconds / m.seconds, worstCgal, static_cast<long long>(aboveCgal));
+    }
+#endif
     // Who is right where they differ: a third computation in long double (brute-force 16 nearest, Eigen's
     // symmetric eigensolver) on 500 points.
     {
-      double worstOurs = 0.0, worstVtk = 0.0;
+      double worstOurs = 0.0, worstVtk = 0.0, worstCgal = 0.0;
       std::vector<std::pair<double, std::size_t>> all(c.size());
       for (std::size_t q = 0; q < c.size(); q += c.size() / 500)
       {
@@ -329,9 +355,20 @@ int main(int argc, char* argv[])
         const double dv = 1.0 - std::abs(static_cast<double>(v[0] * ref(0) + v[1] * ref(1) + v[2] * ref(2)));
         worstOurs = std::max(worstOurs, du);
         worstVtk = std::max(worstVtk, dv);
+        if (!cgal.empty())
+        {
+          const double* w = &cgal[3 * q];
+          worstCgal = std::max(worstCgal,
+            1.0 - std::abs(static_cast<double>(w[0] * ref(0) + w[1] * ref(1) + w[2] * ref(2))));
+        }
       }
-      std::printf("P4: against a long-double reference on 500 points, max 1 - |n . n_ref|: GLS %.2e, VTK %.2e\n",
+      std::printf("P4: against a long-double reference on 500 points, max 1 - |n . n_ref|: GLS %.2e, VTK %.2e",
         worstOurs, worstVtk);
+      if (!cgal.empty())
+      {
+        std::printf(", CGAL %.2e", worstCgal);
+      }
+      std::printf("\n");
     }
     // A radius holding about 30 neighbours: 30 = density * pi r^2, density from the mean k = 16 radius.
     vtkNew<vtkGLSNormalEstimation> probe;
