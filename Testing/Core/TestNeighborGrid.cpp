@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 namespace
@@ -59,6 +60,45 @@ TEST(NeighborGrid, BallQueryMatchesBruteForce)
       std::sort(found.begin(), found.end());
       ASSERT_EQ(found, expected) << "cell " << cell << " query " << q;
     }
+  }
+}
+
+TEST(NeighborGrid, BallQueryMatchesBruteForceFarFromTheOriginAndOnCellBounds)
+{
+  // Rows are narrowed to the ball's chord (blockRow): check it leaves no point out where rounding is worst, with
+  // coordinates of 1e6 and radii of a few cells, centres on cell corners, and points on the sphere itself.
+  const double offset = 1.0e6, cell = 0.01;
+  std::vector<double> xyz = randomCloud(20000, 5, 0.3, 0.3, 0.3);
+  for (double& v : xyz)
+  {
+    v += offset;
+  }
+  gls::NeighborGrid grid;
+  grid.build(xyz.data(), nullptr, 20000, cell);
+  const gls::GridView& g = grid.view();
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u(0.0, 0.3);
+  for (int q = 0; q < 300; ++q)
+  {
+    gls::Vec3 c{ offset + u(rng), offset + u(rng), offset + u(rng) };
+    if (q % 3 == 0) // a cell corner
+    {
+      c = { g.origin.x + 7 * g.cellSize, g.origin.y + 11 * g.cellSize, g.origin.z + 13 * g.cellSize };
+    }
+    const double r = (q % 3 == 1) ? std::sqrt(dist2(xyz, q, c)) : 0.003 + 0.01 * (q % 7);
+    std::vector<std::uint64_t> found;
+    gls::forEachInBall(g, c, r, [&](std::uint64_t s, const gls::Vec3&, double) { found.push_back(g.ids[s]); });
+    std::vector<std::uint64_t> expected;
+    for (std::size_t i = 0; i < 20000; ++i)
+    {
+      const double dx = xyz[3 * i] - c.x, dy = xyz[3 * i + 1] - c.y, dz = xyz[3 * i + 2] - c.z;
+      if (dx * dx + dy * dy + dz * dz < r * r)
+      {
+        expected.push_back(i);
+      }
+    }
+    std::sort(found.begin(), found.end());
+    ASSERT_EQ(found, expected) << "query " << q;
   }
 }
 

@@ -106,8 +106,10 @@ GLS_ALWAYS_INLINE void evaluate(
       for (std::int64_t y = block.y0; y <= block.y1; ++y)
       {
         std::uint64_t begin, end;
-        blockRow(g, block, z, y, &begin, &end);
-        addRun(g, p, b, r * r, begin, end, bins);
+        if (blockRow(g, block, z, y, &begin, &end))
+        {
+          addRun(g, p, b, r * r, begin, end, bins);
+        }
       }
     }
   }

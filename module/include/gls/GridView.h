@@ -2,6 +2,7 @@
 // same ball query runs on the host and on the device. Built by NeighborGrid.
 #pragma once
 
+#include "gls/Numeric.h"
 #include "gls/Vec3.h"
 
 #include <cstddef>
@@ -38,30 +39,80 @@ GLS_INLINE std::int64_t gridCellCoordinate(double v, double origin, double invCe
   return static_cast<std::int64_t>(c);
 }
 
-/// The block of cells [x0, x1] x [y0, y1] x [z0, z1] that a ball of radius r around c overlaps (clamped to the grid).
+/// The block of cells [x0, x1] x [y0, y1] x [z0, z1] that a ball of radius r around c overlaps (clamped to the
+/// grid), with what blockRow needs to narrow each row to the ball.
 struct CellBlock
 {
   std::int64_t x0, x1, y0, y1, z0, z1;
+  Vec3 center;   ///< the ball's center
+  double reach;  ///< the ball's radius plus the margin
+  double margin; ///< covers the rounding of cell bounds (length unit); negative: rows are not narrowed
 };
+
+GLS_INLINE double absoluteValue(double v)
+{
+  return v < 0.0 ? -v : v;
+}
 
 GLS_INLINE CellBlock ballCellBlock(const GridView& g, const Vec3& c, double r)
 {
-  return { gridCellCoordinate(c.x - r, g.origin.x, g.invCellSize, g.dims[0]),
-    gridCellCoordinate(c.x + r, g.origin.x, g.invCellSize, g.dims[0]),
-    gridCellCoordinate(c.y - r, g.origin.y, g.invCellSize, g.dims[1]),
-    gridCellCoordinate(c.y + r, g.origin.y, g.invCellSize, g.dims[1]),
-    gridCellCoordinate(c.z - r, g.origin.z, g.invCellSize, g.dims[2]),
-    gridCellCoordinate(c.z + r, g.origin.z, g.invCellSize, g.dims[2]) };
+  CellBlock b;
+  b.x0 = gridCellCoordinate(c.x - r, g.origin.x, g.invCellSize, g.dims[0]);
+  b.x1 = gridCellCoordinate(c.x + r, g.origin.x, g.invCellSize, g.dims[0]);
+  b.y0 = gridCellCoordinate(c.y - r, g.origin.y, g.invCellSize, g.dims[1]);
+  b.y1 = gridCellCoordinate(c.y + r, g.origin.y, g.invCellSize, g.dims[1]);
+  b.z0 = gridCellCoordinate(c.z - r, g.origin.z, g.invCellSize, g.dims[2]);
+  b.z1 = gridCellCoordinate(c.z + r, g.origin.z, g.invCellSize, g.dims[2]);
+  b.center = c;
+  // A margin far above the rounding of origin + index * cellSize and of the cell assignment of a point.
+  double scale = absoluteValue(c.x) + absoluteValue(c.y) + absoluteValue(c.z) + absoluteValue(g.origin.x) +
+    absoluteValue(g.origin.y) + absoluteValue(g.origin.z) +
+    g.cellSize * static_cast<double>(g.dims[0] + g.dims[1] + g.dims[2]);
+  b.margin = 1e-12 * scale + 1e-9 * r;
+  b.reach = r + b.margin;
+  if (!(b.margin < 1e300) || !(g.cellSize < 1e300)) // infinite cells or extents: no narrowing
+  {
+    b.margin = -1.0;
+  }
+  return b;
 }
 
-/// The sorted points of one grid row (z, y) of the block: [*begin, *end). Cells of one grid row are contiguous in
-/// memory, so each row of the cell block is one run of points.
-GLS_INLINE void blockRow(
+/// Distance from v to the interval [lo, hi] (0 inside).
+GLS_INLINE double distanceToInterval(double v, double lo, double hi)
+{
+  return v < lo ? lo - v : (v > hi ? v - hi : 0.0);
+}
+
+/// The sorted points of grid row (z, y) of the block that may lie in the ball: [*begin, *end), the row's cells
+/// narrowed to the ball's chord through the row's slab (cells of one grid row are contiguous in memory, so this is
+/// one run of points). Returns false when the slab misses the ball. Conservative: no point of the ball is left out.
+GLS_INLINE bool blockRow(
   const GridView& g, const CellBlock& b, std::int64_t z, std::int64_t y, std::uint64_t* begin, std::uint64_t* end)
 {
+  std::int64_t x0 = b.x0, x1 = b.x1;
+  if (b.margin >= 0.0)
+  {
+    const double ylo = g.origin.y + static_cast<double>(y) * g.cellSize;
+    const double zlo = g.origin.z + static_cast<double>(z) * g.cellSize;
+    double dy = distanceToInterval(b.center.y, ylo, ylo + g.cellSize) - b.margin;
+    double dz = distanceToInterval(b.center.z, zlo, zlo + g.cellSize) - b.margin;
+    dy = dy > 0.0 ? dy : 0.0;
+    dz = dz > 0.0 ? dz : 0.0;
+    const double rest = b.reach * b.reach - dy * dy - dz * dz;
+    if (!(rest > 0.0))
+    {
+      return false;
+    }
+    const double half = squareRoot(rest) + b.margin;
+    const std::int64_t lo = gridCellCoordinate(b.center.x - half, g.origin.x, g.invCellSize, g.dims[0]);
+    const std::int64_t hi = gridCellCoordinate(b.center.x + half, g.origin.x, g.invCellSize, g.dims[0]);
+    x0 = lo > x0 ? lo : x0;
+    x1 = hi < x1 ? hi : x1;
+  }
   const std::int64_t row = (z * g.dims[1] + y) * g.dims[0];
-  *begin = g.cellStart[row + b.x0];
-  *end = g.cellStart[row + b.x1 + 1];
+  *begin = g.cellStart[row + x0];
+  *end = g.cellStart[row + x1 + 1];
+  return *begin < *end;
 }
 
 /// Calls f(sortedIndex, x, d2) for every grid point strictly inside the ball of radius r around c, where
@@ -80,7 +131,10 @@ GLS_INLINE void forEachInBall(const GridView& g, const Vec3& c, double r, F&& f)
     for (std::int64_t y = b.y0; y <= b.y1; ++y)
     {
       std::uint64_t begin, end;
-      blockRow(g, b, z, y, &begin, &end);
+      if (!blockRow(g, b, z, y, &begin, &end))
+      {
+        continue;
+      }
       for (std::uint64_t i = begin; i < end; ++i)
       {
         const Vec3 x = g.points[i] - c;
