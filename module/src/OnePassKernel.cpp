@@ -65,6 +65,7 @@ GLS_ALWAYS_INLINE void addRun(const GridView& g, const Vec3& p, const ScaleBinni
   std::uint64_t begin, std::uint64_t end, Moments* bins)
 {
   std::uint64_t inside[kBatch];
+  double squared[kBatch];
   int scale[kBatch];
   for (std::uint64_t c = begin; c < end; c += kBatch)
   {
@@ -73,18 +74,19 @@ GLS_ALWAYS_INLINE void addRun(const GridView& g, const Vec3& p, const ScaleBinni
     int n = 0;
     for (int j = 0; j < m; ++j)
     {
+      const double d2 = squaredNorm(g.points[c + j] - p);
       inside[n] = c + j;
-      n += squaredNorm(g.points[c + j] - p) < r2 ? 1 : 0;
+      squared[n] = d2;
+      n += d2 < r2 ? 1 : 0;
     }
     for (int j = 0; j < n; ++j)
     {
-      scale[j] = firstScaleHolding(b, squaredNorm(g.points[inside[j]] - p));
+      scale[j] = firstScaleHolding(b, squared[j]);
     }
     for (int j = 0; j < n; ++j)
     {
       const std::uint64_t i = inside[j];
-      const Vec3 x = g.points[i] - p;
-      addToMomentsVectorized(bins[scale[j]], x, squaredNorm(x), g.normals[i]);
+      addToMomentsVectorized(bins[scale[j]], g.points[i] - p, squared[j], g.normals[i]);
     }
   }
 }
