@@ -32,6 +32,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "gls/Descriptors.h"
+#include "gls/OnePassKernel.h"
 #include "gls/ScaleSampling.h"
 #include "gls/ScaleSpaceEngine.h"
 
@@ -201,7 +202,8 @@ int main(int argc, char* argv[])
     }
   }
   const bool all = which == "all";
-  std::printf("threads: %d\n", gls::resolveThreadCount(threads));
+  std::printf("threads: %d; one-pass CPU kernel build: %s\n", gls::resolveThreadCount(threads),
+    gls::onePassKernelBuild());
   std::map<std::string, double> seconds;
 
   if (all || which == "P1" || which == "P2" || which == "P3" || which == "P1-one-pass")

@@ -178,6 +178,7 @@ TEST(OnePass, BinningTableAgreesWithBinarySearch)
   const std::vector<std::vector<double>> lists = { gls::sampleScales(0.01, 1.0, 20, gls::ScaleSampling::Quadratic),
     gls::sampleScales(1e-4, 1.0, 300, gls::ScaleSampling::Logarithmic), { 0.5, 0.50000001, 0.9, 3.0 }, { 2.0 } };
   std::mt19937_64 rng(3);
+  int cellsWithSeveralScales = 0; // the lists with tiny gaps must exercise the binary-search fallback
   for (const auto& scales : lists)
   {
     gls::ScaleSpaceSettings settings;
@@ -202,10 +203,11 @@ TEST(OnePass, BinningTableAgreesWithBinarySearch)
     {
       ambiguous += cell.base < 0 ? 1 : 0;
     }
-    if (table.cells.size() < 32768)
+    if (table.cells.size() < static_cast<std::size_t>(gls::kMaxBinningCells))
     {
       EXPECT_EQ(ambiguous, 0);
     }
+    cellsWithSeveralScales += ambiguous;
     // Random squared distances, the squared scales and their neighbouring doubles, and the cell edges.
     std::vector<double> probes;
     std::uniform_real_distribution<double> u(0.0, squared.back());
@@ -234,4 +236,5 @@ TEST(OnePass, BinningTableAgreesWithBinarySearch)
       ASSERT_TRUE(k == 0 || d2 >= squared[k - 1]);
     }
   }
+  EXPECT_GT(cellsWithSeveralScales, 0);
 }

@@ -98,8 +98,8 @@ BinningTable makeBinningTable(const std::vector<double>& squaredScales)
   {
     gap = std::min(gap, squaredScales[k] - squaredScales[k - 1]);
   }
-  const double wanted = gap > 0.0 ? std::ceil(top / gap) + 1.0 : 32768.0;
-  const int size = static_cast<int>(std::min(32768.0, std::max(1024.0, wanted)));
+  const double wanted = gap > 0.0 ? std::ceil(top / gap) + 1.0 : static_cast<double>(kMaxBinningCells);
+  const int size = static_cast<int>(std::min(static_cast<double>(kMaxBinningCells), std::max(1024.0, wanted)));
   t.inverseCellWidth = size / top;
   t.cells.assign(static_cast<std::size_t>(size), BinningCell{ std::numeric_limits<double>::infinity(), 0, 0 });
   // The cell of each squared scale, computed as the lookup computes the cell of a squared distance.

@@ -26,10 +26,14 @@ std::string checkScaleRange(double minScale, double maxScale, int count);
 /// Empty when the list is non-empty, finite, positive and strictly increasing; else the reason.
 std::string checkScaleList(const std::vector<double>& scales);
 
+/// Largest binning table: 8,192 cells of 16 bytes, small enough to stay in a core's L2 cache (measured on P2, 1,000
+/// scales: 8.24 s against 8.49 s with 32,768 cells).
+constexpr int kMaxBinningCells = 8192;
+
 /// The binning table of ScaleBinning (PointScaleSpace.h) for increasing positive squared scales, and its
 /// inverseCellWidth (size / squaredScales.back()). The size makes a cell narrower than the smallest gap between
-/// squared scales, so that a cell holds at most one of them, within 1,024 and 32,768 cells (beyond that, the cells
-/// holding several fall back to the binary search).
+/// squared scales, so that a cell holds at most one of them, within 1,024 and kMaxBinningCells cells (beyond that,
+/// the cells holding several fall back to the binary search).
 struct BinningTable
 {
   std::vector<BinningCell> cells;

@@ -1,5 +1,6 @@
 // The CUDA backend: the device sorts the grid points by cell (thrust), then one thread per evaluation point runs
-// evaluateAllScales, the same host/device code as the CPU engine, in double precision. Inputs larger than the
+// evaluateAllScales in double precision: the host/device loop whose binning, moment sums and fits the CPU kernel
+// (OnePassKernel.h) shares, and which the core tests run on the host against it. Inputs larger than the
 // device's free memory allows are processed in chunks. Every CUDA call is checked and turned into an error message.
 #include "gls/Backend.h"
 
