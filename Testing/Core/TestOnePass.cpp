@@ -20,6 +20,31 @@ using namespace glstest;
 namespace
 {
 
+/// The scales' squared values, binning table and ScaleBinning view, as the engine builds them.
+struct TestBinning
+{
+  explicit TestBinning(const std::vector<double>& scales)
+    : Scales(scales)
+  {
+    for (double t : scales)
+    {
+      this->Squared.push_back(t * t);
+    }
+    this->Table = gls::makeBinningTable(this->Squared);
+    this->View.scales = this->Scales.data();
+    this->View.squaredScales = this->Squared.data();
+    this->View.count = static_cast<int>(this->Scales.size());
+    this->View.table = this->Table.cells.data();
+    this->View.tableSize = static_cast<int>(this->Table.cells.size());
+    this->View.inverseCellWidth = this->Table.inverseCellWidth;
+  }
+  TestBinning(const TestBinning&) = delete;
+  TestBinning& operator=(const TestBinning&) = delete;
+  std::vector<double> Scales, Squared;
+  gls::BinningTable Table;
+  gls::ScaleBinning View;
+};
+
 /// Largest relative difference between two samples of scale t over the dimensionless descriptors.
 double descriptorDifference(const gls::ScaleSample& p, const gls::ScaleSample& q, double t)
 {
@@ -97,19 +122,9 @@ TEST(OnePass, CpuKernelAgreesWithTheDeviceLoop)
   // (bitwise equal where the compiler cannot fuse multiply-adds), the AVX2 build fuses them (close).
   const Cloud c = paraboloid(70, 1.0, 0.7, 0.3, 0.02, 0.1, 11);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 20, gls::ScaleSampling::Quadratic);
-  std::vector<double> squared, unitNormals;
-  for (double t : scales)
-  {
-    squared.push_back(t * t);
-  }
-  const gls::BinningTable table = gls::makeBinningTable(squared);
-  gls::ScaleBinning b;
-  b.scales = scales.data();
-  b.squaredScales = squared.data();
-  b.count = static_cast<int>(scales.size());
-  b.table = table.cells.data();
-  b.tableSize = static_cast<int>(table.cells.size());
-  b.inverseCellWidth = table.inverseCellWidth;
+  const TestBinning binning(scales);
+  const gls::ScaleBinning& b = binning.View;
+  std::vector<double> unitNormals;
   std::vector<unsigned char> admit;
   gls::normalizeAndAdmit(c.points.data(), c.normals.data(), c.size(), unitNormals, admit);
   gls::NeighborGrid grid;
@@ -181,22 +196,10 @@ TEST(OnePass, BinningTableAgreesWithBinarySearch)
   int cellsWithSeveralScales = 0; // the lists with tiny gaps must exercise the binary-search fallback
   for (const auto& scales : lists)
   {
-    gls::ScaleSpaceSettings settings;
-    settings.scales = scales;
-    const std::vector<double> xyz = { 0, 0, 0 }, nrm = { 0, 0, 1 };
-    std::vector<double> squared;
-    for (double t : scales)
-    {
-      squared.push_back(t * t);
-    }
-    const gls::BinningTable table = gls::makeBinningTable(squared);
-    gls::ScaleBinning b;
-    b.scales = scales.data();
-    b.squaredScales = squared.data();
-    b.count = static_cast<int>(scales.size());
-    b.table = table.cells.data();
-    b.tableSize = static_cast<int>(table.cells.size());
-    b.inverseCellWidth = table.inverseCellWidth;
+    const TestBinning binning(scales);
+    const gls::ScaleBinning& b = binning.View;
+    const std::vector<double>& squared = binning.Squared;
+    const gls::BinningTable& table = binning.Table;
     // Cells narrower than the smallest gap hold at most one squared scale, unless the table is at its size limit.
     int ambiguous = 0;
     for (const gls::BinningCell& cell : table.cells)
