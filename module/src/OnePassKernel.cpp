@@ -95,6 +95,10 @@ GLS_ALWAYS_INLINE void evaluate(
   const GridView& g, const Vec3& p, const ScaleBinning& shared, double minNeighbors, Moments* bins, ScaleSample* out)
 {
   const ScaleBinning b = shared; // a local copy: the stores to the bins cannot alias it
+  if (b.count <= 0)
+  {
+    return;
+  }
   std::memset(static_cast<void*>(bins), 0, sizeof(Moments) * static_cast<std::size_t>(b.count)); // all 0.0
   const double r = b.scales[b.count - 1];
   if (g.count > 0 && r > 0.0)

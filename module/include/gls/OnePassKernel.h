@@ -18,7 +18,8 @@ enum class CpuKernelBuild
   Portable = 1 ///< the build for any x86-64 (SSE2) processor, whatever this one has
 };
 
-/// Fits every scale of the evaluation point p in one pass, as evaluateAllScales. bins: S scratch moment sets.
+/// Fits every scale of the evaluation point p in one pass, as evaluateAllScales. bins: S scratch moment sets; out:
+/// S samples (nothing is written when there are no scales).
 void evaluateAllScalesOnCpu(const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors,
   Moments* bins, ScaleSample* out, CpuKernelBuild build = CpuKernelBuild::Fastest);
 

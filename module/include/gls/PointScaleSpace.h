@@ -92,6 +92,10 @@ GLS_INLINE void fitAllScalesFromBins(const ScaleBinning& b, double minNeighbors,
 GLS_INLINE void evaluateAllScales(
   const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors, Moments* bins, ScaleSample* out)
 {
+  if (b.count <= 0)
+  {
+    return;
+  }
   for (int k = 0; k < b.count; ++k)
   {
     clearMoments(bins[k]);
