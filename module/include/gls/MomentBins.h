@@ -1,8 +1,8 @@
 // The one-pass moment formulation (gls-math.md "All scales in one pass"). Inside the ball,
 // w = 1 - 2 d^2/t^2 + d^4/t^4 and dw/dt = 4 d^2/t^3 - 4 d^4/t^5, so every weighted sum at scale t is a combination
 // of the un-weighted moments A_k(t) = sum_{d_i < t} d_i^(2k) f_i, k = 0, 1, 2, of the nine values
-// f_i = (1, x_i, n_i, x_i . n_i, |x_i|^2) (25 distinct sums, since |x_i|^2 = d_i^2). A neighbour is added once, into the bin of the first scale whose open
-// ball holds it; a prefix sum over the bins gives A_k at every scale.
+// f_i = (1, x_i, n_i, x_i . n_i, |x_i|^2): 25 distinct sums, since |x_i|^2 = d_i^2. A neighbour is added once, into
+// the bin of the first scale whose open ball holds it; a running sum over the bins gives A_k at every scale.
 #pragma once
 
 #include "gls/WeightedSums.h"
@@ -43,7 +43,7 @@ GLS_INLINE void addToMoments(Moments& a, const Vec3& x, double d2, const Vec3& n
   a.m[3 * kMomentValues] += d4 * d2;
 }
 
-/// a += b (used by the prefix sum over scale bins).
+/// a += b (used by the running sum over scale bins).
 GLS_INLINE void addMoments(Moments& a, const Moments& b)
 {
   for (int i = 0; i < kMomentCount; ++i)
