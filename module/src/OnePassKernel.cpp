@@ -17,15 +17,14 @@ namespace
 
 constexpr int kBatch = 64;
 
+#if defined(__GNUC__)
 /// Four doubles (GCC/clang vector extension: two SSE2 registers in the baseline build, one AVX register in the
 /// AVX2 build). Loaded and stored through memcpy, so no aliasing rule is bent. The helpers are always inlined, so
 /// the vector-argument ABI that -Wpsabi warns about never applies.
 typedef double Double4 __attribute__((vector_size(32)));
 
-#if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
-#endif
 
 GLS_ALWAYS_INLINE Double4 load4(const double* m)
 {
@@ -56,8 +55,14 @@ GLS_ALWAYS_INLINE void addToMomentsVectorized(Moments& a, const Vec3& x, double 
   m[24] += d4 * d2;
 }
 
-#if defined(__GNUC__)
 #pragma GCC diagnostic pop
+
+#else
+/// Compilers without the GCC/clang vector extension add the moments with the scalar addToMoments.
+GLS_ALWAYS_INLINE void addToMomentsVectorized(Moments& a, const Vec3& x, double d2, const Vec3& n)
+{
+  addToMoments(a, x, d2, n);
+}
 #endif
 
 /// Adds the candidates [begin, end) of one grid row that lie inside the open ball of squared radius r2 around p.
