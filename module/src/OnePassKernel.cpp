@@ -105,6 +105,8 @@ GLS_ALWAYS_INLINE void evaluate(
     return;
   }
   std::memset(static_cast<void*>(bins), 0, sizeof(Moments) * static_cast<std::size_t>(b.count)); // all 0.0
+  // The rows of forEachInBall, written out: a callback passed to that template would be compiled once, for the
+  // portable build, and called from the AVX2 build (measured: 39 s instead of 5.9 s on P1, one thread).
   const double r = b.scales[b.count - 1];
   if (g.count > 0 && r > 0.0)
   {

@@ -49,11 +49,6 @@ struct CellBlock
   double margin; ///< covers the rounding of cell bounds (length unit); negative: rows are not narrowed
 };
 
-GLS_INLINE double absoluteValue(double v)
-{
-  return v < 0.0 ? -v : v;
-}
-
 GLS_INLINE CellBlock ballCellBlock(const GridView& g, const Vec3& c, double r)
 {
   CellBlock b;
@@ -65,12 +60,11 @@ GLS_INLINE CellBlock ballCellBlock(const GridView& g, const Vec3& c, double r)
   b.z1 = gridCellCoordinate(c.z + r, g.origin.z, g.invCellSize, g.dims[2]);
   b.center = c;
   // A margin far above the rounding of origin + index * cellSize and of the cell assignment of a point.
-  double scale = absoluteValue(c.x) + absoluteValue(c.y) + absoluteValue(c.z) + absoluteValue(g.origin.x) +
-    absoluteValue(g.origin.y) + absoluteValue(g.origin.z) +
-    g.cellSize * static_cast<double>(g.dims[0] + g.dims[1] + g.dims[2]);
+  const double scale = absolute(c.x) + absolute(c.y) + absolute(c.z) + absolute(g.origin.x) + absolute(g.origin.y) +
+    absolute(g.origin.z) + g.cellSize * static_cast<double>(g.dims[0] + g.dims[1] + g.dims[2]);
   b.margin = 1e-12 * scale + 1e-9 * r;
   b.reach = r + b.margin;
-  if (!(b.margin < 1e300) || !(g.cellSize < 1e300)) // infinite cells or extents: no narrowing
+  if (!isFinite(b.margin) || !isFinite(g.cellSize)) // infinite cells or extents: no narrowing
   {
     b.margin = -1.0;
   }
