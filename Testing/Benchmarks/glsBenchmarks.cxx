@@ -174,6 +174,43 @@ void header()
     std::string(13, '-').c_str());
 }
 
+/// The tuples of a 3-component array, interleaved.
+std::vector<double> tuples(vtkDataArray* a)
+{
+  std::vector<double> v(3 * static_cast<std::size_t>(a->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    a->GetTuple(i, &v[3 * i]);
+  }
+  return v;
+}
+
+/// How two sets of unit normals (interleaved, same points) agree up to sign: the largest 1 - |u . v| and the number
+/// of points where it is above 1e-9.
+struct NormalAgreement
+{
+  double worst = 0.0;
+  long long above = 0;
+};
+
+NormalAgreement agreement(const std::vector<double>& u, const std::vector<double>& v)
+{
+  NormalAgreement r;
+  for (std::size_t i = 0; i < u.size(); i += 3)
+  {
+    const double gap = 1.0 - std::abs(u[i] * v[i] + u[i + 1] * v[i + 1] + u[i + 2] * v[i + 2]);
+    r.worst = std::max(r.worst, gap);
+    r.above += gap > 1e-9 ? 1 : 0;
+  }
+  return r;
+}
+
+/// 1 - |n . ref| for a normal n against a long-double reference, the product taken in long double.
+double gapToReference(const double* n, const Eigen::Matrix<long double, 3, 1>& ref)
+{
+  return 1.0 - std::abs(static_cast<double>(n[0] * ref(0) + n[1] * ref(1) + n[2] * ref(2)));
+}
+
 std::vector<double> relativeScales(const Cloud& c, int S, gls::ScaleSampling sampling)
 {
   return gls::sampleScales(0.008 * c.diagonal, 0.08 * c.diagonal, S, sampling);
@@ -274,22 +311,12 @@ int main(int argc, char* argv[])
     vtk->Update();
     Measure mv{ tv.seconds(), tv.utilisation(), 16e6 };
     row("P4 vtkPCANormalEstimation k = 16 (STDThread)", 1e6, 1, mv);
-    vtkDataArray* a = ours->GetOutput()->GetPointData()->GetNormals();
-    vtkDataArray* b = vtk->GetOutput()->GetPointData()->GetNormals();
-    double worst = 0.0;
-    vtkIdType above = 0;
-    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
-    {
-      double u[3], v[3];
-      a->GetTuple(i, u);
-      b->GetTuple(i, v);
-      const double gap = 1.0 - std::abs(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
-      worst = std::max(worst, gap);
-      above += gap > 1e-9 ? 1 : 0;
-    }
+    const std::vector<double> glsNormals = tuples(ours->GetOutput()->GetPointData()->GetNormals());
+    const std::vector<double> vtkNormals = tuples(vtk->GetOutput()->GetPointData()->GetNormals());
+    const NormalAgreement withVtk = agreement(glsNormals, vtkNormals);
     std::printf("P4: vtkPCANormalEstimation / GLS = %.2fx (target >= 2); 1 - |n_gls . n_vtk|: max %.2e, above 1e-9 "
                 "at %lld of %lld points\n",
-      mv.seconds / m.seconds, worst, static_cast<long long>(above), static_cast<long long>(a->GetNumberOfTuples()));
+      mv.seconds / m.seconds, withVtk.worst, withVtk.above, static_cast<long long>(glsNormals.size() / 3));
     std::vector<double> cgal; // CGAL's normals, when the optional column is built
 #ifdef GLS_BENCHMARK_WITH_CGAL
     {
@@ -297,19 +324,9 @@ int main(int argc, char* argv[])
       cgalPcaNormals(c.xyz, 16, threads, cgal);
       Measure mc{ tc.seconds(), tc.utilisation(), 16e6 };
       row("P4 CGAL pca_estimate_normals k = 16 (TBB)", 1e6, 1, mc);
-      double worstCgal = 0.0;
-      vtkIdType aboveCgal = 0;
-      for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
-      {
-        double u[3];
-        a->GetTuple(i, u);
-        const double* v = &cgal[3 * i];
-        const double gap = 1.0 - std::abs(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]);
-        worstCgal = std::max(worstCgal, gap);
-        aboveCgal += gap > 1e-9 ? 1 : 0;
-      }
+      const NormalAgreement withCgal = agreement(glsNormals, cgal);
       std::printf("P4: CGAL / GLS = %.2fx; 1 - |n_gls . n_cgal|: max %.2e, above 1e-9 at %lld points\n",
-        mc.seconds / m.seconds, worstCgal, static_cast<long long>(aboveCgal));
+        mc.seconds / m.seconds, withCgal.worst, withCgal.above);
     }
 #endif
     // Who is right where they differ: a third computation in long double (brute-force 16 nearest, Eigen's
@@ -350,18 +367,11 @@ int main(int argc, char* argv[])
         }
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix<long double, 3, 3>> solver(cov);
         const Eigen::Matrix<long double, 3, 1> ref = solver.eigenvectors().col(0).normalized();
-        double u[3], v[3];
-        a->GetTuple(static_cast<vtkIdType>(q), u);
-        b->GetTuple(static_cast<vtkIdType>(q), v);
-        const double du = 1.0 - std::abs(static_cast<double>(u[0] * ref(0) + u[1] * ref(1) + u[2] * ref(2)));
-        const double dv = 1.0 - std::abs(static_cast<double>(v[0] * ref(0) + v[1] * ref(1) + v[2] * ref(2)));
-        worstOurs = std::max(worstOurs, du);
-        worstVtk = std::max(worstVtk, dv);
+        worstOurs = std::max(worstOurs, gapToReference(&glsNormals[3 * q], ref));
+        worstVtk = std::max(worstVtk, gapToReference(&vtkNormals[3 * q], ref));
         if (!cgal.empty())
         {
-          const double* w = &cgal[3 * q];
-          worstCgal = std::max(worstCgal,
-            1.0 - std::abs(static_cast<double>(w[0] * ref(0) + w[1] * ref(1) + w[2] * ref(2))));
+          worstCgal = std::max(worstCgal, gapToReference(&cgal[3 * q], ref));
         }
       }
       std::printf("P4: against a long-double reference on 500 points, max 1 - |n . n_ref|: GLS %.2e, VTK %.2e",
