@@ -67,15 +67,16 @@ GLS_INLINE void weightedSumsFromMoments(const Moments& a, double t, WeightedSums
   const double e1 = 4.0 * it2 / t, e2 = -4.0 * it4 / t;      // dw/dt =      e1 d^2 + e2 d^4
   double v[kMomentValues + 1];
   double dv[kMomentValues + 1];
-  for (int j = 0; j <= kMomentValues; ++j)
+  for (int j = 0; j < kMomentValues; ++j)
   {
-    // j = 8 is |x|^2: its moments are sum d^2, sum d^4, sum d^6.
-    const double a0 = j < kMomentValues ? a.m[j] : a.m[kMomentValues];
-    const double a1 = j < kMomentValues ? a.m[kMomentValues + j] : a.m[2 * kMomentValues];
-    const double a2 = j < kMomentValues ? a.m[2 * kMomentValues + j] : a.m[3 * kMomentValues];
+    const double a0 = a.m[j], a1 = a.m[kMomentValues + j], a2 = a.m[2 * kMomentValues + j];
     v[j] = c0 * a0 + c1 * a1 + c2 * a2;
     dv[j] = e1 * a1 + e2 * a2;
   }
+  // |x|^2 = d^2: its moments are sum d^2, sum d^4 and sum d^6.
+  const double p0 = a.m[kMomentValues], p1 = a.m[2 * kMomentValues], p2 = a.m[3 * kMomentValues];
+  v[kMomentValues] = c0 * p0 + c1 * p1 + c2 * p2;
+  dv[kMomentValues] = e1 * p1 + e2 * p2;
   s.W = v[0];
   s.P = { v[1], v[2], v[3] };
   s.N = { v[4], v[5], v[6] };
