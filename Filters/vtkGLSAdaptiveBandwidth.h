@@ -25,14 +25,22 @@
 #define vtkGLSAdaptiveBandwidth_h
 
 #include "vtkGLSFiltersModule.h"
-#include "vtkGLSScaleFilterBase.h"
+#include "vtkGLSVariationFilterBase.h"
 
-class VTKGLSFILTERS_EXPORT vtkGLSAdaptiveBandwidth : public vtkGLSScaleFilterBase
+class VTKGLSFILTERS_EXPORT vtkGLSAdaptiveBandwidth : public vtkGLSVariationFilterBase
 {
 public:
   static vtkGLSAdaptiveBandwidth* New();
-  vtkTypeMacro(vtkGLSAdaptiveBandwidth, vtkGLSScaleFilterBase);
+  vtkTypeMacro(vtkGLSAdaptiveBandwidth, vtkGLSVariationFilterBase);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// When on (default), nu comes from the arrays of an upstream vtkGLSGeometricVariation or vtkGLSScaleSpace and
+  /// their GLSScales, and this filter's scale parameters are ignored. Off: always refit at this filter's scales.
+  vtkSetMacro(ReuseInputScaleSpace, bool);
+  vtkGetMacro(ReuseInputScaleSpace, bool);
+  vtkBooleanMacro(ReuseInputScaleSpace, bool);
+  ///@}
 
   ///@{
   /// Threshold on the slope -t dnu/dt (dimensionless, >= 0). Default 0.01, the paper's value. Lower values stop
@@ -52,12 +60,12 @@ protected:
   vtkGLSAdaptiveBandwidth();
   ~vtkGLSAdaptiveBandwidth() override;
 
+  SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
   /// Distributed runs: the fit uses the ghosts within the largest scale, the smoothing the ghosts' raw bandwidths
-  /// within SmoothingRadius (see vtkGLSScaleFilterBase).
-  bool SupportsDistributedInput() const override { return true; }
+  /// within SmoothingRadius (a second exchange, of the raw values).
+  int ComputeOutputs(vtkGLSRun& run) override;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-
+  bool ReuseInputScaleSpace;
   double Threshold;
   double SmoothingRadius;
 

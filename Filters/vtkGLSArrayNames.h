@@ -1,4 +1,5 @@
 // Names of the arrays the GLS filters read and write (one place, so that filters can find each other's outputs).
+// The per-scale descriptors of vtkGLSScaleSpace (GLSTau, GLSEta, ...) are named in their table, vtkGLSDescriptors.h.
 #ifndef vtkGLSArrayNames_h
 #define vtkGLSArrayNames_h
 
@@ -6,14 +7,6 @@ namespace vtkGLSArrayNames
 {
 constexpr const char* Normals = "Normals";
 constexpr const char* Scales = "GLSScales";              // field data: the absolute scales (length)
-constexpr const char* Tau = "GLSTau";
-constexpr const char* Eta = "GLSEta";
-constexpr const char* Kappa = "GLSKappa";
-constexpr const char* Fitness = "GLSFitness";
-constexpr const char* DTau = "GLSdTau";
-constexpr const char* DEta = "GLSdEta";
-constexpr const char* DKappa = "GLSdKappa";
-constexpr const char* NeighborCount = "GLSNeighborCount";
 constexpr const char* Variation = "GLSGeometricVariation";
 constexpr const char* PertinentScaleCount = "GLSPertinentScaleCount";
 constexpr const char* PertinentScales = "GLSPertinentScales";

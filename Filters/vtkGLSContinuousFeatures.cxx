@@ -1,10 +1,9 @@
 #include "vtkGLSContinuousFeatures.h"
 
 #include "vtkGLSArrayNames.h"
+#include "vtkGLSRun.h"
 
 #include "vtkDoubleArray.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -17,53 +16,49 @@
 vtkStandardNewMacro(vtkGLSContinuousFeatures);
 
 vtkGLSContinuousFeatures::vtkGLSContinuousFeatures()
-  : Sigma(0.1)
+  : ReuseInputScaleSpace(true)
+  , Sigma(0.1)
   , FeatureMeasure(SCALE)
 {
 }
 
 vtkGLSContinuousFeatures::~vtkGLSContinuousFeatures() = default;
 
-int vtkGLSContinuousFeatures::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+vtkGLSScaleFilterBase::SampleRequest vtkGLSContinuousFeatures::GetSampleRequest(const vtkGLSRun&) const
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!this->PrepareOutput(input, output))
-  {
-    return 0;
-  }
-  const vtkIdType n = input->GetNumberOfPoints();
+  SampleRequest request;
+  request.Derivatives = true;
+  request.VariationWillDo = true;
+  request.MayReuseInput = this->ReuseInputScaleSpace;
+  return request;
+}
+
+int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)
+{
   vtkNew<vtkDoubleArray> feature;
   feature->SetName(vtkGLSArrayNames::Feature);
-  feature->SetNumberOfTuples(n);
+  feature->SetNumberOfTuples(run.Input->GetNumberOfPoints());
   const gls::FeatureMeasure measure = static_cast<gls::FeatureMeasure>(this->FeatureMeasure);
   const double sigma = this->Sigma;
-  std::vector<double> scales;
-  bool aborted = false;
-  if (!this->ReduceVariationPerPoint(
-        input,
-        [sigma, measure](const double* nu, const std::vector<double>& t) {
+  const std::vector<double>& t = run.Scales;
+  if (!this->ReduceVariation(
+        run,
+        [sigma, measure, &t](const double* nu) {
           return gls::continuousFeature(nu, t.data(), static_cast<int>(t.size()), sigma, measure);
         },
-        scales, feature->GetPointer(0), 1.0, aborted))
+        feature->GetPointer(0), 1.0))
   {
-    return 0;
+    return ABORTED; // no partial arrays
   }
-  if (aborted)
-  {
-    return 1; // no partial arrays
-  }
-  output->GetPointData()->AddArray(feature);
-  output->GetPointData()->SetActiveScalars(vtkGLSArrayNames::Feature);
-  StoreScales(output->GetFieldData(), scales);
-  this->StoreBackend(output->GetFieldData());
-  return 1;
+  run.Output->GetPointData()->AddArray(feature);
+  run.Output->GetPointData()->SetActiveScalars(vtkGLSArrayNames::Feature);
+  return COMPLETED;
 }
 
 void vtkGLSContinuousFeatures::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "ReuseInputScaleSpace: " << this->ReuseInputScaleSpace << "\n";
   os << indent << "Sigma: " << this->Sigma << "\n";
   os << indent << "FeatureMeasure: " << (this->FeatureMeasure == SCALE ? "Scale" : "LogScale") << "\n";
 }

@@ -9,7 +9,7 @@
  *
  * nu comes from an upstream GLSGeometricVariation array when present, else from upstream GLSdTau/GLSdEta/GLSdKappa
  * arrays, else it is computed here from points and normals in a fused pass that stores nothing per scale (memory
- * O(N), not O(N x scales)); see ReuseInputScaleSpace.
+ * O(N), not O(N x scales)); see ReuseInputScaleSpace and vtkGLSVariationFilterBase.
  *
  * Point-data output: GLSFeature (dimensionless, [0, 1]); NaN where no pair of consecutive scales has a defined nu.
  * Field data: GLSScales (length).
@@ -18,13 +18,13 @@
 #define vtkGLSContinuousFeatures_h
 
 #include "vtkGLSFiltersModule.h"
-#include "vtkGLSScaleFilterBase.h"
+#include "vtkGLSVariationFilterBase.h"
 
-class VTKGLSFILTERS_EXPORT vtkGLSContinuousFeatures : public vtkGLSScaleFilterBase
+class VTKGLSFILTERS_EXPORT vtkGLSContinuousFeatures : public vtkGLSVariationFilterBase
 {
 public:
   static vtkGLSContinuousFeatures* New();
-  vtkTypeMacro(vtkGLSContinuousFeatures, vtkGLSScaleFilterBase);
+  vtkTypeMacro(vtkGLSContinuousFeatures, vtkGLSVariationFilterBase);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum FeatureMeasureType
@@ -32,6 +32,15 @@ public:
     SCALE = 0,    ///< integrate in t
     LOG_SCALE = 1 ///< integrate in ln t
   };
+
+  ///@{
+  /// When on (default), nu (or the derivatives it is made of) comes from the arrays of an upstream
+  /// vtkGLSGeometricVariation or vtkGLSScaleSpace and their GLSScales, and this filter's scale parameters are
+  /// ignored. Off: always refit at this filter's scales.
+  vtkSetMacro(ReuseInputScaleSpace, bool);
+  vtkGetMacro(ReuseInputScaleSpace, bool);
+  vtkBooleanMacro(ReuseInputScaleSpace, bool);
+  ///@}
 
   ///@{
   /// Scale of the tanh remapping of nu (dimensionless, > 0). Default 0.1.
@@ -51,9 +60,10 @@ protected:
   vtkGLSContinuousFeatures();
   ~vtkGLSContinuousFeatures() override;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  bool SupportsDistributedInput() const override { return true; }
+  SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
+  int ComputeOutputs(vtkGLSRun& run) override;
 
+  bool ReuseInputScaleSpace;
   double Sigma;
   int FeatureMeasure;
 

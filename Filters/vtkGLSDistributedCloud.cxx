@@ -229,6 +229,66 @@ bool vtkGLSDistributedCloud::ExchangeGhosts(const double* rows, std::size_t n, i
   return true;
 }
 
+bool vtkGLSDistributedCloud::AppendGhosts(std::vector<double>& points, std::size_t owned,
+  std::initializer_list<Column> columns, double reach, std::size_t& ghostCount) const
+{
+  ghostCount = 0;
+  if (!this->Controller)
+  {
+    return true;
+  }
+  int width = 3;
+  for (const Column& c : columns)
+  {
+    width += c.Width;
+  }
+  const std::size_t w = static_cast<std::size_t>(width);
+  std::vector<double> rows(w * owned);
+  for (std::size_t i = 0; i < owned; ++i)
+  {
+    double* row = &rows[w * i];
+    std::copy(&points[3 * i], &points[3 * i] + 3, row);
+    row += 3;
+    for (const Column& c : columns)
+    {
+      const std::size_t cw = static_cast<std::size_t>(c.Width);
+      std::copy(&(*c.Values)[cw * i], &(*c.Values)[cw * i] + cw, row);
+      row += cw;
+    }
+  }
+  std::vector<double> ghosts;
+  if (!this->ExchangeGhosts(rows.data(), owned, width, reach, ghosts, ghostCount))
+  {
+    return false;
+  }
+  points.reserve(3 * (owned + ghostCount));
+  for (std::size_t g = 0; g < ghostCount; ++g)
+  {
+    const double* row = &ghosts[w * g];
+    points.insert(points.end(), row, row + 3);
+    row += 3;
+    for (const Column& c : columns)
+    {
+      c.Values->insert(c.Values->end(), row, row + c.Width);
+      row += c.Width;
+    }
+  }
+  return true;
+}
+
+bool vtkGLSDistributedCloud::AllInOnePlaneZ(bool planar, bool any, double z) const
+{
+  if (!this->Controller)
+  {
+    return planar;
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  const bool allPlanar = this->AllTrue(planar || !any);
+  const bool anywhere = this->Max(any ? 1.0 : 0.0) > 0.5;
+  const double zmin = this->Min(any ? z : inf), zmax = this->Max(any ? z : -inf);
+  return allPlanar && anywhere && zmin == zmax;
+}
+
 std::vector<long long> vtkGLSDistributedCloud::GlobalIds(vtkPolyData* piece) const
 {
   const vtkIdType n = piece ? piece->GetNumberOfPoints() : 0;

@@ -7,7 +7,7 @@
  * rank needs the other ranks' points near its piece: its *ghosts*. This class does that exchange, and the few
  * reductions that make a distributed run equal a serial one, through a vtkMultiProcessController (ParaView's own
  * MPI controller in pvbatch/pvserver):
- * - ExchangeGhosts: every rank announces the bounding box of its finite points and the reach it needs around it;
+ * - AppendGhosts: every rank announces the bounding box of its finite points and the reach it needs around it;
  *   every rank then sends each other rank its points (rows of doubles, coordinates first, then e.g. normals) that
  *   lie within that rank's reach of its box. Pairwise blocking messages in a round-robin schedule (no deadlock, no
  *   MPI-specific calls). A rank receives whole rows; it computes only for its owned points and drops the ghosts.
@@ -24,7 +24,7 @@
  * on and then calls AllTrue before the next collective step, so that an error on one rank stops every rank instead
  * of hanging them.
  *
- * Testing switch: the environment variable GLS_DISTRIBUTED_NO_GHOSTS=1 makes ExchangeGhosts send nothing (each
+ * Testing switch: the environment variable GLS_DISTRIBUTED_NO_GHOSTS=1 makes AppendGhosts send nothing (each
  * rank then computes on its piece alone, which must differ from the serial run near piece boundaries; the MPI
  * tests use it to show that they can fail).
  */
@@ -34,6 +34,7 @@
 #include "vtkType.h"
 
 #include <cstddef>
+#include <initializer_list>
 #include <vector>
 
 class vtkMultiProcessController;
@@ -61,12 +62,25 @@ public:
   /// triples). False when no rank has a finite point (bounds untouched).
   bool FiniteBounds(const double* xyz, std::size_t n, double bounds[6]) const;
 
-  /// Exchanges ghost rows: `rows` holds n rows of `width` doubles (x, y, z first) of this rank's points; `reach`
-  /// (a length >= 0, or infinity for everything) is how far around its own box this rank needs the other ranks'
-  /// points. Appends to `ghosts` the rows the other ranks sent (in rank order) and returns their number in
-  /// `ghostCount`. Rows with non-finite coordinates are never sent. False on a communication error.
-  bool ExchangeGhosts(const double* rows, std::size_t n, int width, double reach, std::vector<double>& ghosts,
-    std::size_t& ghostCount) const;
+  /// One attribute column of a piece's points for AppendGhosts: `Width` values per point.
+  struct Column
+  {
+    std::vector<double>* Values;
+    int Width;
+  };
+
+  /// Appends the ghosts of a piece: the other ranks' points within `reach` (a length >= 0, or infinity for
+  /// everything) of this piece's box of finite points, in rank order, to `points` (3 per point, the first `owned`
+  /// of them this rank's) and their attribute values to each column (which hold `owned` points' values on entry).
+  /// `ghostCount` receives how many were appended. Collective; a serial run appends nothing. False on a
+  /// communication error.
+  bool AppendGhosts(std::vector<double>& points, std::size_t owned, std::initializer_list<Column> columns,
+    double reach, std::size_t& ghostCount) const;
+
+  /// Whether the points of all the pieces lie in one plane z = const, from each rank's verdict on its own (see
+  /// gls::PlaneZ): `any` point counts, they are `planar` in the plane z = `z`. False when no point counts
+  /// anywhere. The serial identity is `planar`.
+  bool AllInOnePlaneZ(bool planar, bool any, double z) const;
 
   /// The global id of every point of `piece`: its point-data GlobalIds attribute when present (on every rank),
   /// else the rank-order numbering (offset of this rank = number of points of the ranks before it).
@@ -83,6 +97,13 @@ public:
     std::vector<double>& local) const;
 
 private:
+  /// Exchanges ghost rows: `rows` holds n rows of `width` doubles (x, y, z first) of this rank's points; `reach`
+  /// (a length >= 0, or infinity for everything) is how far around its own box this rank needs the other ranks'
+  /// points. Appends to `ghosts` the rows the other ranks sent (in rank order) and returns their number in
+  /// `ghostCount`. Rows with non-finite coordinates are never sent. False on a communication error.
+  bool ExchangeGhosts(const double* rows, std::size_t n, int width, double reach, std::vector<double>& ghosts,
+    std::size_t& ghostCount) const;
+
   vtkMultiProcessController* Controller = nullptr;
   int Rank = 0;
   int Size = 1;

@@ -1,10 +1,9 @@
 #include "vtkGLSGeometricVariation.h"
 
 #include "vtkGLSArrayNames.h"
+#include "vtkGLSRun.h"
 
 #include "vtkDoubleArray.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -53,32 +52,28 @@ public:
 } // namespace
 
 vtkGLSGeometricVariation::vtkGLSGeometricVariation()
-  : MaxNumberOfPertinentScales(3)
+  : ReuseInputScaleSpace(true)
+  , MaxNumberOfPertinentScales(3)
 {
 }
 
 vtkGLSGeometricVariation::~vtkGLSGeometricVariation() = default;
 
-int vtkGLSGeometricVariation::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+vtkGLSScaleFilterBase::SampleRequest vtkGLSGeometricVariation::GetSampleRequest(const vtkGLSRun&) const
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!this->PrepareOutput(input, output))
-  {
-    return 0;
-  }
+  SampleRequest request;
+  request.Derivatives = true;
+  request.MayReuseInput = this->ReuseInputScaleSpace;
+  request.BytesPerPointScale = 8.0; // GLSGeometricVariation, one double per point and scale
+  request.What = "the geometric variation of every scale";
+  request.Advice = "Use fewer scales, or vtkGLSContinuousFeatures, which integrates nu without storing it.";
+  return request;
+}
 
-  std::vector<double> scales;
-  OutputCost cost;
-  cost.BytesPerPointScale = 8.0; // GLSGeometricVariation, one double per point and scale
-  cost.What = "the geometric variation of every scale";
-  cost.Advice = "Use fewer scales, or vtkGLSContinuousFeatures, which integrates nu without storing it.";
-  if (!this->PrepareScaleSamples(input, false, true, scales, cost))
-  {
-    return 0;
-  }
-  const vtkIdType n = input->GetNumberOfPoints();
+int vtkGLSGeometricVariation::ComputeOutputs(vtkGLSRun& run)
+{
+  const std::vector<double>& scales = run.Scales;
+  const vtkIdType n = run.Input->GetNumberOfPoints();
   vtkNew<vtkDoubleArray> nu;
   nu->SetName(vtkGLSArrayNames::Variation);
   nu->SetNumberOfComponents(static_cast<int>(scales.size()));
@@ -94,25 +89,25 @@ int vtkGLSGeometricVariation::RequestData(
 
   VariationSink sink;
   sink.Scales = &scales;
-  sink.Weights = { this->WTau, this->WEta, this->WKappa };
+  sink.Weights = this->Weights();
   sink.K = this->MaxNumberOfPertinentScales;
   sink.Nu = nu->GetPointer(0);
   sink.Pertinent = pertinent->GetPointer(0);
   sink.Count = count->GetPointer(0);
-  if (!this->RunScaleSamples(sink))
+  if (!this->FeedSamples(run, sink))
   {
-    return 1; // aborted: no partial arrays
+    return ABORTED; // no partial arrays
   }
-  output->GetPointData()->AddArray(nu);
-  output->GetPointData()->AddArray(pertinent);
-  output->GetPointData()->AddArray(count);
-  StoreScales(output->GetFieldData(), scales);
-  this->StoreBackend(output->GetFieldData());
-  return 1;
+  vtkPointData* pd = run.Output->GetPointData();
+  pd->AddArray(nu);
+  pd->AddArray(pertinent);
+  pd->AddArray(count);
+  return COMPLETED;
 }
 
 void vtkGLSGeometricVariation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "ReuseInputScaleSpace: " << this->ReuseInputScaleSpace << "\n";
   os << indent << "MaxNumberOfPertinentScales: " << this->MaxNumberOfPertinentScales << "\n";
 }

@@ -21,14 +21,23 @@
 #define vtkGLSGeometricVariation_h
 
 #include "vtkGLSFiltersModule.h"
-#include "vtkGLSScaleFilterBase.h"
+#include "vtkGLSVariationFilterBase.h"
 
-class VTKGLSFILTERS_EXPORT vtkGLSGeometricVariation : public vtkGLSScaleFilterBase
+class VTKGLSFILTERS_EXPORT vtkGLSGeometricVariation : public vtkGLSVariationFilterBase
 {
 public:
   static vtkGLSGeometricVariation* New();
-  vtkTypeMacro(vtkGLSGeometricVariation, vtkGLSScaleFilterBase);
+  vtkTypeMacro(vtkGLSGeometricVariation, vtkGLSVariationFilterBase);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// When on (default) and the input carries the GLSdTau/GLSdEta/GLSdKappa arrays of an upstream vtkGLSScaleSpace
+  /// (and its GLSScales), nu is computed from them at their scales instead of refitting; this filter's scale
+  /// parameters are then ignored. Off: always refit at this filter's scales.
+  vtkSetMacro(ReuseInputScaleSpace, bool);
+  vtkGetMacro(ReuseInputScaleSpace, bool);
+  vtkBooleanMacro(ReuseInputScaleSpace, bool);
+  ///@}
 
   ///@{
   /// How many pertinent scales to report per point (default 3, at least 1).
@@ -40,9 +49,10 @@ protected:
   vtkGLSGeometricVariation();
   ~vtkGLSGeometricVariation() override;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  bool SupportsDistributedInput() const override { return true; }
+  SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
+  int ComputeOutputs(vtkGLSRun& run) override;
 
+  bool ReuseInputScaleSpace;
   int MaxNumberOfPertinentScales;
 
 private:

@@ -1,13 +1,11 @@
 #include "vtkGLSMultiScaleDissimilarity.h"
 
 #include "vtkGLSArrayNames.h"
-#include "vtkGLSDistributedCloud.h"
+#include "vtkGLSRun.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkMath.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -58,10 +56,19 @@ public:
   }
 };
 
+/// The query point of a run: this piece's index of it (-1 on the other ranks), its global id, its owner rank.
+struct QueryState : vtkGLSRunState
+{
+  vtkIdType Index = -1;
+  long long GlobalId = -1;
+  int Owner = 0;
+};
+
 } // namespace
 
 vtkGLSMultiScaleDissimilarity::vtkGLSMultiScaleDissimilarity()
-  : QueryPointId(0)
+  : ReuseInputScaleSpace(true)
+  , QueryPointId(0)
   , QueryPoint{ 0.0, 0.0, 0.0 }
   , UseQueryPointCoordinates(false)
   , PriorMinScale(0.0)
@@ -73,19 +80,13 @@ vtkGLSMultiScaleDissimilarity::vtkGLSMultiScaleDissimilarity()
 
 vtkGLSMultiScaleDissimilarity::~vtkGLSMultiScaleDissimilarity() = default;
 
-int vtkGLSMultiScaleDissimilarity::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+bool vtkGLSMultiScaleDissimilarity::CheckParameters(vtkGLSRun& run)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!this->PrepareOutput(input, output))
-  {
-    return 0;
-  }
+  vtkPolyData* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
-  const vtkGLSDistributedCloud& dist = this->Distributed();
-
-  // The query point (in a distributed run, `query` is this piece's index of it, -1 on the other ranks).
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  auto state = std::make_unique<QueryState>();
+  // The query point (in a distributed run, this piece's index of it, -1 on the other ranks).
   vtkIdType query = this->QueryPointId;
   double best = VTK_DOUBLE_MAX;
   if (this->UseQueryPointCoordinates)
@@ -105,29 +106,41 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
     if (query < 0 && !dist.IsParallel())
     {
       vtkErrorMacro("No input point with finite coordinates to snap the query point to.");
-      return 0;
+      return false;
     }
   }
   long long queryGlobalId = query;
-  if (dist.IsParallel() && !this->LocateDistributedQuery(input, best, query, queryGlobalId))
+  if (dist.IsParallel() && !this->LocateDistributedQuery(run, best, query, queryGlobalId, state->Owner))
   {
-    return 0;
+    return false;
   }
   if (!dist.IsParallel() && query >= n)
   {
     vtkErrorMacro("QueryPointId " << query << " is out of range: the input has " << n << " points.");
-    return 0;
+    return false;
   }
+  state->Index = query;
+  state->GlobalId = queryGlobalId;
+  run.State = std::move(state);
+  return true;
+}
 
-  std::vector<double> scales;
-  if (!this->PrepareScaleSamples(input, true, false, scales))
-  {
-    return 0;
-  }
+vtkGLSScaleFilterBase::SampleRequest vtkGLSMultiScaleDissimilarity::GetSampleRequest(const vtkGLSRun&) const
+{
+  SampleRequest request;
+  request.Descriptors = true;
+  request.MayReuseInput = this->ReuseInputScaleSpace;
+  return request;
+}
+
+int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
+{
+  const QueryState& query = static_cast<const QueryState&>(*run.State);
+  const std::vector<double>& scales = run.Scales;
   // The prior, clipped to the sampled range so that a Gaussian is centred where there are scales.
-  const double pmin = std::max(this->ToAbsoluteLength(input, this->PriorMinScale), scales.front());
+  const double pmin = std::max(this->ToAbsoluteLength(run, this->PriorMinScale), scales.front());
   const double pmax = this->PriorMaxScale > 0.0
-    ? std::min(this->ToAbsoluteLength(input, this->PriorMaxScale), scales.back())
+    ? std::min(this->ToAbsoluteLength(run, this->PriorMaxScale), scales.back())
     : scales.back();
   std::string why;
   const std::vector<double> prior =
@@ -136,29 +149,29 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
   {
     vtkErrorMacro("Invalid scale prior: " << why << " (sampled scales span [" << scales.front() << ", "
                                           << scales.back() << "]).");
-    return 0;
+    return FAILED;
   }
 
   // The query's descriptors: computed where it lives (with the ghosts of that piece), then sent to every rank.
   CaptureSink querySink;
   querySink.Samples.resize(scales.size());
   int queryStatus = 1; // 1 computed, 0 aborted
-  if (query >= 0)
+  if (query.Index >= 0)
   {
-    const std::vector<std::uint64_t> queryIds{ static_cast<std::uint64_t>(query) };
-    queryStatus = this->RunScaleSamples(querySink, &queryIds, 0.0, 0.02) ? 1 : 0;
+    const std::vector<std::uint64_t> queryIds{ static_cast<std::uint64_t>(query.Index) };
+    queryStatus = this->FeedSamples(run, querySink, &queryIds, 0.0, 0.02) ? 1 : 0;
   }
-  if (dist.IsParallel())
+  if (run.Distributed.IsParallel())
   {
     static_assert(std::is_trivially_copyable<gls::ScaleSample>::value, "sent as bytes");
     vtkMultiProcessController* c = this->GetController();
-    c->Broadcast(&queryStatus, 1, this->QueryOwner);
+    c->Broadcast(&queryStatus, 1, query.Owner);
     c->Broadcast(reinterpret_cast<char*>(querySink.Samples.data()),
-      static_cast<vtkIdType>(querySink.Samples.size() * sizeof(gls::ScaleSample)), this->QueryOwner);
+      static_cast<vtkIdType>(querySink.Samples.size() * sizeof(gls::ScaleSample)), query.Owner);
   }
   if (!queryStatus)
   {
-    return 1; // aborted
+    return ABORTED;
   }
   bool anyValid = false;
   for (std::size_t k = 0; k < scales.size(); ++k)
@@ -167,12 +180,13 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
   }
   if (!anyValid)
   {
-    vtkErrorMacro("The query point " << queryGlobalId
+    vtkErrorMacro("The query point " << query.GlobalId
                                      << " has no defined fit at any scale of the prior (non-finite coordinates, or "
                                         "too few neighbours): pick another point or larger scales.");
-    return 0;
+    return FAILED;
   }
 
+  const vtkIdType n = run.Input->GetNumberOfPoints();
   vtkNew<vtkDoubleArray> delta;
   delta->SetName(vtkGLSArrayNames::Dissimilarity);
   delta->SetNumberOfTuples(n);
@@ -186,26 +200,26 @@ int vtkGLSMultiScaleDissimilarity::RequestData(
   sink.Threshold = this->Threshold;
   sink.Delta = delta->GetPointer(0);
   sink.Similar = similar->GetPointer(0);
-  if (!this->RunScaleSamples(sink, nullptr, 0.02, 1.0))
+  if (!this->FeedSamples(run, sink, nullptr, 0.02, 1.0))
   {
-    return 1; // aborted: no partial arrays
+    return ABORTED; // no partial arrays
   }
+  vtkPolyData* output = run.Output;
   output->GetPointData()->AddArray(delta);
   output->GetPointData()->AddArray(similar);
   output->GetPointData()->SetActiveScalars(vtkGLSArrayNames::Dissimilarity);
   vtkNew<vtkIdTypeArray> queryArray;
   queryArray->SetName(vtkGLSArrayNames::QueryPointId);
-  queryArray->InsertNextValue(static_cast<vtkIdType>(queryGlobalId));
+  queryArray->InsertNextValue(static_cast<vtkIdType>(query.GlobalId));
   output->GetFieldData()->AddArray(queryArray);
-  StoreScales(output->GetFieldData(), scales);
-  this->StoreBackend(output->GetFieldData());
-  return 1;
+  return COMPLETED;
 }
 
 bool vtkGLSMultiScaleDissimilarity::LocateDistributedQuery(
-  vtkPolyData* input, double localBest2, vtkIdType& query, long long& globalId)
+  const vtkGLSRun& run, double localBest2, vtkIdType& query, long long& globalId, int& owner)
 {
-  const vtkGLSDistributedCloud& dist = this->Distributed();
+  vtkPolyData* input = run.Input;
+  const vtkGLSDistributedCloud& dist = run.Distributed;
   const std::vector<long long> ids = dist.GlobalIds(input);
   const double none = std::numeric_limits<double>::infinity();
   if (this->UseQueryPointCoordinates)
@@ -242,15 +256,15 @@ bool vtkGLSMultiScaleDissimilarity::LocateDistributedQuery(
       query = static_cast<vtkIdType>(i);
     }
   }
-  this->QueryOwner = static_cast<int>(dist.Min(query >= 0 ? dist.GetRank() : dist.GetSize()));
-  if (this->QueryOwner >= dist.GetSize())
+  owner = static_cast<int>(dist.Min(query >= 0 ? dist.GetRank() : dist.GetSize()));
+  if (owner >= dist.GetSize())
   {
     vtkErrorMacro("QueryPointId " << globalId << " is out of range: no piece has a point with that global id (the "
                                   << static_cast<long long>(dist.Sum(static_cast<double>(input->GetNumberOfPoints())))
                                   << " points are numbered by their GlobalIds, else in rank order).");
     return false;
   }
-  if (dist.GetRank() != this->QueryOwner)
+  if (dist.GetRank() != owner)
   {
     query = -1; // a duplicated global id: the lowest rank holding it owns the query
   }
@@ -260,6 +274,7 @@ bool vtkGLSMultiScaleDissimilarity::LocateDistributedQuery(
 void vtkGLSMultiScaleDissimilarity::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "ReuseInputScaleSpace: " << this->ReuseInputScaleSpace << "\n";
   os << indent << "QueryPointId: " << this->QueryPointId << "\n";
   os << indent << "QueryPoint: " << this->QueryPoint[0] << ", " << this->QueryPoint[1] << ", " << this->QueryPoint[2]
      << "\n";

@@ -22,7 +22,7 @@
 #define vtkGLSMultiScaleDissimilarity_h
 
 #include "vtkGLSFiltersModule.h"
-#include "vtkGLSScaleFilterBase.h"
+#include "vtkGLSScaleFilterBase.h" // IWYU pragma: keep
 
 class VTKGLSFILTERS_EXPORT vtkGLSMultiScaleDissimilarity : public vtkGLSScaleFilterBase
 {
@@ -36,6 +36,14 @@ public:
     BOX = 0,         ///< h = 1 inside [PriorMinScale, PriorMaxScale]
     LOG_GAUSSIAN = 1 ///< Gaussian in ln t over that range
   };
+
+  ///@{
+  /// When on (default), tau, kappa and phi come from the GLSTau/GLSKappa/GLSFitness arrays of an upstream
+  /// vtkGLSScaleSpace and its GLSScales, and this filter's scale parameters are ignored. Off: always refit.
+  vtkSetMacro(ReuseInputScaleSpace, bool);
+  vtkGetMacro(ReuseInputScaleSpace, bool);
+  vtkBooleanMacro(ReuseInputScaleSpace, bool);
+  ///@}
 
   ///@{
   /// Id of the query point (default 0). Ignored when UseQueryPointCoordinates is on. In a distributed run (several
@@ -84,15 +92,19 @@ protected:
   vtkGLSMultiScaleDissimilarity();
   ~vtkGLSMultiScaleDissimilarity() override;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  bool SupportsDistributedInput() const override { return true; }
+  /// Locates the query point (before anything is fitted): an error when it is out of range or there is no point.
+  bool CheckParameters(vtkGLSRun& run) override;
+  SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
+  int ComputeOutputs(vtkGLSRun& run) override;
 
   /// Distributed run: finds the query over all pieces (by global id, or the nearest point to QueryPoint given this
   /// piece's nearest squared distance `localBest2`), sets `query` to its index in this piece (-1 elsewhere),
-  /// `globalId`, and QueryOwner. False (with an error, on every rank) when no piece has it.
-  bool LocateDistributedQuery(vtkPolyData* input, double localBest2, vtkIdType& query, long long& globalId);
+  /// `globalId`, and `owner` (the rank whose piece holds it). False (with an error, on every rank) when no piece
+  /// has it.
+  bool LocateDistributedQuery(
+    const vtkGLSRun& run, double localBest2, vtkIdType& query, long long& globalId, int& owner);
 
-  int QueryOwner = 0; ///< the rank whose piece holds the query point (distributed runs)
+  bool ReuseInputScaleSpace;
   vtkIdType QueryPointId;
   double QueryPoint[3];
   bool UseQueryPointCoordinates;

@@ -1,21 +1,18 @@
 #include "vtkGLSNormalEstimation.h"
 
 #include "vtkGLSArrayNames.h"
-#include "vtkGLSDistributedCloud.h"
-#include "vtkGLSScaleFilterBase.h"
+#include "vtkGLSRun.h"
 
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
-#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
 #include "gls/NormalEstimation.h"
+#include "gls/Planarity.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,58 +29,31 @@ vtkGLSNormalEstimation::vtkGLSNormalEstimation()
   , Orientation(MINIMUM_SPANNING_TREE)
   , OrientationPoint{ 0.0, 0.0, 0.0 }
   , GraphNeighbors(10)
-  , NumberOfThreads(0)
 {
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::NORMALS);
-  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
-vtkGLSNormalEstimation::~vtkGLSNormalEstimation()
+vtkGLSNormalEstimation::~vtkGLSNormalEstimation() = default;
+
+int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
 {
-  this->SetController(nullptr);
-}
-
-vtkCxxSetObjectMacro(vtkGLSNormalEstimation, Controller, vtkMultiProcessController);
-
-int vtkGLSNormalEstimation::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-  return 1;
-}
-
-int vtkGLSNormalEstimation::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  output->ShallowCopy(input);
-
+  vtkPolyData* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
-  const vtkGLSDistributedCloud dist(this->Controller);
-  if (dist.IsParallel() ? !(dist.Sum(static_cast<double>(n)) > 0.0) : n < 1)
-  {
-    vtkErrorMacro("The input has no points.");
-    return 0;
-  }
+  const vtkGLSDistributedCloud& dist = run.Distributed;
   if (this->NeighborhoodType == RADIUS && !(this->Radius > 0.0 && std::isfinite(this->Radius)))
   {
     vtkErrorMacro("Radius must be a finite positive length in RADIUS mode (got " << this->Radius << ").");
-    return 0;
-  }
-  std::vector<double> xyz(3 * static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    input->GetPoint(i, &xyz[3 * i]);
+    return FAILED;
   }
   if (dist.IsParallel())
   {
-    double b[6];
-    if (dist.FiniteBounds(xyz.data(), static_cast<std::size_t>(n), b) && b[4] == b[5])
+    const gls::PlaneZ plane = gls::commonZ(run.Cloud.Points.data(), run.Cloud.Owned);
+    if (dist.AllInOnePlaneZ(plane.planar, plane.any, plane.z))
     {
       vtkErrorMacro("Distributed normal estimation of a planar input (every point in the plane z = "
-        << b[4] << ") is not supported: run it on one process.");
-      return 0;
+        << run.Bounds[4] << ") is not supported: run it on one process.");
+      return FAILED;
     }
   }
 
@@ -95,21 +65,18 @@ int vtkGLSNormalEstimation::RequestData(
   settings.viewpoint = { this->OrientationPoint[0], this->OrientationPoint[1], this->OrientationPoint[2] };
   settings.graphNeighbors = this->GraphNeighbors;
   settings.parallel.threads = this->NumberOfThreads;
-  settings.parallel.progress = [this](double f) {
-    this->UpdateProgress(0.9 * f);
-    return this->GetAbortExecute() != 0;
-  };
+  settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 0.9); };
 
   std::vector<double> reference;
   if (this->Orientation == AGREE_WITH_EXISTING)
   {
-    vtkDataArray* existing = vtkGLSScaleFilterBase::FindSelectedNormals(this, 0, input);
+    vtkDataArray* existing = this->FindSelectedNormals(0, input);
     const bool valid = existing && existing->GetNumberOfComponents() == 3 && existing->GetNumberOfTuples() == n;
     if (!dist.AllTrue(valid || (dist.IsParallel() && n == 0)))
     {
       vtkErrorMacro("AGREE_WITH_EXISTING needs an existing 3-component point normals array with one tuple per "
                     "point (select it with SetInputArrayToProcess, or set active normals).");
-      return 0;
+      return FAILED;
     }
     reference.resize(3 * static_cast<std::size_t>(n));
     for (vtkIdType i = 0; i < n; ++i)
@@ -122,42 +89,41 @@ int vtkGLSNormalEstimation::RequestData(
   gls::NormalEstimationResult result;
   if (dist.IsParallel())
   {
-    if (!this->EstimateDistributed(dist, input, xyz, reference, settings, result))
+    if (!this->EstimateDistributed(run, reference, settings, result))
     {
-      return 0;
+      return FAILED;
     }
   }
-  else if (!gls::estimateNormals(xyz.data(), static_cast<std::size_t>(n), settings, result))
+  else if (!gls::estimateNormals(run.Cloud.Points.data(), static_cast<std::size_t>(n), settings, result))
   {
-    return 1; // aborted: the output is the input, without partial normals
+    return ABORTED; // the output is the input, without partial normals
   }
   vtkNew<vtkDoubleArray> normals;
   normals->SetName(vtkGLSArrayNames::Normals);
   normals->SetNumberOfComponents(3);
   normals->SetNumberOfTuples(n);
   std::copy(result.normals.begin(), result.normals.end(), normals->GetPointer(0));
-  output->GetPointData()->SetNormals(normals);
+  run.Output->GetPointData()->SetNormals(normals);
   this->UpdateProgress(1.0);
-  return 1;
+  return COMPLETED;
 }
 
-bool vtkGLSNormalEstimation::EstimateDistributed(const vtkGLSDistributedCloud& dist, vtkPolyData* input,
-  std::vector<double>& xyz, std::vector<double>& reference, gls::NormalEstimationSettings settings,
-  gls::NormalEstimationResult& result)
+bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<double>& reference,
+  gls::NormalEstimationSettings settings, gls::NormalEstimationResult& result)
 {
-  const std::size_t n = xyz.size() / 3;
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  std::vector<double>& xyz = run.Cloud.Points;
+  const std::size_t n = run.Cloud.Owned;
   // Ghosts: every point within the reach of this piece's neighbourhoods.
   const double reach = settings.neighborhood == gls::NeighborhoodType::Radius
     ? settings.radius
     : gls::kNearestReach(xyz.data(), n, settings.k, settings.parallel);
-  std::vector<double> ghosts;
   std::size_t ghostCount = 0;
-  if (!dist.AllTrue(dist.ExchangeGhosts(xyz.data(), n, 3, reach, ghosts, ghostCount)))
+  if (!dist.AllTrue(dist.AppendGhosts(xyz, n, {}, reach, ghostCount)))
   {
     vtkErrorMacro("The exchange of ghost points between the processes failed.");
     return false;
   }
-  xyz.insert(xyz.end(), ghosts.begin(), ghosts.end());
   if (!reference.empty())
   {
     reference.resize(xyz.size(), std::numeric_limits<double>::quiet_NaN()); // ghosts: keep the solver's sign
@@ -181,7 +147,7 @@ bool vtkGLSNormalEstimation::EstimateDistributed(const vtkGLSDistributedCloud& d
   }
 
   // Minimum spanning tree over the whole cloud, on rank 0, in global-id order (the serial order).
-  const std::vector<long long> ids = dist.GlobalIds(input);
+  const std::vector<long long> ids = dist.GlobalIds(run.Input);
   std::vector<double> rows(7 * n);
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -238,6 +204,4 @@ void vtkGLSNormalEstimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OrientationPoint: " << this->OrientationPoint[0] << ", " << this->OrientationPoint[1] << ", "
      << this->OrientationPoint[2] << "\n";
   os << indent << "GraphNeighbors: " << this->GraphNeighbors << "\n";
-  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
-  os << indent << "Controller: " << this->Controller << "\n";
 }

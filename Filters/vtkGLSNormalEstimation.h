@@ -37,24 +37,21 @@
 #define vtkGLSNormalEstimation_h
 
 #include "vtkGLSFiltersModule.h"
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkGLSFilterBase.h"
 
 #include <vector> // for std::vector
 
-class vtkGLSDistributedCloud;
-class vtkMultiProcessController;
-class vtkPolyData;
 namespace gls
 {
 struct NormalEstimationSettings;
 struct NormalEstimationResult;
 }
 
-class VTKGLSFILTERS_EXPORT vtkGLSNormalEstimation : public vtkPolyDataAlgorithm
+class VTKGLSFILTERS_EXPORT vtkGLSNormalEstimation : public vtkGLSFilterBase
 {
 public:
   static vtkGLSNormalEstimation* New();
-  vtkTypeMacro(vtkGLSNormalEstimation, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkGLSNormalEstimation, vtkGLSFilterBase);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum NeighborhoodTypes
@@ -114,31 +111,17 @@ public:
   vtkGetMacro(GraphNeighbors, int);
   ///@}
 
-  ///@{
-  /// Worker threads (0 = all hardware threads, default).
-  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
-  vtkGetMacro(NumberOfThreads, int);
-  ///@}
-
-  ///@{
-  /// The controller of a distributed run (default: the global controller when the filter is created, as ParaView's
-  /// pvbatch and pvserver set it). Null or a single process: serial.
-  virtual void SetController(vtkMultiProcessController* controller);
-  vtkGetObjectMacro(Controller, vtkMultiProcessController);
-  ///@}
-
 protected:
   vtkGLSNormalEstimation();
   ~vtkGLSNormalEstimation() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int Execute(vtkGLSRun& run) override;
 
   /// The distributed estimate (see the class documentation): ghosts, normals of the owned points, and the
-  /// minimum-spanning-tree orientation on rank 0. `xyz` (this piece's points) and `reference` are scratch. False
-  /// (with an error) on a communication failure.
-  bool EstimateDistributed(const vtkGLSDistributedCloud& dist, vtkPolyData* input, std::vector<double>& xyz,
-    std::vector<double>& reference, gls::NormalEstimationSettings settings, gls::NormalEstimationResult& result);
+  /// minimum-spanning-tree orientation on rank 0. The run's cloud and `reference` are scratch. False (with an
+  /// error) on a communication failure.
+  bool EstimateDistributed(vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings settings,
+    gls::NormalEstimationResult& result);
 
   int NeighborhoodType;
   int NumberOfNeighbors;
@@ -146,8 +129,6 @@ protected:
   int Orientation;
   double OrientationPoint[3];
   int GraphNeighbors;
-  int NumberOfThreads;
-  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkGLSNormalEstimation(const vtkGLSNormalEstimation&) = delete;

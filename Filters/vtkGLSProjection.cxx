@@ -1,13 +1,10 @@
 #include "vtkGLSProjection.h"
 
 #include "vtkGLSArrayNames.h"
-#include "vtkGLSDistributedCloud.h"
+#include "vtkGLSRun.h"
 
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
-#include "vtkFieldData.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -36,33 +33,21 @@ vtkGLSProjection::vtkGLSProjection()
 
 vtkGLSProjection::~vtkGLSProjection() = default;
 
-int vtkGLSProjection::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkGLSProjection::Execute(vtkGLSRun& run)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->LastScaleMode = AUTOMATIC;
-  if (!this->PrepareOutput(input, output))
-  {
-    return 0;
-  }
-  std::vector<double> points, normals;
   std::vector<double> scales;
   int mode = AUTOMATIC;
+  vtkPolyData* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
   const std::size_t count = static_cast<std::size_t>(n);
-  const vtkGLSDistributedCloud& dist = this->Distributed();
   // Outputs plus the core's copies of points and normals and its grid.
-  const bool ok = this->GatherPointsAndNormals(input, points, normals) && this->ResolveScales(input, scales, mode) &&
+  const bool ok = this->GatherNormals(run) && this->ResolveSupports(run, scales, mode) &&
     this->CheckMemoryBudget(static_cast<double>(count) * (3 * 8 + 3 * 8 + 8 + 4 + 1 + 7 * 8), "the projection",
       "Use fewer points.");
-  if (!dist.AllTrue(ok))
+  if (!this->AgreeToContinue(run, ok))
   {
-    if (ok)
-    {
-      vtkErrorMacro("Stopped: another process of this distributed run failed (see its error).");
-    }
-    return 0;
+    return FAILED;
   }
 
   vtkNew<vtkPoints> moved;
@@ -80,8 +65,9 @@ int vtkGLSProjection::RequestData(
   iterations->SetNumberOfTuples(n);
   std::vector<unsigned char> converged(count);
 
+  this->ResolveMinimumNeighbors(run);
   gls::ProjectionSettings settings;
-  settings.minNeighbors = this->ResolveMinimumNeighbors(points, normals);
+  settings.minNeighbors = run.MinimumNeighbors;
   settings.maxIterations = this->MaxIterations;
   settings.tolerance = this->Tolerance;
   settings.parallel.threads = this->NumberOfThreads;
@@ -89,18 +75,20 @@ int vtkGLSProjection::RequestData(
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 1.0); };
   const gls::ProjectionOutputs out{ static_cast<double*>(moved->GetData()->GetVoidPointer(0)), eta->GetPointer(0),
     displacement->GetPointer(0), iterations->GetPointer(0), converged.data() };
-  if (dist.IsParallel())
+  if (run.Distributed.IsParallel())
   {
-    if (!this->ProjectDistributed(points, normals, scales, settings, out))
+    if (!this->ProjectDistributed(run, scales, settings, out))
     {
-      return 0;
+      return FAILED;
     }
   }
-  else if (!gls::projectPointCloud(points.data(), normals.data(), count, scales.data(), settings, out))
+  else if (!gls::projectPointCloud(
+             run.Cloud.Points.data(), run.Cloud.Normals.data(), count, scales.data(), settings, out))
   {
-    return 1; // aborted: the input passes through, no partial arrays
+    return ABORTED; // the input passes through, no partial arrays
   }
   this->LastScaleMode = mode;
+  vtkPolyData* output = run.Output;
   output->SetPoints(moved);
   vtkPointData* pd = output->GetPointData();
   pd->RemoveArray(vtkGLSArrayNames::Normals);
@@ -109,16 +97,17 @@ int vtkGLSProjection::RequestData(
   pd->AddArray(displacement);
   pd->AddArray(iterations);
   pd->SetActiveScalars(vtkGLSArrayNames::Displacement);
-  this->LastBackendUsed = "CPU";
-  this->StoreBackend(output->GetFieldData());
-  return 1;
+  run.BackendUsed = "CPU";
+  WriteRunFieldData(run, output->GetFieldData());
+  return COMPLETED;
 }
 
-bool vtkGLSProjection::ResolveScales(vtkPolyData* input, std::vector<double>& scales, int& mode)
+bool vtkGLSProjection::ResolveSupports(const vtkGLSRun& run, std::vector<double>& scales, int& mode)
 {
+  vtkPolyData* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
   const std::size_t count = static_cast<std::size_t>(n);
-  const char* selected = SelectedArrayName(this, 1);
+  const char* selected = this->SelectedArrayName(1);
   vtkDataArray* bandwidth = input->GetPointData()->GetArray(selected ? selected : vtkGLSArrayNames::Bandwidth);
   mode = this->ScaleMode;
   if (mode == AUTOMATIC)
@@ -154,7 +143,7 @@ bool vtkGLSProjection::ResolveScales(vtkPolyData* input, std::vector<double>& sc
   }
   else
   {
-    const double t = this->ToAbsoluteLength(input, this->Scale);
+    const double t = this->ToAbsoluteLength(run, this->Scale);
     if (!(t > 0.0) || !std::isfinite(t))
     {
       vtkErrorMacro("Scale must be positive (it is " << this->Scale
@@ -168,47 +157,33 @@ bool vtkGLSProjection::ResolveScales(vtkPolyData* input, std::vector<double>& sc
   return true;
 }
 
-bool vtkGLSProjection::ProjectDistributed(const std::vector<double>& points, const std::vector<double>& normals,
-  const std::vector<double>& scales, gls::ProjectionSettings settings, const gls::ProjectionOutputs& out)
+bool vtkGLSProjection::ProjectDistributed(vtkGLSRun& run, const std::vector<double>& scales,
+  gls::ProjectionSettings settings, const gls::ProjectionOutputs& out)
 {
-  const vtkGLSDistributedCloud& dist = this->Distributed();
-  const std::size_t n = points.size() / 3;
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  const std::size_t n = run.Cloud.Owned;
   double tmax = 0.0;
   for (double t : scales)
   {
     tmax = std::isfinite(t) ? std::max(tmax, t) : tmax;
   }
   tmax = dist.Max(tmax);
-  std::vector<double> rows(6 * n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    std::copy(&points[3 * i], &points[3 * i] + 3, &rows[6 * i]);
-    std::copy(&normals[3 * i], &normals[3 * i] + 3, &rows[6 * i + 3]);
-  }
   settings.parallel.progress = nullptr; // no abort half-way through a collective run
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const double diagonal = this->DistributedDiagonal;
   // Ghosts within twice the largest support; a point that ends further than its support from that band (its last
   // fit then lacked neighbours) makes every rank redo the projection with the band doubled.
   for (double reach = 2.0 * tmax;; reach *= 2.0)
   {
-    std::vector<double> ghosts;
+    std::vector<double> xyz(run.Cloud.Points), nrm(run.Cloud.Normals);
     std::size_t ghostCount = 0;
-    if (!dist.AllTrue(dist.ExchangeGhosts(rows.data(), n, 6, reach, ghosts, ghostCount)))
+    if (!dist.AllTrue(dist.AppendGhosts(xyz, n, { { &nrm, 3 } }, reach, ghostCount)))
     {
       vtkErrorMacro("The exchange of ghost points between the processes failed.");
       return false;
     }
-    this->GhostPointsUsed = static_cast<long long>(ghostCount);
+    run.GhostPoints = static_cast<long long>(ghostCount);
     const std::size_t total = n + ghostCount;
-    std::vector<double> xyz(points), nrm(normals), t(scales);
-    xyz.reserve(3 * total);
-    nrm.reserve(3 * total);
-    for (std::size_t g = 0; g < ghostCount; ++g)
-    {
-      xyz.insert(xyz.end(), &ghosts[6 * g], &ghosts[6 * g] + 3);
-      nrm.insert(nrm.end(), &ghosts[6 * g + 3], &ghosts[6 * g] + 6);
-    }
+    std::vector<double> t(scales);
     t.resize(total, nan); // ghosts are neighbours only: a NaN scale leaves them in place
     std::vector<double> movedAll(3 * total), etaAll(3 * total), moveAll(total);
     std::vector<int> iterationsAll(total);
@@ -221,7 +196,7 @@ bool vtkGLSProjection::ProjectDistributed(const std::vector<double>& points, con
     {
       inside = !(moveAll[i] + scales[i] > reach); // NaN displacement: not projected, nothing to check
     }
-    if (dist.AllTrue(inside) || !(reach > 0.0) || reach > 2.0 * diagonal)
+    if (dist.AllTrue(inside) || !(reach > 0.0) || reach > 2.0 * run.Diagonal)
     {
       std::copy(movedAll.begin(), movedAll.begin() + 3 * static_cast<std::ptrdiff_t>(n), out.points);
       std::copy(etaAll.begin(), etaAll.begin() + 3 * static_cast<std::ptrdiff_t>(n), out.normals);

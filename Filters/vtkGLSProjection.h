@@ -16,13 +16,12 @@
  * MinimumNeighbors neighbours, degenerate neighbourhood) keeps its position and (normalized) input normal and gets
  * GLSDisplacement NaN. Field data: GLSBackend ("CPU": the projection runs on the CPU engine).
  *
- * Inputs: points and oriented normals as for every GLS filter (SetInputArrayToProcess(0, ...)); the bandwidth
- * array is selected with SetInputArrayToProcess(1, ...) (default: the point array GLSBandwidth). Errors: no
- * normals, a missing or mis-sized bandwidth array in BANDWIDTH_ARRAY mode, Scale <= 0 in FIXED_SCALE mode.
- * The shared scale-list parameters of vtkGLSScaleFilterBase (MinScale, MaxScale, NumberOfScales, ScaleSampling,
- * explicit scales), the nu weights, Backend and ReuseInputScaleSpace are not used.
+ * Inputs: points and oriented normals as for every GLS fit (vtkGLSFitFilterBase, SetInputArrayToProcess(0, ...));
+ * the bandwidth array is selected with SetInputArrayToProcess(1, ...) (default: the point array GLSBandwidth).
+ * Errors: no normals, a missing or mis-sized bandwidth array in BANDWIDTH_ARRAY mode, Scale <= 0 in FIXED_SCALE
+ * mode.
  *
- * Distributed runs (see vtkGLSScaleFilterBase): each rank fetches the other ranks' points within twice the largest
+ * Distributed runs (see vtkGLSFilterBase): each rank fetches the other ranks' points within twice the largest
  * support of all ranks around its piece, projects its own points, and checks that every one ended within its
  * support of that band (distance moved + t <= band); if not, every rank redoes the projection with the band doubled.
  * The intermediate positions are not checked. Field data GLSGhostPoints: the ghosts of the last pass.
@@ -31,7 +30,7 @@
 #define vtkGLSProjection_h
 
 #include "vtkGLSFiltersModule.h"
-#include "vtkGLSScaleFilterBase.h"
+#include "vtkGLSFitFilterBase.h"
 
 #include <vector> // for std::vector
 
@@ -41,11 +40,11 @@ struct ProjectionSettings;
 struct ProjectionOutputs;
 }
 
-class VTKGLSFILTERS_EXPORT vtkGLSProjection : public vtkGLSScaleFilterBase
+class VTKGLSFILTERS_EXPORT vtkGLSProjection : public vtkGLSFitFilterBase
 {
 public:
   static vtkGLSProjection* New();
-  vtkTypeMacro(vtkGLSProjection, vtkGLSScaleFilterBase);
+  vtkTypeMacro(vtkGLSProjection, vtkGLSFitFilterBase);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum ScaleModeType
@@ -89,17 +88,16 @@ protected:
   vtkGLSProjection();
   ~vtkGLSProjection() override;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  bool SupportsDistributedInput() const override { return true; }
+  int Execute(vtkGLSRun& run) override;
 
   /// Each point's support (`scales`) and the ScaleMode used; false (with an error) on a missing or mis-sized
   /// bandwidth array or a bad Scale.
-  bool ResolveScales(vtkPolyData* input, std::vector<double>& scales, int& mode);
+  bool ResolveSupports(const vtkGLSRun& run, std::vector<double>& scales, int& mode);
 
   /// The distributed projection (see the class documentation): this piece's points (with their supports) projected
   /// with ghosts into `out`. False (with an error) on a communication failure.
-  bool ProjectDistributed(const std::vector<double>& points, const std::vector<double>& normals,
-    const std::vector<double>& scales, gls::ProjectionSettings settings, const gls::ProjectionOutputs& out);
+  bool ProjectDistributed(vtkGLSRun& run, const std::vector<double>& scales, gls::ProjectionSettings settings,
+    const gls::ProjectionOutputs& out);
 
   int ScaleMode;
   double Scale;

@@ -1,11 +1,10 @@
 #include "vtkGLSScaleProfiles.h"
 
-#include "vtkGLSDistributedCloud.h"
+#include "vtkGLSRun.h"
 
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
@@ -49,6 +48,13 @@ public:
   std::vector<gls::ScaleSample> Samples;
 };
 
+/// The selected points of a run: this piece's indices of those it holds and their positions in PointIds.
+struct SelectionState : vtkGLSRunState
+{
+  std::vector<std::uint64_t> Ids;
+  std::vector<std::size_t> Slots;
+};
+
 } // namespace
 
 vtkGLSScaleProfiles::vtkGLSScaleProfiles()
@@ -84,53 +90,50 @@ int vtkGLSScaleProfiles::FillOutputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
-int vtkGLSScaleProfiles::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+void vtkGLSScaleProfiles::PrepareOutputs(vtkGLSRun&) {}
+
+bool vtkGLSScaleProfiles::CheckParameters(vtkGLSRun& run)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkTable* output = vtkTable::GetData(outputVector);
-  const vtkIdType n = input->GetNumberOfPoints();
-  if (!this->BeginRun(input))
-  {
-    return 0;
-  }
-  const vtkGLSDistributedCloud& dist = this->Distributed();
-  if (n < 1 && !dist.IsParallel())
-  {
-    vtkErrorMacro("The input has no points.");
-    return 0;
-  }
   if (this->PointIds.empty())
   {
     vtkErrorMacro("No point selected: AddPointId (PointIds in ParaView) names the points to profile.");
-    return 0;
+    return false;
   }
-  std::vector<std::uint64_t> ids;
-  std::vector<std::size_t> slots;
-  if (!this->LocateSelectedPoints(input, ids, slots))
+  auto state = std::make_unique<SelectionState>();
+  if (!this->LocateSelectedPoints(run, state->Ids, state->Slots))
   {
-    return 0;
+    return false;
   }
-  std::vector<double> scales;
-  if (!this->PrepareScaleSamples(input, true, true, scales))
+  run.State = std::move(state);
+  return true;
+}
+
+vtkGLSScaleFilterBase::SampleRequest vtkGLSScaleProfiles::GetSampleRequest(const vtkGLSRun&) const
+{
+  return SampleRequest(); // always its own fit, stores nothing per point and scale
+}
+
+int vtkGLSScaleProfiles::ComputeOutputs(vtkGLSRun& run)
+{
+  const SelectionState& selection = static_cast<const SelectionState&>(*run.State);
+  const std::vector<double>& scales = run.Scales;
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  ProfileSink sink(selection.Ids, scales.size());
+  if (!dist.AllTrue(this->FeedSamples(run, sink, &selection.Ids)))
   {
-    return 0;
-  }
-  ProfileSink sink(ids, scales.size());
-  if (!dist.AllTrue(this->RunScaleSamples(sink, &ids)))
-  {
-    return 1; // aborted: an empty table
+    return ABORTED; // an empty table
   }
   std::vector<gls::ScaleSample> samples;
-  if (!this->CollectSamples(sink.Samples, slots, scales.size(), samples))
+  if (!this->CollectSamples(run, sink.Samples, selection.Slots, scales.size(), samples))
   {
-    return 0;
+    return FAILED;
   }
   if (dist.GetRank() != 0)
   {
-    return 1; // a distributed run: the table is on rank 0, the other ranks' tables are empty
+    return COMPLETED; // a distributed run: the table is on rank 0, the other ranks' tables are empty
   }
 
+  vtkTable* output = vtkTable::GetData(run.OutputVector);
   const vtkIdType S = static_cast<vtkIdType>(scales.size());
   vtkNew<vtkDoubleArray> t;
   t->SetName("t");
@@ -140,7 +143,7 @@ int vtkGLSScaleProfiles::RequestData(
     t->SetValue(k, scales[static_cast<std::size_t>(k)]);
   }
   output->AddColumn(t);
-  const gls::VariationWeights weights{ this->WTau, this->WEta, this->WKappa };
+  const gls::VariationWeights weights = this->Weights();
   for (std::size_t j = 0; j < this->PointIds.size(); ++j)
   {
     const std::string suffix = " (" + std::to_string(this->PointIds[j]) + ")";
@@ -167,14 +170,15 @@ int vtkGLSScaleProfiles::RequestData(
     output->AddColumn(phi);
     output->AddColumn(nu);
   }
-  return 1;
+  return COMPLETED;
 }
 
 bool vtkGLSScaleProfiles::LocateSelectedPoints(
-  vtkPolyData* input, std::vector<std::uint64_t>& ids, std::vector<std::size_t>& slots)
+  const vtkGLSRun& run, std::vector<std::uint64_t>& ids, std::vector<std::size_t>& slots)
 {
+  vtkPolyData* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
-  const vtkGLSDistributedCloud& dist = this->Distributed();
+  const vtkGLSDistributedCloud& dist = run.Distributed;
   if (!dist.IsParallel())
   {
     for (std::size_t j = 0; j < this->PointIds.size(); ++j)
@@ -215,11 +219,11 @@ bool vtkGLSScaleProfiles::LocateSelectedPoints(
   return true;
 }
 
-bool vtkGLSScaleProfiles::CollectSamples(const std::vector<gls::ScaleSample>& mine,
+bool vtkGLSScaleProfiles::CollectSamples(const vtkGLSRun& run, const std::vector<gls::ScaleSample>& mine,
   const std::vector<std::size_t>& slots, std::size_t S, std::vector<gls::ScaleSample>& samples)
 {
   samples.assign(this->PointIds.size() * S, gls::ScaleSample());
-  const vtkGLSDistributedCloud& dist = this->Distributed();
+  const vtkGLSDistributedCloud& dist = run.Distributed;
   if (!dist.IsParallel())
   {
     for (std::size_t j = 0; j < slots.size(); ++j)

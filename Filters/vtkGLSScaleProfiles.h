@@ -7,7 +7,7 @@
  * one row per scale: column `t` (the scale, length) and, per point id N, the dimensionless profiles of the paper's
  * Figures 2-3: `tau/t (N)`, `t*kappa (N)`, `phi (N)` and `nu (N)` (the geometric variation with weights WTau, WEta,
  * WKappa). NaN where the fit is undefined. The output is a vtkTable, shown in ParaView's line chart view.
- * The profiles always sample their own scales: ReuseInputScaleSpace is ignored (upstream arrays are never reused).
+ * The profiles always sample their own scales (upstream arrays are never reused).
  * Errors: no point selected, a point id out of range, and the errors of vtkGLSScaleFilterBase.
  * Distributed runs (see vtkGLSScaleFilterBase): the point ids are global ids (the GlobalIds attribute, else the
  * rank-order numbering of the pieces); each rank profiles the selected points it holds (with its ghosts) and the
@@ -17,7 +17,7 @@
 #define vtkGLSScaleProfiles_h
 
 #include "vtkGLSFiltersModule.h"
-#include "vtkGLSScaleFilterBase.h"
+#include "vtkGLSVariationFilterBase.h"
 
 #include <cstddef> // for std::size_t
 #include <cstdint> // for std::uint64_t
@@ -31,11 +31,11 @@ struct ScaleSampleT;
 using ScaleSample = ScaleSampleT<double>;
 }
 
-class VTKGLSFILTERS_EXPORT vtkGLSScaleProfiles : public vtkGLSScaleFilterBase
+class VTKGLSFILTERS_EXPORT vtkGLSScaleProfiles : public vtkGLSVariationFilterBase
 {
 public:
   static vtkGLSScaleProfiles* New();
-  vtkTypeMacro(vtkGLSScaleProfiles, vtkGLSScaleFilterBase);
+  vtkTypeMacro(vtkGLSScaleProfiles, vtkGLSVariationFilterBase);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -53,18 +53,22 @@ protected:
   ~vtkGLSScaleProfiles() override;
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  bool AcceptsStoredScaleSpace() const override { return false; }
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  bool SupportsDistributedInput() const override { return true; }
+  /// The output is a table: nothing of the input is copied.
+  void PrepareOutputs(vtkGLSRun& run) override;
+  /// Locates the selected points (before anything is fitted): an error when none is selected or one is out of range.
+  bool CheckParameters(vtkGLSRun& run) override;
+  SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
+  int ComputeOutputs(vtkGLSRun& run) override;
 
   /// This piece's indices of the selected points it holds (`ids`) and their positions in PointIds (`slots`).
   /// False (with an error, on every rank) when a selected id is out of range (on every piece).
-  bool LocateSelectedPoints(vtkPolyData* input, std::vector<std::uint64_t>& ids, std::vector<std::size_t>& slots);
+  bool LocateSelectedPoints(
+    const vtkGLSRun& run, std::vector<std::uint64_t>& ids, std::vector<std::size_t>& slots);
 
   /// The samples of every selected point in PointIds order (S per point) from this piece's (`mine`, in `slots`
   /// order): a copy, or in a distributed run a gather on rank 0 (the other ranks' `samples` are then meaningless).
-  bool CollectSamples(const std::vector<gls::ScaleSample>& mine, const std::vector<std::size_t>& slots,
-    std::size_t S, std::vector<gls::ScaleSample>& samples);
+  bool CollectSamples(const vtkGLSRun& run, const std::vector<gls::ScaleSample>& mine,
+    const std::vector<std::size_t>& slots, std::size_t S, std::vector<gls::ScaleSample>& samples);
 
   std::vector<vtkIdType> PointIds;
 

@@ -1,11 +1,10 @@
 #include "vtkGLSScaleSpace.h"
 
-#include "vtkGLSArrayNames.h"
+#include "vtkGLSDescriptors.h"
+#include "vtkGLSRun.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -14,104 +13,108 @@
 
 #include "gls/ScaleSpaceEngine.h" // gls::ScaleSampleSink
 
-#include <cmath>
-#include <type_traits>
+#include <vector>
 
 vtkStandardNewMacro(vtkGLSScaleSpace);
 
 namespace
 {
 
-/// Writes every sample straight into the output arrays (each point owns its own tuples: thread safe), in the
-/// output precision T (double, or float when OutputPrecision is FLOAT).
+/// Writes every sample straight into the output arrays (each point owns its own tuples: thread safe): per stored
+/// descriptor, its values in the output precision T (or int for the integer ones).
 template <typename T>
 class ArraySink : public gls::ScaleSampleSink
 {
 public:
-  std::size_t S = 0;
-  T* Tau = nullptr;
-  T* Eta = nullptr;
-  T* Kappa = nullptr;
-  T* Fitness = nullptr;
-  T* DTau = nullptr;
-  T* DEta = nullptr;
-  T* DKappa = nullptr;
-  int* Count = nullptr;
-
-  static void put3(T* out, const gls::Vec3& v)
+  struct Column
   {
-    out[0] = static_cast<T>(v.x);
-    out[1] = static_cast<T>(v.y);
-    out[2] = static_cast<T>(v.z);
+    const vtkGLSDescriptors::Descriptor* Descriptor;
+    T* Values;     ///< floating-point descriptors
+    int* Integers; ///< integer descriptors
+  };
+
+  ArraySink(std::size_t scales, std::vector<Column> columns)
+    : S(scales)
+    , Columns(std::move(columns))
+  {
   }
 
   void consume(std::uint64_t id, const gls::ScaleSample* s, int) override
   {
-    for (std::size_t k = 0; k < this->S; ++k)
+    for (const Column& c : this->Columns)
     {
-      const std::size_t o = id * this->S + k;
-      if (this->Tau)
+      const int m = c.Descriptor->Components;
+      const std::size_t row = id * this->S * static_cast<std::size_t>(m);
+      for (std::size_t k = 0; k < this->S; ++k)
       {
-        this->Tau[o] = static_cast<T>(s[k].tau);
-      }
-      if (this->Kappa)
-      {
-        this->Kappa[o] = static_cast<T>(s[k].kappa);
-      }
-      if (this->Fitness)
-      {
-        this->Fitness[o] = static_cast<T>(s[k].phi);
-      }
-      if (this->DTau)
-      {
-        this->DTau[o] = static_cast<T>(s[k].dtau);
-        this->DKappa[o] = static_cast<T>(s[k].dkappa);
-        put3(this->DEta + 3 * o, s[k].deta);
-      }
-      if (this->Eta)
-      {
-        put3(this->Eta + 3 * o, s[k].eta);
-      }
-      if (this->Count)
-      {
-        this->Count[o] = static_cast<int>(s[k].neighbors);
+        for (int j = 0; j < m; ++j)
+        {
+          const std::size_t o = row + k * static_cast<std::size_t>(m) + static_cast<std::size_t>(j);
+          const double v = vtkGLSDescriptors::Value(*c.Descriptor, s[k], j);
+          if (c.Integers)
+          {
+            c.Integers[o] = static_cast<int>(v);
+          }
+          else
+          {
+            c.Values[o] = static_cast<T>(v);
+          }
+        }
       }
     }
   }
+
+private:
+  std::size_t S;
+  std::vector<Column> Columns;
 };
 
-/// Allocates the wanted arrays in precision T, binds them to a sink, runs it, and hands the arrays back.
-template <typename T, typename ArrayType>
-struct Outputs
+/// Allocates the stored descriptors' arrays in precision T (ArrayType holds T), fills them from the run's
+/// samples, and adds them to the output in the table's order. False if aborted (nothing added).
+template <typename T, typename ArrayType, typename Feed>
+bool FillArrays(const std::vector<int>& stored, const std::vector<double>& scales, vtkIdType n,
+  vtkPointData* out, Feed feed, void (*nameComponents)(vtkDataArray*, const std::vector<double>&, int))
 {
-  vtkSmartPointer<ArrayType> Tau, Eta, Kappa, Fitness, DTau, DEta, DKappa;
-  ArraySink<T> Sink;
-
-  static T* pointer(ArrayType* a) { return a ? a->GetPointer(0) : nullptr; }
-
-  void bind()
+  const int S = static_cast<int>(scales.size());
+  std::vector<vtkSmartPointer<vtkDataArray>> arrays;
+  std::vector<typename ArraySink<T>::Column> columns;
+  for (int id : stored)
   {
-    this->Sink.Tau = pointer(this->Tau);
-    this->Sink.Eta = pointer(this->Eta);
-    this->Sink.Kappa = pointer(this->Kappa);
-    this->Sink.Fitness = pointer(this->Fitness);
-    this->Sink.DTau = pointer(this->DTau);
-    this->Sink.DEta = pointer(this->DEta);
-    this->Sink.DKappa = pointer(this->DKappa);
-  }
-
-  void addTo(vtkPointData* pd) const
-  {
-    for (ArrayType* a : { this->Tau.Get(), this->Eta.Get(), this->Kappa.Get(), this->Fitness.Get(),
-           this->DTau.Get(), this->DEta.Get(), this->DKappa.Get() })
+    const vtkGLSDescriptors::Descriptor& d = vtkGLSDescriptors::Get(static_cast<vtkGLSDescriptors::Id>(id));
+    vtkSmartPointer<vtkDataArray> a;
+    typename ArraySink<T>::Column column{ &d, nullptr, nullptr };
+    if (d.Integer)
     {
-      if (a)
-      {
-        pd->AddArray(a);
-      }
+      auto ints = vtkSmartPointer<vtkIntArray>::New();
+      ints->SetNumberOfComponents(S * d.Components);
+      ints->SetNumberOfTuples(n);
+      column.Integers = ints->GetPointer(0);
+      a = ints;
     }
+    else
+    {
+      auto values = vtkSmartPointer<ArrayType>::New();
+      values->SetNumberOfComponents(S * d.Components);
+      values->SetNumberOfTuples(n);
+      column.Values = values->GetPointer(0);
+      a = values;
+    }
+    a->SetName(d.Name);
+    nameComponents(a, scales, d.Components);
+    arrays.push_back(a);
+    columns.push_back(column);
   }
-};
+  ArraySink<T> sink(scales.size(), std::move(columns));
+  if (!feed(sink))
+  {
+    return false; // aborted: the output is the input, without partial arrays
+  }
+  for (vtkDataArray* a : arrays)
+  {
+    out->AddArray(a);
+  }
+  return true;
+}
 
 } // namespace
 
@@ -128,100 +131,65 @@ vtkGLSScaleSpace::vtkGLSScaleSpace()
 
 vtkGLSScaleSpace::~vtkGLSScaleSpace() = default;
 
-int vtkGLSScaleSpace::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+bool vtkGLSScaleSpace::IsStored(int storeSwitch) const
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  if (!this->PrepareOutput(input, output))
+  switch (storeSwitch)
   {
-    return 0;
+    case vtkGLSDescriptors::STORE_TAU:
+      return this->StoreTau;
+    case vtkGLSDescriptors::STORE_ETA:
+      return this->StoreEta;
+    case vtkGLSDescriptors::STORE_KAPPA:
+      return this->StoreKappa;
+    case vtkGLSDescriptors::STORE_FITNESS:
+      return this->StoreFitness;
+    case vtkGLSDescriptors::STORE_DERIVATIVES:
+      return this->StoreDerivatives;
+    case vtkGLSDescriptors::STORE_NEIGHBOR_COUNT:
+      return this->StoreNeighborCount;
+    default:
+      return false;
   }
+}
 
-  // Memory: every stored array is n x S (x 3 for the vectors) values of the output precision.
+vtkGLSScaleFilterBase::SampleRequest vtkGLSScaleSpace::GetSampleRequest(const vtkGLSRun&) const
+{
+  // Memory: every stored array is n x S x components values of the output precision (int for the counts).
   const double valueBytes = this->OutputPrecision == FLOAT ? 4.0 : 8.0;
-  const double valuesPerScale = (this->StoreTau ? 1 : 0) + (this->StoreKappa ? 1 : 0) + (this->StoreFitness ? 1 : 0) +
-    (this->StoreEta ? 3 : 0) + (this->StoreDerivatives ? 5 : 0);
-  OutputCost cost;
-  cost.BytesPerPointScale = valuesPerScale * valueBytes + (this->StoreNeighborCount ? 4 : 0);
-  cost.What = "storing every scale";
-  cost.Advice = "Use fewer scales, OutputPrecision FLOAT (half the memory), turn off arrays you do not need "
-                "(Store*), or use vtkGLSGeometricVariation / vtkGLSContinuousFeatures / "
-                "vtkGLSMultiScaleDissimilarity directly on the points and normals: they compute in a fused pass that "
-                "stores nothing per scale.";
-  std::vector<double> scales;
-  if (!this->PrepareScaleSamples(input, true, true, scales, cost))
+  SampleRequest request;
+  for (int id = 0; id < vtkGLSDescriptors::NUMBER_OF_DESCRIPTORS; ++id)
   {
-    return 0;
-  }
-  const vtkIdType n = input->GetNumberOfPoints();
-  const int S = static_cast<int>(scales.size());
-
-  vtkSmartPointer<vtkIntArray> count;
-  if (this->StoreNeighborCount)
-  {
-    count = vtkSmartPointer<vtkIntArray>::New();
-    count->SetName(vtkGLSArrayNames::NeighborCount);
-    count->SetNumberOfComponents(S);
-    count->SetNumberOfTuples(n);
-    NameScaleComponents(count, scales, 1);
-  }
-
-  auto fill = [&](auto& outputs, auto makeArray) -> bool {
-    outputs.Tau = makeArray(this->StoreTau, vtkGLSArrayNames::Tau, 1);
-    outputs.Eta = makeArray(this->StoreEta, vtkGLSArrayNames::Eta, 3);
-    outputs.Kappa = makeArray(this->StoreKappa, vtkGLSArrayNames::Kappa, 1);
-    outputs.Fitness = makeArray(this->StoreFitness, vtkGLSArrayNames::Fitness, 1);
-    outputs.DTau = makeArray(this->StoreDerivatives, vtkGLSArrayNames::DTau, 1);
-    outputs.DEta = makeArray(this->StoreDerivatives, vtkGLSArrayNames::DEta, 3);
-    outputs.DKappa = makeArray(this->StoreDerivatives, vtkGLSArrayNames::DKappa, 1);
-    outputs.bind();
-    outputs.Sink.S = scales.size();
-    outputs.Sink.Count = count ? count->GetPointer(0) : nullptr;
-    if (!this->RunScaleSamples(outputs.Sink))
+    const vtkGLSDescriptors::Descriptor& d = vtkGLSDescriptors::Get(static_cast<vtkGLSDescriptors::Id>(id));
+    if (this->IsStored(d.StoredBy))
     {
-      return false; // aborted: the output is the input, without partial arrays
+      request.BytesPerPointScale += d.Components * (d.Integer ? 4.0 : valueBytes);
     }
-    outputs.addTo(output->GetPointData());
-    return true;
-  };
-  auto arrayMaker = [&](auto prototype) {
-    using ArrayType = typename std::remove_pointer<decltype(prototype)>::type;
-    return [&](bool wanted, const char* name, int perScale) -> vtkSmartPointer<ArrayType> {
-      if (!wanted)
-      {
-        return nullptr;
-      }
-      auto a = vtkSmartPointer<ArrayType>::New();
-      a->SetName(name);
-      a->SetNumberOfComponents(S * perScale);
-      a->SetNumberOfTuples(n);
-      NameScaleComponents(a, scales, perScale);
-      return a;
-    };
-  };
-  bool completed;
-  if (this->OutputPrecision == FLOAT)
-  {
-    Outputs<float, vtkFloatArray> outputs;
-    completed = fill(outputs, arrayMaker(static_cast<vtkFloatArray*>(nullptr)));
   }
-  else
+  request.What = "storing every scale";
+  request.Advice = "Use fewer scales, OutputPrecision FLOAT (half the memory), turn off arrays you do not need "
+                   "(Store*), or use vtkGLSGeometricVariation / vtkGLSContinuousFeatures / "
+                   "vtkGLSMultiScaleDissimilarity directly on the points and normals: they compute in a fused pass "
+                   "that stores nothing per scale.";
+  return request;
+}
+
+int vtkGLSScaleSpace::ComputeOutputs(vtkGLSRun& run)
+{
+  std::vector<int> stored;
+  for (int id = 0; id < vtkGLSDescriptors::NUMBER_OF_DESCRIPTORS; ++id)
   {
-    Outputs<double, vtkDoubleArray> outputs;
-    completed = fill(outputs, arrayMaker(static_cast<vtkDoubleArray*>(nullptr)));
+    if (this->IsStored(vtkGLSDescriptors::Get(static_cast<vtkGLSDescriptors::Id>(id)).StoredBy))
+    {
+      stored.push_back(id);
+    }
   }
-  if (!completed)
-  {
-    return 1;
-  }
-  if (count)
-  {
-    output->GetPointData()->AddArray(count);
-  }
-  StoreScales(output->GetFieldData(), scales);
-  this->StoreBackend(output->GetFieldData());
-  return 1;
+  const vtkIdType n = run.Input->GetNumberOfPoints();
+  const auto feed = [&](gls::ScaleSampleSink& sink) { return this->FeedSamples(run, sink); };
+  vtkPointData* out = run.Output->GetPointData();
+  const bool completed = this->OutputPrecision == FLOAT
+    ? FillArrays<float, vtkFloatArray>(stored, run.Scales, n, out, feed, &NameScaleComponents)
+    : FillArrays<double, vtkDoubleArray>(stored, run.Scales, n, out, feed, &NameScaleComponents);
+  return completed ? COMPLETED : ABORTED;
 }
 
 void vtkGLSScaleSpace::PrintSelf(ostream& os, vtkIndent indent)

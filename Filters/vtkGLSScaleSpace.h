@@ -2,13 +2,14 @@
  * @class   vtkGLSScaleSpace
  * @brief   Growing Least Squares scale space: the algebraic sphere fitted at every point and every scale.
  *
- * For each input point p and each scale t (see vtkGLSScaleFilterBase for the scales, units and normals), fits an
+ * For each input point p and each scale t (see vtkGLSScaleFilterBase for the scales, vtkGLSFitFilterBase for the
+ * units and normals), fits an
  * oriented algebraic sphere to the neighbours within distance t with the weight (d^2/t^2 - 1)^2 (Mellado et al.,
  * SGP 2012), Pratt-normalized, and its exact analytic derivatives in t. All scales of a point come from one gather
  * of its neighbours (moment formulation), in double precision and local coordinates.
  *
  * Point-data outputs (one component per scale, named "t=<scale>"; 3-vector arrays scale-major: x, y, z of t_0,
- * then of t_1, ...):
+ * then of t_1, ...; the list is the descriptor table of docs/filters.md):
  * - GLSTau (length): signed offset from p to the fitted surface, positive on the side the normals point to.
  * - GLSEta (3 per scale, unit): normal of the fitted field at p.
  * - GLSKappa (1/length): signed curvature, 1/radius, positive for a sphere with outward normals, 0 for a plane.
@@ -73,9 +74,12 @@ protected:
   vtkGLSScaleSpace();
   ~vtkGLSScaleSpace() override;
 
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  bool SupportsDistributedInput() const override { return true; }
-  bool AcceptsStoredScaleSpace() const override { return false; } // it is the producer: it always fits
+  /// The producer of a scale space: it always fits, and its outputs are every stored descriptor.
+  SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
+  int ComputeOutputs(vtkGLSRun& run) override;
+
+  /// Whether the given Store switch (vtkGLSDescriptors::Switch) is on.
+  bool IsStored(int storeSwitch) const;
 
   bool StoreTau;
   bool StoreEta;

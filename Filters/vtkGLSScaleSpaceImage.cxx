@@ -1,9 +1,8 @@
 #include "vtkGLSScaleSpaceImage.h"
 
-#include "vtkGLSDistributedCloud.h"
-
-#include "vtkGLSArrayNames.h"
 #include "vtkGLSCurve.h"
+#include "vtkGLSDescriptors.h"
+#include "vtkGLSRun.h"
 
 #include "vtkCellArray.h"
 #include "vtkContourFilter.h"
@@ -22,7 +21,9 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStripper.h"
 
+#include "gls/CurveGeometry.h"
 #include "gls/Descriptors.h"
+#include "gls/Planarity.h"
 #include "gls/ScaleSpaceEngine.h"
 
 #include <algorithm>
@@ -35,6 +36,10 @@ namespace
 {
 
 constexpr const char* ScaledKappaName = "GLSScaledKappa";
+const char* KappaName()
+{
+  return vtkGLSDescriptors::Get(vtkGLSDescriptors::KAPPA).Name;
+}
 constexpr const char* NuName = "GLSNu";
 
 /// Keeps kappa and nu of every curve point at every scale (point-major).
@@ -63,32 +68,6 @@ public:
   std::vector<double> Nu;
 };
 
-/// Restores the scale parameters a RequestData overrides for its internal fit (without touching MTime).
-struct ScaleParameterGuard
-{
-  ScaleParameterGuard(int& units, int& sampling, std::vector<double>& explicitScales)
-    : Units(units)
-    , Sampling(sampling)
-    , Explicit(explicitScales)
-    , SavedUnits(units)
-    , SavedSampling(sampling)
-    , SavedExplicit(explicitScales)
-  {
-  }
-  ~ScaleParameterGuard()
-  {
-    this->Units = this->SavedUnits;
-    this->Sampling = this->SavedSampling;
-    this->Explicit = this->SavedExplicit;
-  }
-  int& Units;
-  int& Sampling;
-  std::vector<double>& Explicit;
-  int SavedUnits;
-  int SavedSampling;
-  std::vector<double> SavedExplicit;
-};
-
 vtkSmartPointer<vtkDoubleArray> NewArray(const char* name, vtkIdType n)
 {
   auto a = vtkSmartPointer<vtkDoubleArray>::New();
@@ -106,7 +85,7 @@ void ZeroCrossings(vtkImageData* image, vtkPolyData* output)
   vtkNew<vtkContourFilter> contour;
   contour->SetInputData(copy);
   contour->SetInputArrayToProcess(
-    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkGLSArrayNames::Kappa);
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, KappaName());
   contour->SetValue(0, 0.0);
   contour->ComputeScalarsOff();
   contour->ComputeNormalsOff();
@@ -158,13 +137,22 @@ void ZeroCrossings(vtkImageData* image, vtkPolyData* output)
   output->ShallowCopy(stripper->GetOutput());
 }
 
+/// The curve of a run, its arclengths and the number of image columns.
+struct CurveState : vtkGLSRunState
+{
+  vtkGLSCurve::Curve Curve;
+  std::vector<double> Arclength;
+  int Columns = 0;
+};
+
 } // namespace
 
 vtkGLSScaleSpaceImage::vtkGLSScaleSpaceImage()
   : Closed(CLOSED_AUTO)
-  , NumberOfArclengthSamples(0)
+  , NumberOfArclengthSamples(1000)
 {
   this->NumberOfScales = 200;
+  this->ScaleSampling = LINEAR; // always linear: the image rows are equally spaced in t
   this->SetNumberOfOutputPorts(2);
 }
 
@@ -213,68 +201,77 @@ int vtkGLSScaleSpaceImage::RequestInformation(
   return 1;
 }
 
-int vtkGLSScaleSpaceImage::RequestData(
-  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
-{
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
-  vtkImageData* image = vtkImageData::GetData(outputVector, 0);
-  vtkPolyData* crossings = vtkPolyData::GetData(outputVector, 1);
-  this->LastBackendUsed.clear();
-  const vtkGLSDistributedCloud distributed(this->Controller);
-  if (distributed.IsParallel())
-  {
-    // A curve is not cut into pieces: the one rank that holds it (a source that ignores piece requests gives it
-    // all to rank 0) computes the image as a serial run; the other ranks give empty outputs.
-    const vtkIdType local = input ? input->GetNumberOfPoints() : 0;
-    const double holders = distributed.Sum(local > 0 ? 1.0 : 0.0);
-    if (holders != 1.0)
-    {
-      vtkErrorMacro("In a distributed run the curve must be on one process; "
-        << holders << " of the " << distributed.GetSize() << " processes hold points.");
-      return 0;
-    }
-    if (local == 0)
-    {
-      return 1;
-    }
-    vtkMultiProcessController* controller = this->Controller; // kept registered: set back below
-    this->Controller = nullptr;
-    const int result = this->RequestData(request, inputVector, outputVector);
-    this->Controller = controller;
-    return result;
-  }
-  if (!input || input->GetNumberOfPoints() < 1)
-  {
-    vtkErrorMacro("The input has no points.");
-    return 0;
-  }
+void vtkGLSScaleSpaceImage::PrepareOutputs(vtkGLSRun&) {}
 
-  // The ordered curve.
-  vtkGLSCurve::Curve curve;
-  const std::string why = vtkGLSCurve::Extract(input, this->Closed, curve);
+bool vtkGLSScaleSpaceImage::DistributeRun(vtkGLSRun& run)
+{
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  if (!dist.IsParallel())
+  {
+    return true;
+  }
+  // A curve is not cut into pieces: the one rank that holds it (a source that ignores piece requests gives it all
+  // to rank 0) computes the image as a serial run; the other ranks give empty outputs.
+  const vtkIdType local = run.Input ? run.Input->GetNumberOfPoints() : 0;
+  const double holders = dist.Sum(local > 0 ? 1.0 : 0.0);
+  if (holders != 1.0)
+  {
+    vtkErrorMacro("In a distributed run the curve must be on one process; "
+      << holders << " of the " << dist.GetSize() << " processes hold points.");
+    return false;
+  }
+  run.Idle = local == 0;
+  run.Distributed = vtkGLSDistributedCloud(nullptr);
+  return true;
+}
+
+bool vtkGLSScaleSpaceImage::CheckParameters(vtkGLSRun& run)
+{
+  auto state = std::make_unique<CurveState>();
+  const std::string why = vtkGLSCurve::Extract(run.Input, this->Closed, state->Curve);
   if (!why.empty())
   {
     vtkErrorMacro("Invalid curve: " << why << ".");
-    return 0;
+    return false;
   }
-  const std::size_t n = curve.Ids.size();
-  const std::vector<double> arclength = vtkGLSCurve::Arclengths(curve.Points, curve.Closed);
-  const double length = arclength.back();
+  const vtkGLSCurve::Curve& curve = state->Curve;
+  state->Arclength = gls::curveArclengths(curve.Points, curve.Closed);
+  const double length = state->Arclength.back();
   if (!(length > 0.0))
   {
-    vtkErrorMacro("Invalid curve: its length is zero (all " << n << " curve points coincide).");
-    return 0;
+    vtkErrorMacro("Invalid curve: its length is zero (all " << curve.Ids.size() << " curve points coincide).");
+    return false;
   }
   this->LastCurveClosed = curve.Closed;
   this->LastCurveLength = length;
+  state->Columns = this->NumberOfArclengthSamples > 0 ? std::max(this->NumberOfArclengthSamples, 2)
+                                                      : static_cast<int>(curve.Ids.size()) + (curve.Closed ? 1 : 0);
+  run.Cloud = vtkGLSCloud();
+  run.Cloud.Points = curve.Points;
+  run.Cloud.Owned = curve.Ids.size();
+  run.State = std::move(state);
+  return true;
+}
 
-  // Scales: linear from MinScale to MaxScale in ScaleUnits, or an equally spaced explicit list.
-  ScaleParameterGuard guard(this->ScaleUnits, this->ScaleSampling, this->ExplicitScales);
-  this->ScaleSampling = LINEAR;
-  std::vector<double> scales = this->ComputeAbsoluteScales(input);
+vtkGLSScaleFilterBase::SampleRequest vtkGLSScaleSpaceImage::GetSampleRequest(const vtkGLSRun& run) const
+{
+  const double n = static_cast<double>(run.Cloud.Owned);
+  const int columns = static_cast<const CurveState&>(*run.State).Columns;
+  SampleRequest request;
+  request.BytesPerPointScale = 2 * sizeof(double) + 3 * sizeof(double) * columns / n;
+  request.What = "the scale-space image (kappa and nu per curve point and scale, 3 image arrays)";
+  request.Advice = "Use fewer scales or arclength samples.";
+  return request;
+}
+
+bool vtkGLSScaleSpaceImage::ResolveScales(vtkGLSRun& run)
+{
+  // Linear from MinScale to MaxScale in ScaleUnits, or an equally spaced explicit list.
+  run.Scales = this->ScaleList(run.Diagonal, LINEAR);
+  const std::vector<double>& scales = run.Scales;
   if (scales.empty())
   {
-    return 0;
+    return false;
   }
   const std::size_t S = scales.size();
   const double step = S > 1 ? (scales.back() - scales.front()) / static_cast<double>(S - 1) : 1.0;
@@ -286,41 +283,46 @@ int vtkGLSScaleSpaceImage::RequestData(
       vtkErrorMacro("Invalid scales: the explicit scales must be equally spaced (the image rows are equally "
                     "spaced in t); scale " << k << " is " << scales[k] << ", expected "
                                            << scales.front() + static_cast<double>(k) * step << ".");
-      return 0;
+      return false;
     }
   }
+  return true;
+}
 
-  // Points and normals of the fit: planar curves in their plane's coordinates (z = 0), others as given.
-  vtkDataArray* given = this->FindSelectedNormals(input);
+bool vtkGLSScaleSpaceImage::GatherFitCloud(vtkGLSRun& run)
+{
+  const vtkGLSCurve::Curve& curve = static_cast<const CurveState&>(*run.State).Curve;
+  vtkPolyData* input = run.Input;
+  const std::size_t n = curve.Ids.size();
+  vtkDataArray* given = this->FindSelectedNormals(0, input);
   if (given && (given->GetNumberOfComponents() != 3 || given->GetNumberOfTuples() != input->GetNumberOfPoints()))
   {
     vtkErrorMacro("The normals array '" << (given->GetName() ? given->GetName() : "(unnamed)") << "' has "
                                         << given->GetNumberOfComponents() << " components and "
                                         << given->GetNumberOfTuples() << " tuples; expected 3 components and "
                                         << input->GetNumberOfPoints() << " tuples (one per point).");
-    return 0;
+    return false;
   }
-  const double diagonal = vtkGLSCurve::Diagonal(curve.Points);
-  const vtkGLSCurve::Plane plane = vtkGLSCurve::FitPlane(curve.Points);
-  const bool planar = plane.MaxDistance <= 1e-6 * diagonal;
+  const double diagonal = gls::boundingDiagonal(curve.Points);
+  const gls::PlaneFit plane = gls::fitPlane(curve.Points.data(), n);
+  const bool planar = plane.maxDistance <= 1e-6 * diagonal;
   if (!given && !planar)
   {
     vtkErrorMacro("The input has no normals and the curve is not planar (a point lies "
-      << plane.MaxDistance << " from the best-fit plane, above 1e-6 of the diagonal " << diagonal
+      << plane.maxDistance << " from the best-fit plane, above 1e-6 of the diagonal " << diagonal
       << "): in-plane normals can only be computed for a planar curve. Give the curve oriented normals.");
-    return 0;
+    return false;
   }
-  std::vector<double> fitPoints(3 * n), fitNormals(3 * n);
+  // Planar curves are fitted in their plane's coordinates (z = 0), others as given.
+  std::vector<double>& points = run.Cloud.Points;
+  std::vector<double>& normals = run.Cloud.Normals;
+  normals.assign(3 * n, 0.0);
   for (std::size_t i = 0; i < n; ++i)
   {
     if (planar)
     {
-      vtkGLSCurve::ToPlane(plane, &curve.Points[3 * i], &fitPoints[3 * i], true);
-      fitPoints[3 * i + 2] = 0.0;
-    }
-    else
-    {
-      std::copy(&curve.Points[3 * i], &curve.Points[3 * i] + 3, &fitPoints[3 * i]);
+      gls::toPlaneFrame(plane, &curve.Points[3 * i], &points[3 * i], true);
+      points[3 * i + 2] = 0.0;
     }
     if (given)
     {
@@ -328,68 +330,52 @@ int vtkGLSScaleSpaceImage::RequestData(
       given->GetTuple(curve.Ids[i], nrm);
       if (planar)
       {
-        vtkGLSCurve::ToPlane(plane, nrm, &fitNormals[3 * i], false);
+        gls::toPlaneFrame(plane, nrm, &normals[3 * i], false);
         const double len = std::sqrt(vtkMath::Dot(nrm, nrm));
-        if (std::abs(fitNormals[3 * i + 2]) <= 1e-9 * len)
+        if (std::abs(normals[3 * i + 2]) <= 1e-9 * len)
         {
-          fitNormals[3 * i + 2] = 0.0;
+          normals[3 * i + 2] = 0.0;
         }
       }
       else
       {
-        std::copy(nrm, nrm + 3, &fitNormals[3 * i]);
+        std::copy(nrm, nrm + 3, &normals[3 * i]);
       }
     }
   }
   if (!given)
   {
-    fitNormals = vtkGLSCurve::InPlaneNormals(fitPoints, curve.Closed);
+    normals = gls::inPlaneCurveNormals(points, curve.Closed);
   }
+  return true;
+}
 
-  // The internal cloud the base class fits, at the absolute scales computed above.
-  vtkNew<vtkPolyData> cloud;
-  vtkNew<vtkPoints> cloudPoints;
-  cloudPoints->SetDataTypeToDouble();
-  cloudPoints->SetNumberOfPoints(static_cast<vtkIdType>(n));
-  vtkNew<vtkDoubleArray> cloudNormals;
-  cloudNormals->SetName(given && given->GetName() ? given->GetName() : vtkGLSArrayNames::Normals);
-  cloudNormals->SetNumberOfComponents(3);
-  cloudNormals->SetNumberOfTuples(static_cast<vtkIdType>(n));
-  for (std::size_t i = 0; i < n; ++i)
+int vtkGLSScaleSpaceImage::ComputeOutputs(vtkGLSRun& run)
+{
+  const CurveState& state = static_cast<const CurveState&>(*run.State);
+  const std::vector<double>& scales = run.Scales;
+  const std::vector<double>& arclength = state.Arclength;
+  const std::size_t n = state.Curve.Ids.size();
+  const std::size_t S = scales.size();
+  const double length = arclength.back();
+  CurveSink sink(n, scales, this->Weights());
+  if (!this->FeedSamples(run, sink, nullptr, 0.0, 0.85))
   {
-    cloudPoints->SetPoint(static_cast<vtkIdType>(i), &fitPoints[3 * i]);
-    cloudNormals->SetTuple(static_cast<vtkIdType>(i), &fitNormals[3 * i]);
-  }
-  cloud->SetPoints(cloudPoints);
-  cloud->GetPointData()->SetNormals(cloudNormals);
-  this->ScaleUnits = ABSOLUTE;
-  this->ExplicitScales = scales;
-  const int columns = this->NumberOfArclengthSamples > 0 ? std::max(this->NumberOfArclengthSamples, 2)
-                                                         : static_cast<int>(n) + (curve.Closed ? 1 : 0);
-  OutputCost cost;
-  cost.BytesPerPointScale = 2 * sizeof(double) + 3 * sizeof(double) * columns / static_cast<double>(n);
-  cost.What = "the scale-space image (kappa and nu per curve point and scale, 3 image arrays)";
-  cost.Advice = "Use fewer scales or arclength samples.";
-  std::vector<double> used;
-  if (!this->PrepareScaleSamples(cloud, false, false, used, cost))
-  {
-    return 0;
-  }
-  CurveSink sink(n, scales, gls::VariationWeights{ this->WTau, this->WEta, this->WKappa });
-  if (!this->RunScaleSamples(sink, nullptr, 0.0, 0.85))
-  {
-    return 1; // aborted: empty outputs
+    return ABORTED; // empty outputs
   }
 
   // Resample the curve points' values at uniformly spaced arclengths.
-  const vtkIdType nx = columns;
+  vtkImageData* image = vtkImageData::GetData(run.OutputVector, 0);
+  vtkPolyData* crossings = vtkPolyData::GetData(run.OutputVector, 1);
+  const double step = S > 1 ? (scales.back() - scales.front()) / static_cast<double>(S - 1) : 1.0;
+  const vtkIdType nx = state.Columns;
   const vtkIdType ny = static_cast<vtkIdType>(S);
   image->SetDimensions(static_cast<int>(nx), static_cast<int>(ny), 1);
-  outputVector->GetInformationObject(0)->Set(
+  run.OutputVector->GetInformationObject(0)->Set(
     vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), image->GetExtent(), 6);
   image->SetOrigin(0.0, scales.front(), 0.0);
   image->SetSpacing(length / static_cast<double>(nx - 1), step, 1.0);
-  auto kappa = NewArray(vtkGLSArrayNames::Kappa, nx * ny);
+  auto kappa = NewArray(KappaName(), nx * ny);
   auto scaled = NewArray(ScaledKappaName, nx * ny);
   auto nu = NewArray(NuName, nx * ny);
   std::size_t segment = 0; // arclength[segment] <= s <= arclength[segment + 1]
@@ -417,19 +403,19 @@ int vtkGLSScaleSpaceImage::RequestData(
   image->GetPointData()->AddArray(kappa);
   image->GetPointData()->AddArray(nu);
   image->GetPointData()->SetScalars(scaled);
-  StoreScales(image->GetFieldData(), scales);
-  this->StoreBackend(image->GetFieldData());
+  WriteScales(image->GetFieldData(), scales);
+  WriteRunFieldData(run, image->GetFieldData());
   this->UpdateProgress(0.9);
   if (this->GetAbortExecute())
   {
     image->Initialize();
-    return 1;
+    return ABORTED;
   }
 
   ZeroCrossings(image, crossings);
-  StoreScales(crossings->GetFieldData(), scales);
+  WriteScales(crossings->GetFieldData(), scales);
   this->UpdateProgress(1.0);
-  return 1;
+  return COMPLETED;
 }
 
 void vtkGLSScaleSpaceImage::PrintSelf(ostream& os, vtkIndent indent)

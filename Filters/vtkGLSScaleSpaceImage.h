@@ -42,7 +42,7 @@
  * Errors (vtkErrorMacro, RequestData returns 0): fewer than 3 curve points, non-finite coordinates, a zero-length
  * curve, a non-planar curve without normals, mis-sized normals, unequally spaced explicit scales, and the scale
  * errors of vtkGLSScaleFilterBase. Progress is reported; an aborted run leaves both outputs empty.
- * ReuseInputScaleSpace is ignored (the filter always fits its own scales).
+ * The filter always fits its own scales (upstream arrays are never reused).
  *
  * Distributed runs (several MPI processes, see vtkGLSScaleFilterBase): the curve must be on one process (a curve
  * source that ignores piece requests puts it on rank 0); that process computes the image as a serial run would and
@@ -52,15 +52,15 @@
 #define vtkGLSScaleSpaceImage_h
 
 #include "vtkGLSFiltersModule.h"
-#include "vtkGLSScaleFilterBase.h"
+#include "vtkGLSVariationFilterBase.h"
 
 class vtkImageData;
 
-class VTKGLSFILTERS_EXPORT vtkGLSScaleSpaceImage : public vtkGLSScaleFilterBase
+class VTKGLSFILTERS_EXPORT vtkGLSScaleSpaceImage : public vtkGLSVariationFilterBase
 {
 public:
   static vtkGLSScaleSpaceImage* New();
-  vtkTypeMacro(vtkGLSScaleSpaceImage, vtkGLSScaleFilterBase);
+  vtkTypeMacro(vtkGLSScaleSpaceImage, vtkGLSVariationFilterBase);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum ClosedType
@@ -81,11 +81,11 @@ public:
   ///@}
 
   ///@{
-  /// Number of image columns, uniformly spaced in arclength from 0 to L (both included). 0 (default) = one per
-  /// curve point (plus one for a closed curve, for s = L). At least 2 when set. With 0 the image's extent is
-  /// known at RequestInformation only when the input data is already there (SetInputData); downstream of a reader
-  /// or filter it is not, and a consumer that asks for the whole extent beforehand (ParaView's representations)
-  /// gets an empty image: set a count there (the ParaView proxy defaults to 1000).
+  /// Number of image columns, uniformly spaced in arclength from 0 to L (both included); default 1000, at least 2
+  /// when set. 0 = one per curve point (plus one for a closed curve, for s = L): the image's extent is then known
+  /// at RequestInformation only when the input data is already there (SetInputData); downstream of a reader or
+  /// filter it is not, and a consumer that asks for the whole extent beforehand (ParaView's representations) gets
+  /// an empty image.
   vtkSetClampMacro(NumberOfArclengthSamples, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfArclengthSamples, int);
   ///@}
@@ -104,11 +104,20 @@ protected:
   ~vtkGLSScaleSpaceImage() override;
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  bool AcceptsStoredScaleSpace() const override { return false; }
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  /// Distributed runs: the rank holding the whole curve computes; see RequestData.
-  bool SupportsDistributedInput() const override { return true; }
+
+  /// The outputs (an image and polylines) are made from nothing of the input.
+  void PrepareOutputs(vtkGLSRun& run) override;
+  /// Distributed runs: the rank holding the whole curve computes as a serial run, the others stay idle.
+  bool DistributeRun(vtkGLSRun& run) override;
+  /// Extracts the curve (its errors come first) and sets it as the cloud to fit.
+  bool CheckParameters(vtkGLSRun& run) override;
+  SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
+  /// Linear scales; an explicit list must be equally spaced.
+  bool ResolveScales(vtkGLSRun& run) override;
+  /// The curve's points and normals, planar curves in their plane's coordinates (z = 0).
+  bool GatherFitCloud(vtkGLSRun& run) override;
+  int ComputeOutputs(vtkGLSRun& run) override;
 
   int Closed;
   int NumberOfArclengthSamples;

@@ -173,6 +173,7 @@ TEST(ScaleSpaceImage, SinusoidCrossingsAreTheInflectionPoints)
   const int n = 2000;
   const std::vector<double> xyz = sinusoid(n, 1.0);
   vtkNew<vtkGLSScaleSpaceImage> f;
+  f->SetNumberOfArclengthSamples(0); // one column per curve point
   f->SetScaleUnitsToAbsolute();
   f->SetMinScale(0.05);
   f->SetMaxScale(1.0);
@@ -290,6 +291,7 @@ TEST(ScaleSpaceImage, FlowerInflectionsAnnihilateAtLargeScales)
   const int n = 3000;
   const std::vector<double> xyz = flower(n);
   vtkNew<vtkGLSScaleSpaceImage> f;
+  f->SetNumberOfArclengthSamples(0); // one column per curve point
   f->SetScaleUnitsToAbsolute();
   f->SetMinScale(0.02);
   f->SetMaxScale(1.0);
@@ -384,6 +386,7 @@ TEST(ScaleSpaceImage, UndefinedFitsAreNaNAndCrossingsStayFinite)
   // Scales below the sample spacing hold fewer than 3 neighbours: NaN rows; the crossings skip them.
   const std::vector<double> xyz = sinusoid(400, 1.0);
   vtkNew<vtkGLSScaleSpaceImage> f;
+  f->SetNumberOfArclengthSamples(0); // one column per curve point
   f->SetScaleUnitsToAbsolute();
   f->SetMinScale(0.001);
   f->SetMaxScale(0.5);
@@ -477,6 +480,7 @@ TEST(ScaleSpaceImage, TiltedPlaneGivesTheSameImage)
 TEST(ScaleSpaceImage, BadInputGivesClearErrors)
 {
   vtkNew<vtkGLSScaleSpaceImage> f;
+  f->SetNumberOfArclengthSamples(0); // one column per curve point
   auto errors = catchErrors(f);
   f->SetScaleUnitsToAbsolute();
   f->SetMinScale(0.1);

@@ -304,6 +304,7 @@ class PluginProxies(unittest.TestCase):
         direct.SetMinScale(0.02)
         direct.SetMaxScale(1.0)
         direct.SetNumberOfScales(50)
+        direct.SetNumberOfArclengthSamples(0)
         direct.SetInputData(flower_curve(1000))
         direct.Update()
         np.testing.assert_array_equal(array(direct.GetImageOutput(), 'GLSKappa'), array(image, 'GLSKappa'))

@@ -2,6 +2,7 @@
 
 #include "gls/NeighborGrid.h"
 #include "gls/Numeric.h"
+#include "gls/Planarity.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -117,25 +118,7 @@ bool estimateNormals(
 
   const bool byRadius = settings.neighborhood == NeighborhoodType::Radius;
   // 2D input: every finite point in one plane z = const (a curve); its normals are in that plane.
-  bool planar = false;
-  double z0 = 0.0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (!finite3(xyz + 3 * i))
-    {
-      continue;
-    }
-    if (!planar)
-    {
-      planar = true;
-      z0 = xyz[3 * i + 2];
-    }
-    else if (xyz[3 * i + 2] != z0)
-    {
-      planar = false;
-      break;
-    }
-  }
+  const bool planar = commonZ(xyz, n).planar;
   const double cellSize =
     byRadius ? settings.radius : NeighborGrid::suggestCellSizeForKNearest(xyz, n, settings.k);
   NeighborGrid grid;

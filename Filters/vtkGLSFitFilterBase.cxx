@@ -1,0 +1,123 @@
+#include "vtkGLSFitFilterBase.h"
+
+#include "vtkGLSRun.h"
+
+#include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkPolyData.h"
+
+#include "gls/Planarity.h"
+
+#include <unistd.h>
+
+vtkGLSFitFilterBase::vtkGLSFitFilterBase()
+  : ScaleUnits(RELATIVE_TO_DIAGONAL)
+  , MinimumNeighbors(0)
+  , MemoryBudget(0.0)
+{
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::NORMALS);
+}
+
+vtkGLSFitFilterBase::~vtkGLSFitFilterBase() = default;
+
+double vtkGLSFitFilterBase::ToAbsoluteLength(const vtkGLSRun& run, double value) const
+{
+  return this->ScaleUnits == ABSOLUTE ? value : value * run.Diagonal;
+}
+
+bool vtkGLSFitFilterBase::GatherNormals(vtkGLSRun& run)
+{
+  const vtkIdType n = run.Input->GetNumberOfPoints();
+  if (n < 1)
+  {
+    run.Cloud.Normals.clear(); // an empty piece of a distributed input (some rank has points)
+    return true;
+  }
+  vtkDataArray* nrm = this->FindSelectedNormals(0, run.Input);
+  if (!nrm)
+  {
+    vtkErrorMacro("The input has no normals: select a 3-component point array, set active normals, or run "
+                  "vtkGLSNormalEstimation (GLS Normal Estimation) first.");
+    return false;
+  }
+  if (nrm->GetNumberOfComponents() != 3 || nrm->GetNumberOfTuples() != n)
+  {
+    vtkErrorMacro("The normals array '" << (nrm->GetName() ? nrm->GetName() : "(unnamed)") << "' has "
+                                        << nrm->GetNumberOfComponents() << " components and "
+                                        << nrm->GetNumberOfTuples() << " tuples; expected 3 components and " << n
+                                        << " tuples (one per point).");
+    return false;
+  }
+  run.Cloud.Normals.resize(3 * static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    nrm->GetTuple(i, &run.Cloud.Normals[3 * i]);
+  }
+  return true;
+}
+
+void vtkGLSFitFilterBase::ResolveMinimumNeighbors(vtkGLSRun& run) const
+{
+  if (this->MinimumNeighbors > 0)
+  {
+    run.MinimumNeighbors = this->MinimumNeighbors;
+    return;
+  }
+  const gls::PlaneZ plane =
+    gls::twoDimensionalFitInput(run.Cloud.Points.data(), run.Cloud.Normals.data(), run.Cloud.Owned);
+  run.MinimumNeighbors = run.Distributed.AllInOnePlaneZ(plane.planar, plane.any, plane.z) ? 3.0 : 6.0;
+}
+
+bool vtkGLSFitFilterBase::AddGhosts(vtkGLSRun& run, double reach)
+{
+  std::size_t ghosts = 0;
+  const bool ok = run.Distributed.AppendGhosts(
+    run.Cloud.Points, run.Cloud.Owned, { { &run.Cloud.Normals, 3 } }, reach, ghosts);
+  if (!run.Distributed.AllTrue(ok))
+  {
+    vtkErrorMacro("The exchange of ghost points between the processes failed.");
+    return false;
+  }
+  run.GhostPoints = static_cast<long long>(ghosts);
+  return true;
+}
+
+bool vtkGLSFitFilterBase::CheckMemoryBudget(double needed, const char* what, const char* advice)
+{
+  double budget = this->MemoryBudget * 1024.0 * 1024.0;
+  if (!(budget > 0.0))
+  {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    budget = pages > 0 && pageSize > 0 ? 0.5 * static_cast<double>(pages) * static_cast<double>(pageSize) : 4e9;
+  }
+  if (needed <= budget)
+  {
+    return true;
+  }
+  vtkErrorMacro("Not enough memory budget: " << what << " needs about " << needed / (1024.0 * 1024.0)
+                                             << " MiB, above the budget of " << budget / (1024.0 * 1024.0)
+                                             << " MiB (MemoryBudget; 0 = half of the physical memory). " << advice);
+  return false;
+}
+
+bool vtkGLSFitFilterBase::AgreeToContinue(const vtkGLSRun& run, bool ok)
+{
+  if (run.Distributed.AllTrue(ok))
+  {
+    return true;
+  }
+  if (ok)
+  {
+    vtkErrorMacro("Stopped: another process of this distributed run failed (see its error).");
+  }
+  return false;
+}
+
+void vtkGLSFitFilterBase::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ScaleUnits: " << (this->ScaleUnits == ABSOLUTE ? "Absolute" : "RelativeToDiagonal") << "\n";
+  os << indent << "MinimumNeighbors: " << this->MinimumNeighbors << "\n";
+  os << indent << "MemoryBudget (MiB): " << this->MemoryBudget << "\n";
+}

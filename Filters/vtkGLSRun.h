@@ -1,0 +1,72 @@
+// What one execution of a GLS filter works with (private to the module). The bases build it step by step --
+// vtkGLSFilterBase the outputs, the distributed context and the extent of the input; vtkGLSFitFilterBase the cloud
+// to fit; vtkGLSScaleFilterBase the scales and where the samples come from -- then the filter computes its arrays
+// from it. It lives for one RequestData: nothing of a run is kept in the filter's members.
+#ifndef vtkGLSRun_h
+#define vtkGLSRun_h
+
+#include "vtkGLSDistributedCloud.h"
+#include "vtkGLSSampleSource.h"
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkInformationVector;
+class vtkPolyData;
+
+/// A piece's points and (unit or not) normals: this rank's own points first, then the ghosts other ranks sent.
+struct vtkGLSCloud
+{
+  std::vector<double> Points;  ///< 3 per point
+  std::vector<double> Normals; ///< 3 per point (empty when the filter has none, e.g. normal estimation)
+  std::size_t Owned = 0;       ///< this piece's points, the first ones
+
+  std::size_t Size() const { return this->Points.size() / 3; }
+  std::size_t Ghosts() const { return this->Size() - this->Owned; }
+};
+
+/// What a filter keeps of its own for one run, between its hooks (e.g. the dissimilarity's query point).
+struct vtkGLSRunState
+{
+  virtual ~vtkGLSRunState() = default;
+};
+
+struct vtkGLSRun
+{
+  explicit vtkGLSRun(vtkMultiProcessController* controller)
+    : Distributed(controller)
+  {
+  }
+
+  // Built by vtkGLSFilterBase.
+  vtkGLSDistributedCloud Distributed;    ///< the collective steps (serial identities in a serial run)
+  vtkPolyData* Input = nullptr;
+  vtkInformationVector* OutputVector = nullptr;
+  vtkPolyData* Output = nullptr;         ///< point-data filters: the input with this filter's arrays added
+  bool Idle = false;                     ///< this rank takes no part in the run (its outputs stay empty)
+  bool HasFinitePoints = false;          ///< some point of the whole (distributed) input has finite coordinates
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 }; ///< of the finite points of the whole input (when HasFinitePoints)
+  double Diagonal = 0.0;                 ///< length of the diagonal of Bounds (0 without finite points)
+
+  vtkGLSCloud Cloud;                     ///< the input's points; the fit filters add the normals (and the ghosts)
+
+  // Built by vtkGLSFitFilterBase.
+  double MinimumNeighbors = 0.0;         ///< resolved (see vtkGLSFitFilterBase::MinimumNeighbors)
+
+  // Built by vtkGLSScaleFilterBase.
+  std::vector<double> Scales;            ///< absolute scales (length)
+  std::unique_ptr<vtkGLSSampleSource> Samples; ///< a fit of the cloud, or the arrays of an upstream scale space
+  vtkDataArray* StoredVariation = nullptr; ///< an upstream GLSGeometricVariation at Scales, when it can be used
+
+  // The filter's own.
+  std::unique_ptr<vtkGLSRunState> State;
+
+  // Reported in the output's field data (vtkGLSFilterBase::WriteRunFieldData).
+  std::string BackendUsed;               ///< where the fits ran ("" when none ran)
+  long long GhostPoints = -1;            ///< ghosts this rank used (-1: no exchange)
+};
+
+#endif

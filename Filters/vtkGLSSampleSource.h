@@ -1,0 +1,58 @@
+// Where a scale filter's samples come from (private to the module): a fit of the run's cloud by the core's engine,
+// or the per-scale arrays an upstream vtkGLSScaleSpace stored (read back through the descriptor table), so that
+// downstream filters reuse them instead of refitting. Either way the filter's sink receives one gls::ScaleSample
+// per scale for each point it asks for.
+#ifndef vtkGLSSampleSource_h
+#define vtkGLSSampleSource_h
+
+#include "gls/Backend.h"
+#include "gls/ScaleSpaceEngine.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+class vtkDataArray;
+class vtkPolyData;
+struct vtkGLSCloud;
+
+class vtkGLSSampleSource
+{
+public:
+  /// A fit of the cloud's points and normals (owned points, then ghosts) at settings.scales. Only the owned points
+  /// are evaluated; the ghosts are neighbours only. An empty piece has nothing to fit.
+  static std::unique_ptr<vtkGLSSampleSource> Fit(const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings);
+
+  /// The arrays a vtkGLSScaleSpace stored for `scaleCount` scales: the descriptors (GLSTau, GLSKappa, GLSFitness)
+  /// and/or the derivatives (GLSdTau, GLSdEta, GLSdKappa), as asked. Null when any asked array is missing or has
+  /// the wrong shape.
+  static std::unique_ptr<vtkGLSSampleSource> Stored(
+    vtkPolyData* input, std::size_t scaleCount, bool descriptors, bool derivatives);
+
+  /// Nothing to feed: an empty piece of a distributed input that goes along with the others.
+  static std::unique_ptr<vtkGLSSampleSource> Empty();
+
+  /// True when Feed runs the core's fits on this piece (false for stored arrays and empty pieces).
+  bool RunsFits() const { return this->Engine != nullptr; }
+
+  /// Feeds the sink with the samples of the given points of this piece (all of them when ids is null) on
+  /// parallel.threads threads, reporting progress through parallel.progress. A fit runs on `backend` and says in
+  /// `report` where it ran. A stored sample is valid when every value read back is finite; the values not read back
+  /// are NaN. Returns false if aborted.
+  bool Feed(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const gls::ParallelOptions& parallel,
+    gls::Backend backend, gls::RunReport& report) const;
+
+  /// Bytes of the engine's buffers for n points (ghosts included) and S scales on `threads` threads.
+  static double EngineBytes(std::size_t n, std::size_t S, int threads);
+
+private:
+  vtkGLSSampleSource() = default;
+
+  std::unique_ptr<gls::ScaleSpaceEngine> Engine; ///< null for an empty piece
+  std::vector<std::uint64_t> OwnedOrder;         ///< with ghosts: the engine's order without them
+  std::size_t PointCount = 0;
+  std::size_t ScaleCount = 0;
+  std::vector<std::pair<int, vtkDataArray*>> StoredArrays; ///< (descriptor id, its array), for the stored samples
+};
+
+#endif

@@ -1,0 +1,63 @@
+/**
+ * @class   vtkGLSVariationFilterBase
+ * @brief   The GLS scale filters that use the geometric variation nu: its weights, and nu of every point.
+ *
+ * nu(p, t) = WTau dtau^2 + WEta t^2 |deta|^2 + WKappa t^4 dkappa^2 (Mellado et al. 2012, eq. 5): dimensionless and
+ * invariant to rigid motion and uniform scaling; low nu means the shape around p is stable at scale t; NaN where
+ * the fit is undefined. See vtkGLSScaleFilterBase for the scales and where the samples come from.
+ */
+#ifndef vtkGLSVariationFilterBase_h
+#define vtkGLSVariationFilterBase_h
+
+#include "vtkGLSFiltersModule.h"
+#include "vtkGLSScaleFilterBase.h"
+
+#include <functional>
+
+namespace gls
+{
+struct VariationWeights;
+}
+
+class VTKGLSFILTERS_EXPORT vtkGLSVariationFilterBase : public vtkGLSScaleFilterBase
+{
+public:
+  vtkTypeMacro(vtkGLSVariationFilterBase, vtkGLSScaleFilterBase);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Weights of the three terms of nu (dimensionless, >= 0, default 1).
+  vtkSetClampMacro(WTau, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(WTau, double);
+  vtkSetClampMacro(WEta, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(WEta, double);
+  vtkSetClampMacro(WKappa, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(WKappa, double);
+  ///@}
+
+protected:
+  vtkGLSVariationFilterBase();
+  ~vtkGLSVariationFilterBase() override;
+
+  /// The weights as the core takes them.
+  gls::VariationWeights Weights() const;
+
+  /// Maps a point's nu at the run's scales (one value per scale) to one value; called concurrently, read-only.
+  using VariationReducer = std::function<double(const double* nu)>;
+
+  /// Reduces every point's nu over the scales to one value in `out` (one per point of this piece), for the
+  /// filters that summarize nu per point: from an upstream GLSGeometricVariation when the run found one
+  /// (SampleRequest::VariationWillDo), else from the samples, in a fused pass that stores nothing per scale.
+  /// Progress runs from 0 to progressEnd. Returns false if aborted (`out` is then incomplete).
+  bool ReduceVariation(vtkGLSRun& run, const VariationReducer& reduce, double* out, double progressEnd);
+
+  double WTau;
+  double WEta;
+  double WKappa;
+
+private:
+  vtkGLSVariationFilterBase(const vtkGLSVariationFilterBase&) = delete;
+  void operator=(const vtkGLSVariationFilterBase&) = delete;
+};
+
+#endif
