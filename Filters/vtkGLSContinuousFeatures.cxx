@@ -11,6 +11,7 @@
 
 #include "gls/ScaleAnalysis.h"
 
+#include <cmath>
 #include <vector>
 
 vtkStandardNewMacro(vtkGLSContinuousFeatures);
@@ -23,6 +24,17 @@ vtkGLSContinuousFeatures::vtkGLSContinuousFeatures()
 }
 
 vtkGLSContinuousFeatures::~vtkGLSContinuousFeatures() = default;
+
+bool vtkGLSContinuousFeatures::CheckParameters(vtkGLSRun&)
+{
+  if (!(this->Sigma > 0.0) || !std::isfinite(this->Sigma))
+  {
+    vtkErrorMacro("Sigma must be a positive finite number (it is " << this->Sigma
+                                                                  << "): it is the scale of tanh(nu / Sigma).");
+    return false;
+  }
+  return true;
+}
 
 vtkGLSScaleFilterBase::SampleRequest vtkGLSContinuousFeatures::GetSampleRequest(const vtkGLSRun&) const
 {

@@ -43,8 +43,9 @@ public:
   ///@}
 
   ///@{
-  /// Scale of the tanh remapping of nu (dimensionless, > 0). Default 0.1.
-  vtkSetClampMacro(Sigma, double, 1e-300, VTK_DOUBLE_MAX);
+  /// Scale of the tanh remapping of nu (dimensionless, > 0; otherwise RequestData stops with an error).
+  /// Default 0.1.
+  vtkSetMacro(Sigma, double);
   vtkGetMacro(Sigma, double);
   ///@}
 
@@ -60,6 +61,8 @@ protected:
   vtkGLSContinuousFeatures();
   ~vtkGLSContinuousFeatures() override;
 
+  /// Sigma must be positive.
+  bool CheckParameters(vtkGLSRun& run) override;
   SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
   int ComputeOutputs(vtkGLSRun& run) override;
 

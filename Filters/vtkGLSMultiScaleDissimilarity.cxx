@@ -86,6 +86,11 @@ bool vtkGLSMultiScaleDissimilarity::CheckParameters(vtkGLSRun& run)
   const vtkIdType n = input->GetNumberOfPoints();
   const vtkGLSDistributedCloud& dist = run.Distributed;
   auto state = std::make_unique<QueryState>();
+  if (!this->UseQueryPointCoordinates && this->QueryPointId < 0)
+  {
+    vtkErrorMacro("QueryPointId must be a point id, >= 0 (it is " << this->QueryPointId << ").");
+    return false;
+  }
   // The query point (in a distributed run, this piece's index of it, -1 on the other ranks).
   vtkIdType query = this->QueryPointId;
   double best = VTK_DOUBLE_MAX;

@@ -46,12 +46,13 @@ public:
   ///@}
 
   ///@{
-  /// Id of the query point (default 0). Ignored when UseQueryPointCoordinates is on. In a distributed run (several
+  /// Id of the query point (default 0; a negative id or one past the last point is an error). Ignored when
+  /// UseQueryPointCoordinates is on. In a distributed run (several
   /// processes, see vtkGLSScaleFilterBase) it is a global id: the value of the point-data GlobalIds attribute when
   /// the pieces carry one (the serial index when the ids were made before the cloud was split), else the index in
   /// the rank-order concatenation of the pieces; the rank holding it computes its descriptors and broadcasts them.
   /// The field data GLSQueryPointId then holds that global id.
-  vtkSetClampMacro(QueryPointId, vtkIdType, 0, VTK_ID_MAX);
+  vtkSetMacro(QueryPointId, vtkIdType);
   vtkGetMacro(QueryPointId, vtkIdType);
   ///@}
 

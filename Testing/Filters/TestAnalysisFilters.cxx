@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 using namespace glstest;
 
@@ -316,12 +317,34 @@ TEST(DissimilarityFilter, BadQueryAndPriorGiveClearErrors)
   f->SetQueryPointId(500);
   f->Update();
   EXPECT_NE(errors->Message.find("out of range"), std::string::npos) << errors->Message;
+  f->SetQueryPointId(-1); // an error, not point 0
+  f->Update();
+  EXPECT_EQ(errors->Count, 2);
+  EXPECT_NE(errors->Message.find("QueryPointId must be a point id"), std::string::npos) << errors->Message;
+  EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray("GLSDissimilarity"), nullptr);
   f->SetQueryPointId(0);
   f->SetPriorMinScale(2.0);
   f->SetPriorMaxScale(3.0);
   f->Update();
   EXPECT_NE(errors->Message.find("prior"), std::string::npos) << errors->Message;
   EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray("GLSDissimilarity"), nullptr);
+}
+
+TEST(FeaturesFilter, ZeroNegativeOrNonFiniteSigmaIsAnError)
+{
+  // Sigma is the scale of tanh(nu / Sigma): 0 or a negative value used to be clamped, making every feature 1.
+  const Cloud c = sphere(500, 1.0);
+  for (double sigma : { 0.0, -0.1, std::numeric_limits<double>::quiet_NaN() })
+  {
+    vtkNew<vtkGLSContinuousFeatures> f;
+    auto errors = catchErrors(f);
+    f->SetSigma(sigma);
+    f->SetInputData(makePolyData(c));
+    f->Update();
+    EXPECT_EQ(errors->Count, 1) << sigma;
+    EXPECT_NE(errors->Message.find("Sigma must be a positive"), std::string::npos) << errors->Message;
+    EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray("GLSFeature"), nullptr) << sigma;
+  }
 }
 
 TEST(AnalysisFilters, MissingNormalsAndEmptyInputGiveClearErrors)

@@ -1,0 +1,122 @@
+"""The ParaView XML and the C++ classes agree: every property's command exists on its class, its default is the
+C++ default, and its range is the C++ clamp (vtkSetClampMacro's GetXMinValue/GetXMaxValue).
+
+    pvpython test_xml_matches_cxx.py <GrowingLeastSquares.xml>      (PYTHONPATH holds the glsvtk package)
+
+Base proxies (base_proxygroup/base_proxyname) are resolved as ParaView does: the base's properties first, a
+property with override="1" replacing the inherited one. Lists (repeat_command) and array selections
+(SetInputArrayToProcess) have no scalar default and are skipped.
+"""
+import sys
+import unittest
+import xml.etree.ElementTree as ET
+
+import glsvtk
+
+XML = sys.argv[1]
+INT_MAX = 2147483647
+DOUBLE_MAX = 1.0e299  # VTK_DOUBLE_MAX
+ID_MAX = 9223372036854775807
+VECTOR_PROPERTIES = ('IntVectorProperty', 'DoubleVectorProperty', 'IdTypeVectorProperty')
+
+
+def load_proxies(path):
+    root = ET.parse(path).getroot()
+    proxies = {}
+    for group in root.findall('ProxyGroup'):
+        for proxy in group.findall('SourceProxy'):
+            proxies[(group.get('name'), proxy.get('name'))] = proxy
+    return proxies
+
+
+def properties(proxies, key):
+    """The proxy's properties in panel order, with its bases' first (override="1" replaces)."""
+    proxy = proxies[key]
+    inherited = []
+    if proxy.get('base_proxyname'):
+        inherited = properties(proxies, (proxy.get('base_proxygroup'), proxy.get('base_proxyname')))
+    own = [p for p in proxy if p.tag.endswith('Property')]
+    overridden = {p.get('name') for p in own if p.get('override') == '1'}
+    return [p for p in inherited if p.get('name') not in overridden] + own
+
+
+def numbers(text, kind):
+    convert = float if kind == 'DoubleVectorProperty' else int
+    return [convert(v) for v in text.split()]
+
+
+class XmlMatchesCxx(unittest.TestCase):
+    def setUp(self):
+        self.proxies = load_proxies(XML)
+        self.filters = [k for k in self.proxies if k[0] in ('filters', 'sources')]
+        self.assertGreaterEqual(len(self.filters), 10)
+
+    def each_property(self):
+        for key in self.filters:
+            cls = self.proxies[key].get('class')
+            obj = getattr(glsvtk, cls)()
+            for prop in properties(self.proxies, key):
+                yield key[1], obj, prop
+
+    def test_every_command_exists(self):
+        for proxy, obj, prop in self.each_property():
+            for attribute in ('command', 'clean_command'):
+                command = prop.get(attribute)
+                if command:
+                    self.assertTrue(hasattr(obj, command), '%s.%s: %s has no %s' % (
+                        proxy, prop.get('name'), obj.GetClassName(), command))
+
+    def test_defaults_equal_the_cxx_defaults(self):
+        checked = 0
+        for proxy, obj, prop in self.each_property():
+            command = prop.get('command') or ''
+            if (prop.tag not in VECTOR_PROPERTIES or not command.startswith('Set') or prop.get('repeat_command')
+                    or prop.get('default_values') is None):
+                continue
+            getter = getattr(obj, 'Get' + command[3:])
+            value = getter()
+            expected = numbers(prop.get('default_values'), prop.tag)
+            actual = list(value) if isinstance(value, (tuple, list)) else [value]
+            self.assertEqual([float(v) for v in actual], [float(v) for v in expected],
+                             '%s.%s: XML default %s, C++ %s' % (proxy, prop.get('name'), expected, actual))
+            checked += 1
+        self.assertGreater(checked, 60)
+
+    def test_ranges_equal_the_cxx_clamps(self):
+        checked = 0
+        for proxy, obj, prop in self.each_property():
+            command = prop.get('command') or ''
+            if prop.tag not in VECTOR_PROPERTIES or not command.startswith('Set'):
+                continue
+            name = command[3:]
+            if not hasattr(obj, 'Get%sMinValue' % name):
+                continue  # not clamped: the filter validates the value itself (an error names the property)
+            low, high = getattr(obj, 'Get%sMinValue' % name)(), getattr(obj, 'Get%sMaxValue' % name)()
+            label = '%s.%s' % (proxy, prop.get('name'))
+            enum = prop.find('EnumerationDomain')
+            if enum is not None:
+                values = sorted(int(e.get('value')) for e in enum.findall('Entry'))
+                self.assertEqual((values[0], values[-1]), (low, high), label + ': enumeration vs clamp')
+                self.assertEqual(values, list(range(values[0], values[-1] + 1)), label + ': gaps in the enumeration')
+            elif prop.find('BooleanDomain') is not None:
+                self.assertEqual((low, high), (0, 1), label)
+            else:
+                domain = prop.find('IntRangeDomain')
+                if domain is None:
+                    domain = prop.find('DoubleRangeDomain')
+                self.assertIsNotNone(domain, label + ': clamped in C++ but no range in the XML')
+                xml_min = domain.get('min')
+                xml_max = domain.get('max')
+                self.assertIsNotNone(xml_min, label + ': no minimum in the XML')
+                self.assertEqual(float(xml_min), float(low), label + ': minimum')
+                if xml_max is None:
+                    self.assertIn(float(high), (float(INT_MAX), DOUBLE_MAX, float(ID_MAX)),
+                                  label + ': the XML has no maximum but C++ clamps at %s' % high)
+                else:
+                    self.assertEqual(float(xml_max), float(high), label + ': maximum')
+            checked += 1
+        self.assertGreater(checked, 30)
+
+
+if __name__ == '__main__':
+    unittest.main(argv=[sys.argv[0]], verbosity=2)
