@@ -1,4 +1,4 @@
-"""Throughput of the distributed GLS filters in pvbatch (the README's scaling note).
+"""Throughput of the distributed GLS filters in pvbatch (the scaling note of docs/distributed.md).
 
     [mpiexec -np N] pvbatch mpi_throughput.py <plugin.so> <scan.obj> [--copies C] [--threads T] [--scales S]
         [--orientation 'Minimum spanning tree' | 'Towards point' | ...]

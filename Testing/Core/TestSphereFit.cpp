@@ -1,4 +1,4 @@
-// Analytic oracles of gls-math.md: spheres (outward, inward, off-surface evaluation), planes, the complement
+// Analytic oracles of docs/math.md: spheres (outward, inward, off-surface evaluation), planes, the complement
 // property, 2D circle and sinusoid, rigid-motion and scaling invariance, degenerate neighbourhoods.
 #include "CollectingSink.h"
 #include "TestClouds.h"

@@ -1,6 +1,7 @@
-// The main job (until the pvpython one replaces it): reads a point cloud or mesh (OBJ, PLY, VTP), estimates
-// oriented normals unless the file has them, runs the GLS scale space (20 quadratic scales from 0.8% to 8% of the
-// bounding-box diagonal), the geometric variation and the continuous features, and writes a .vtp with every array.
+// The GLS pipeline in C++ (the pvpython main job gls-analyze is the full one, with pictures): reads a point cloud
+// or mesh (OBJ, PLY, VTP), estimates oriented normals unless the file has them, runs the GLS scale space (20
+// quadratic scales from 0.8% to 8% of the bounding-box diagonal), the geometric variation and the continuous
+// features, and writes a .vtp with every array.
 //
 //   glsAnalyze [input = bundled bunny] [output.vtp = gls-result.vtp]
 #include "vtkGLSContinuousFeatures.h"

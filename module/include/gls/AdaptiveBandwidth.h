@@ -1,4 +1,4 @@
-// Adaptive bandwidth (the paper's section 6, gls-math.md): per point, the smallest pertinent scale found coarse to
+// Adaptive bandwidth (the paper's section 6, docs/math.md): per point, the smallest pertinent scale found coarse to
 // fine from the geometric variation nu(p, t), then a spatial regularization over neighbouring points.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Quantities derived from ScaleSamples (gls-math.md): the geometric variation nu (eq. 5) and the pairwise
+// Quantities derived from ScaleSamples (docs/math.md): the geometric variation nu (eq. 5) and the pairwise
 // dissimilarity delta (eq. 6). Both are dimensionless and invariant to rigid motion and uniform scaling.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The one-pass moment formulation (gls-math.md "All scales in one pass"). Inside the ball,
+// The one-pass moment formulation (docs/math.md, "All scales in one pass"). Inside the ball,
 // w = 1 - 2 d^2/t^2 + d^4/t^4 and dw/dt = 4 d^2/t^3 - 4 d^4/t^5, so every weighted sum at scale t is a combination
 // of the un-weighted moments A_k(t) = sum_{d_i < t} d_i^(2k) f_i, k = 0, 1, 2, of the nine values
 // f_i = (1, x_i, n_i, x_i . n_i, |x_i|^2): 25 distinct sums, since |x_i|^2 = d_i^2. A neighbour is added once, into

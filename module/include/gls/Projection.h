@@ -1,6 +1,6 @@
 // MLS projection onto the GLS surface (host/device): a point moves onto the algebraic sphere fitted around it, the
 // sphere is refitted around the new position, and so on until the step is below a tolerance. The closed form of one
-// step uses only the Pratt-normalized descriptors of the fit at the current position (gls-math.md):
+// step uses only the Pratt-normalized descriptors of the fit at the current position (docs/math.md):
 // the field is s(x) = tau + g.x + kappa/2 |x|^2 with |g|^2 = 1 + 2 tau kappa, so the closest point of its zero set
 // to the origin is  -2 tau / (1 + sqrt(1 + 2 tau kappa)) eta  (= -tau eta for a plane, no cancellation near kappa 0).
 #pragma once

@@ -1,4 +1,4 @@
-// Per-point analyses over the sampled scales (gls-math.md): pertinent scales (local minima of nu), the continuous
+// Per-point analyses over the sampled scales (docs/math.md): pertinent scales (local minima of nu), the continuous
 // feature f(p) and the multi-scale dissimilarity Delta(p, q) with a normalized scale prior.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The GLS descriptor of one point at one scale (gls-math.md): the Pratt-normalized algebraic sphere
+// The GLS descriptor of one point at one scale (docs/math.md): the Pratt-normalized algebraic sphere
 // (tau, eta, kappa), its fitness phi, their exact derivatives in t, and the neighbour count. An undefined or
 // unstable fit has every value NaN (valid = false), never a silent 0.
 #pragma once

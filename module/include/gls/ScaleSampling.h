@@ -1,4 +1,4 @@
-// Scale sampling (gls-math.md "Scale sampling"): absolute scales t_0 < ... < t_{S-1} in length units.
+// Scale sampling (docs/math.md, "Scale sampling"): absolute scales t_0 < ... < t_{S-1} in length units.
 #pragma once
 
 #include "gls/PointScaleSpace.h"

@@ -1,5 +1,5 @@
 // Oriented algebraic sphere fit (Guennebaud & Gross, closed form), Pratt normalization and the exact analytic
-// scale derivatives (gls-math.md). Input: the weighted sums s at scale t and their t-derivatives ds, in local
+// scale derivatives (docs/math.md). Input: the weighted sums s at scale t and their t-derivatives ds, in local
 // coordinates around the evaluation point. Output: a ScaleSample; NaN everywhere (valid = false) when the fit is
 // undefined: W <= 0, fewer than minNeighbors neighbours, zero gradient, phi <= 0, or any non-finite value.
 #pragma once

@@ -1,4 +1,4 @@
-// The weighted sums of one neighbourhood at one scale (gls-math.md "Weighted sums"), with the smooth compact weight
+// The weighted sums of one neighbourhood at one scale (docs/math.md, "Weighted sums"), with the smooth compact weight
 // w(d, t) = (d^2/t^2 - 1)^2 for d < t and its scale derivative dw/dt = 4 d^2/t^3 (1 - d^2/t^2).
 #pragma once
 
