@@ -26,11 +26,7 @@ vtkGLSAdaptiveBandwidth::~vtkGLSAdaptiveBandwidth() = default;
 
 vtkGLSScaleFilterBase::SampleRequest vtkGLSAdaptiveBandwidth::GetSampleRequest(const vtkGLSRun&) const
 {
-  SampleRequest request;
-  request.Derivatives = true;
-  request.VariationWillDo = true;
-  request.MayReuseInput = this->ReuseInputScaleSpace;
-  return request;
+  return VariationRequest(this->ReuseInputScaleSpace);
 }
 
 int vtkGLSAdaptiveBandwidth::ComputeOutputs(vtkGLSRun& run)

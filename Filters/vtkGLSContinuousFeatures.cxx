@@ -38,11 +38,7 @@ bool vtkGLSContinuousFeatures::CheckParameters(vtkGLSRun&)
 
 vtkGLSScaleFilterBase::SampleRequest vtkGLSContinuousFeatures::GetSampleRequest(const vtkGLSRun&) const
 {
-  SampleRequest request;
-  request.Derivatives = true;
-  request.VariationWillDo = true;
-  request.MayReuseInput = this->ReuseInputScaleSpace;
-  return request;
+  return VariationRequest(this->ReuseInputScaleSpace);
 }
 
 int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)

@@ -24,6 +24,15 @@ gls::VariationWeights vtkGLSVariationFilterBase::Weights() const
   return { this->WTau, this->WEta, this->WKappa };
 }
 
+vtkGLSScaleFilterBase::SampleRequest vtkGLSVariationFilterBase::VariationRequest(bool mayReuseInput)
+{
+  SampleRequest request;
+  request.Derivatives = true;
+  request.VariationWillDo = true;
+  request.MayReuseInput = mayReuseInput;
+  return request;
+}
+
 bool vtkGLSVariationFilterBase::ReduceVariation(
   vtkGLSRun& run, const VariationReducer& reduce, double* out, double progressEnd)
 {

@@ -42,6 +42,10 @@ protected:
   /// The weights as the core takes them.
   gls::VariationWeights Weights() const;
 
+  /// The request of a filter that needs nu only (ReduceVariation): an upstream GLSGeometricVariation will do, else
+  /// the derivatives, stored or fitted; stored arrays only when `mayReuseInput`.
+  static SampleRequest VariationRequest(bool mayReuseInput);
+
   /// Maps a point's nu at the run's scales (one value per scale) to one value; called concurrently, read-only.
   using VariationReducer = std::function<double(const double* nu)>;
 

@@ -3,41 +3,25 @@ C++ default, and its range is the C++ clamp (vtkSetClampMacro's GetXMinValue/Get
 
     pvpython test_xml_matches_cxx.py <GrowingLeastSquares.xml>      (PYTHONPATH holds the glsvtk package)
 
-Base proxies (base_proxygroup/base_proxyname) are resolved as ParaView does: the base's properties first, a
-property with override="1" replacing the inherited one. Lists (repeat_command) and array selections
+Base proxies (base_proxygroup/base_proxyname) are resolved as ParaView does (paraview-plugin/tools/filters_doc.py:
+the base's properties first, a property with override="1" replacing the inherited one). Lists (repeat_command) and array selections
 (SetInputArrayToProcess) have no scalar default and are skipped.
 """
+import os
 import sys
 import unittest
-import xml.etree.ElementTree as ET
 
 import glsvtk
+
+# The XML's proxies and their resolved properties, as docs/filters.md is written from them.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'paraview-plugin', 'tools'))
+from filters_doc import load, properties  # noqa: E402
 
 XML = sys.argv[1]
 INT_MAX = 2147483647
 DOUBLE_MAX = 1.0e299  # VTK_DOUBLE_MAX
 ID_MAX = 9223372036854775807
 VECTOR_PROPERTIES = ('IntVectorProperty', 'DoubleVectorProperty', 'IdTypeVectorProperty')
-
-
-def load_proxies(path):
-    root = ET.parse(path).getroot()
-    proxies = {}
-    for group in root.findall('ProxyGroup'):
-        for proxy in group.findall('SourceProxy'):
-            proxies[(group.get('name'), proxy.get('name'))] = proxy
-    return proxies
-
-
-def properties(proxies, key):
-    """The proxy's properties in panel order, with its bases' first (override="1" replaces)."""
-    proxy = proxies[key]
-    inherited = []
-    if proxy.get('base_proxyname'):
-        inherited = properties(proxies, (proxy.get('base_proxygroup'), proxy.get('base_proxyname')))
-    own = [p for p in proxy if p.tag.endswith('Property')]
-    overridden = {p.get('name') for p in own if p.get('override') == '1'}
-    return [p for p in inherited if p.get('name') not in overridden] + own
 
 
 def numbers(text, kind):
@@ -47,7 +31,7 @@ def numbers(text, kind):
 
 class XmlMatchesCxx(unittest.TestCase):
     def setUp(self):
-        self.proxies = load_proxies(XML)
+        self.proxies, _ = load(XML)
         self.filters = [k for k in self.proxies if k[0] in ('filters', 'sources')]
         self.assertGreaterEqual(len(self.filters), 10)
 
