@@ -7,7 +7,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
-#include "vtkPolyData.h"
+#include "vtkPointSet.h"
 
 #include "gls/AdaptiveBandwidth.h"
 
@@ -55,29 +55,43 @@ int vtkGLSAdaptiveBandwidth::ComputeOutputs(vtkGLSRun& run)
   }
 
   // Spatial regularization, over this piece's points and, in a distributed run, the other ranks' points within
-  // the smoothing radius (ghosts, with their raw bandwidths), appended after the owned ones.
+  // the smoothing radius (ghosts, with their raw bandwidths), appended after the owned ones; coincident points count
+  // once.
   const double radius = this->ToAbsoluteLength(run, this->SmoothingRadius);
-  std::vector<double> xyz(run.Cloud.Points.begin(), run.Cloud.Points.begin() + 3 * n);
+  vtkGLSCloud cloud;
+  cloud.Owned = static_cast<std::size_t>(n);
+  cloud.Points.resize(3 * cloud.Owned);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    run.Input->GetPoint(i, &cloud.Points[3 * static_cast<std::size_t>(i)]);
+  }
   std::vector<double> rawAll(raw->GetPointer(0), raw->GetPointer(0) + n);
   std::size_t ghosts = 0;
-  if (!dist.AllTrue(dist.AppendGhosts(xyz, static_cast<std::size_t>(n), { { &rawAll, 1 } },
+  if (!dist.AllTrue(dist.AppendGhosts(cloud.Points, cloud.Owned, { { &rawAll, 1 } },
         radius > 0.0 ? radius : 0.0, ghosts)))
   {
     vtkErrorMacro("The exchange of ghost points between the processes failed.");
     return FAILED;
   }
+  cloud.Owned += ghosts; // every point is smoothed, the ghosts' values then dropped
+  if (cloud.MergeCoincident() > 0)
+  {
+    rawAll = gls::distinctValues(cloud.Copies, rawAll.data(), 1);
+  }
   std::vector<double> smoothed(rawAll.size());
   gls::ParallelOptions parallel;
   parallel.threads = this->NumberOfThreads;
   parallel.progress = [this, fitEnd](double f) { return this->ReportProgress(f, fitEnd, 1.0); };
-  if (!gls::smoothBandwidth(xyz.data(), rawAll.size(), rawAll.data(), radius, parallel, smoothed.data()))
+  if (!gls::smoothBandwidth(cloud.Points.data(), rawAll.size(), rawAll.data(), radius, parallel, smoothed.data()))
   {
     return ABORTED; // (nothing collective follows): no partial arrays
   }
+  std::vector<double> perPoint(cloud.InputOwned);
+  cloud.ScatterToInput(smoothed.data(), 1, perPoint.data());
   vtkNew<vtkDoubleArray> bandwidth;
   bandwidth->SetName(vtkGLSArrayNames::Bandwidth);
   bandwidth->SetNumberOfTuples(n);
-  std::copy(smoothed.begin(), smoothed.begin() + n, bandwidth->GetPointer(0));
+  std::copy(perPoint.begin(), perPoint.begin() + n, bandwidth->GetPointer(0));
   vtkPointData* pd = run.Output->GetPointData();
   pd->AddArray(raw);
   pd->AddArray(bandwidth);

@@ -4,7 +4,7 @@
 #include "vtkDataArray.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPointData.h"
-#include "vtkPolyData.h"
+#include "vtkDataSet.h"
 
 #include <algorithm>
 #include <cmath>
@@ -289,7 +289,7 @@ bool vtkGLSDistributedCloud::AllInOnePlaneZ(bool planar, bool any, double z) con
   return allPlanar && anywhere && zmin == zmax;
 }
 
-std::vector<long long> vtkGLSDistributedCloud::GlobalIds(vtkPolyData* piece) const
+std::vector<long long> vtkGLSDistributedCloud::GlobalIds(vtkDataSet* piece) const
 {
   const vtkIdType n = piece ? piece->GetNumberOfPoints() : 0;
   std::vector<long long> ids(static_cast<std::size_t>(n));

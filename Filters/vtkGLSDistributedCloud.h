@@ -38,7 +38,7 @@
 #include <vector>
 
 class vtkMultiProcessController;
-class vtkPolyData;
+class vtkDataSet;
 
 class vtkGLSDistributedCloud
 {
@@ -84,7 +84,7 @@ public:
 
   /// The global id of every point of `piece`: its point-data GlobalIds attribute when present (on every rank),
   /// else the rank-order numbering (offset of this rank = number of points of the ranks before it).
-  std::vector<long long> GlobalIds(vtkPolyData* piece) const;
+  std::vector<long long> GlobalIds(vtkDataSet* piece) const;
 
   /// Gathers rows of `width` doubles from every rank onto `root` (in rank order); `counts` receives every rank's
   /// number of rows (on every rank). `all` is filled on the root only.

@@ -3,7 +3,11 @@
 #include "vtkGLSArrayNames.h"
 #include "vtkGLSRun.h"
 
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
+#include "vtkDataObjectTreeIterator.h"
+#include "vtkDataObjectTypes.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
@@ -12,10 +16,54 @@
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+namespace
+{
+
+double DiagonalOf(const double b[6])
+{
+  const double dx = b[1] - b[0], dy = b[3] - b[2], dz = b[5] - b[4];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+bool NameSaysNormals(const char* name)
+{
+  std::string lower = name ? name : "";
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  return lower.find("normal") != std::string::npos || lower.find("nrm") != std::string::npos;
+}
+
+bool IsFloatingVector(vtkDataArray* a)
+{
+  return a && a->GetNumberOfComponents() == 3 && (a->GetDataType() == VTK_FLOAT || a->GetDataType() == VTK_DOUBLE);
+}
+
+/// The leaves of a composite dataset, empty ones included (every rank of a distributed run visits the same ones).
+vtkSmartPointer<vtkCompositeDataIterator> Leaves(vtkCompositeDataSet* composite)
+{
+  vtkSmartPointer<vtkCompositeDataIterator> it;
+  it.TakeReference(composite->NewIterator());
+  it->SkipEmptyNodesOff();
+  if (auto* tree = vtkDataObjectTreeIterator::SafeDownCast(it))
+  {
+    tree->VisitOnlyLeavesOn();
+    tree->TraverseSubTreeOn();
+  }
+  return it;
+}
+
+}
 
 vtkGLSFilterBase::vtkGLSFilterBase()
   : NumberOfThreads(0)
@@ -32,16 +80,92 @@ vtkCxxSetObjectMacro(vtkGLSFilterBase, Controller, vtkMultiProcessController);
 
 int vtkGLSFilterBase::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
+  return 1;
+}
+
+int vtkGLSFilterBase::RequestDataObject(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  if (!input)
+  {
+    return 0;
+  }
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  vtkDataObject* output = info->Get(vtkDataObject::DATA_OBJECT());
+  if (!output || !output->IsA(input->GetClassName()))
+  {
+    vtkDataObject* made = input->NewInstance();
+    info->Set(vtkDataObject::DATA_OBJECT(), made);
+    made->Delete();
+  }
+  return 1;
+}
+
+int vtkGLSFilterBase::MakeDeclaredOutputs(vtkInformationVector* outputVector)
+{
+  for (int port = 0; port < this->GetNumberOfOutputPorts(); ++port)
+  {
+    const char* type = this->GetOutputPortInformation(port)->Get(vtkDataObject::DATA_TYPE_NAME());
+    vtkInformation* info = outputVector->GetInformationObject(port);
+    vtkDataObject* output = info->Get(vtkDataObject::DATA_OBJECT());
+    if (!output || !output->IsA(type))
+    {
+      vtkDataObject* made = vtkDataObjectTypes::NewDataObject(type);
+      if (!made)
+      {
+        return 0;
+      }
+      info->Set(vtkDataObject::DATA_OBJECT(), made);
+      made->Delete();
+    }
+  }
   return 1;
 }
 
 int vtkGLSFilterBase::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  int ok = 0;
+  if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
+  {
+    ok = this->RunOnBlocks(composite, outputVector);
+  }
+  else
+  {
+    ok = this->RunOn(vtkPointSet::SafeDownCast(input), outputVector,
+      outputVector->GetInformationObject(0)->Get(vtkDataObject::DATA_OBJECT()), 0.0);
+  }
+  if (!ok)
+  {
+    // A failed filter gives empty outputs, the VTK way: nothing downstream runs on stale data.
+    for (int port = 0; port < this->GetNumberOfOutputPorts(); ++port)
+    {
+      if (vtkDataObject* o = outputVector->GetInformationObject(port)->Get(vtkDataObject::DATA_OBJECT()))
+      {
+        o->Initialize();
+      }
+    }
+  }
+  return ok;
+}
+
+int vtkGLSFilterBase::RunOn(
+  vtkPointSet* input, vtkInformationVector* outputVector, vtkDataObject* blockOutput, double diagonal)
+{
+  if (!input)
+  {
+    vtkErrorMacro("The input is not a point set.");
+    return 0;
+  }
   vtkGLSRun run(this->Controller);
-  run.Input = vtkPolyData::GetData(inputVector[0]);
+  run.Input = input;
   run.OutputVector = outputVector;
+  run.OutputObject = blockOutput;
   this->PrepareOutputs(run);
   if (!this->BeginRun(run))
   {
@@ -51,12 +175,101 @@ int vtkGLSFilterBase::RequestData(
   {
     return 1;
   }
+  if (diagonal > 0.0)
+  {
+    run.Diagonal = diagonal;
+  }
   return this->Execute(run) == FAILED ? 0 : 1;
 }
 
+int vtkGLSFilterBase::RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVector* outputVector)
+{
+  vtkCompositeDataSet* output = vtkCompositeDataSet::GetData(outputVector, 0);
+  if (!output)
+  {
+    vtkErrorMacro("The output of a composite input must be a composite dataset.");
+    return 0;
+  }
+  output->CopyStructure(input);
+  // Every block must be a point set (or empty); lengths are relative to the whole composite's diagonal.
+  const vtkGLSDistributedCloud dist(this->Controller);
+  std::vector<double> xyz;
+  bool ok = true;
+  auto it = Leaves(input);
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    vtkDataObject* leaf = it->GetCurrentDataObject();
+    auto* points = vtkPointSet::SafeDownCast(leaf);
+    if (leaf && !points)
+    {
+      vtkErrorMacro("Block " << it->GetCurrentFlatIndex() << " is a " << leaf->GetClassName()
+                             << ", not a point set: GLS filters take point clouds, meshes and other vtkPointSets.");
+      ok = false;
+      break;
+    }
+    for (vtkIdType i = 0; points && i < points->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      points->GetPoint(i, p);
+      xyz.insert(xyz.end(), p, p + 3);
+    }
+  }
+  if (!dist.AllTrue(ok))
+  {
+    return 0;
+  }
+  double bounds[6];
+  const double diagonal = dist.FiniteBounds(xyz.data(), xyz.size() / 3, bounds) ? DiagonalOf(bounds) : 0.0;
+  xyz = std::vector<double>();
+  if (!this->BeginComposite(input, diagonal))
+  {
+    this->EndComposite();
+    return 0;
+  }
+  int result = 1;
+  int computed = 0;
+  for (it->InitTraversal(); !it->IsDoneWithTraversal() && result; it->GoToNextItem())
+  {
+    vtkSmartPointer<vtkPointSet> block = vtkPointSet::SafeDownCast(it->GetCurrentDataObject());
+    if (!block)
+    {
+      block = vtkSmartPointer<vtkPolyData>::New(); // an empty block still takes part in a distributed run
+    }
+    vtkSmartPointer<vtkDataObject> blockOutput;
+    blockOutput.TakeReference(block->NewInstance());
+    if (dist.Sum(static_cast<double>(block->GetNumberOfPoints())) > 0.0)
+    {
+      ++computed;
+      result = this->RunOn(block, outputVector, blockOutput, diagonal);
+    }
+    else
+    {
+      blockOutput->ShallowCopy(block); // a block without points (on every process) passes through
+    }
+    if (it->GetCurrentDataObject())
+    {
+      output->SetDataSet(it, blockOutput);
+    }
+  }
+  this->EndComposite();
+  if (result && computed == 0)
+  {
+    vtkErrorMacro("The input has no points (none of its blocks has any).");
+    return 0;
+  }
+  return result;
+}
+
+bool vtkGLSFilterBase::BeginComposite(vtkCompositeDataSet*, double)
+{
+  return true;
+}
+
+void vtkGLSFilterBase::EndComposite() {}
+
 void vtkGLSFilterBase::PrepareOutputs(vtkGLSRun& run)
 {
-  run.Output = vtkPolyData::GetData(run.OutputVector);
+  run.Output = vtkPointSet::SafeDownCast(run.OutputObject);
   run.Output->ShallowCopy(run.Input);
   vtkNew<vtkFieldData> fd;
   fd->ShallowCopy(run.Input->GetFieldData());
@@ -79,7 +292,7 @@ bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
     return true;
   }
   const vtkGLSDistributedCloud& dist = run.Distributed;
-  vtkPolyData* input = run.Input;
+  vtkPointSet* input = run.Input;
   const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
   std::vector<double>& xyz = run.Cloud.Points;
   xyz.resize(3 * static_cast<std::size_t>(n));
@@ -92,9 +305,7 @@ bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
   run.HasFinitePoints = dist.FiniteBounds(xyz.data(), static_cast<std::size_t>(n), run.Bounds);
   if (run.HasFinitePoints)
   {
-    const double dx = run.Bounds[1] - run.Bounds[0], dy = run.Bounds[3] - run.Bounds[2],
-                 dz = run.Bounds[5] - run.Bounds[4];
-    run.Diagonal = std::sqrt(dx * dx + dy * dy + dz * dz);
+    run.Diagonal = DiagonalOf(run.Bounds);
   }
   if (!(dist.Sum(static_cast<double>(n)) > 0.0))
   {
@@ -117,18 +328,138 @@ bool vtkGLSFilterBase::ReportProgress(double fraction, double begin, double end)
   return this->GetAbortExecute() != 0;
 }
 
-vtkDataArray* vtkGLSFilterBase::FindSelectedNormals(int index, vtkPolyData* input)
+vtkDataArray* vtkGLSFilterBase::SelectNormals(int index, vtkDataSet* input, std::string& problem, bool& absent)
 {
-  // A selection by name must be honoured; no selection means the active normals.
+  absent = false;
+  vtkPointData* pd = input->GetPointData();
+  const vtkIdType n = input->GetNumberOfPoints();
   const char* name = this->SelectedArrayName(index);
-  return name ? input->GetPointData()->GetArray(name) : input->GetPointData()->GetNormals();
+  if (name)
+  {
+    // A selection by name is honoured, and must be normals-shaped.
+    vtkDataArray* a = pd->GetArray(name);
+    if (!a)
+    {
+      problem = std::string("the selected normals array '") + name + "' is not a point array of the input";
+      return nullptr;
+    }
+    if (a->GetNumberOfComponents() != 3 || a->GetNumberOfTuples() != n)
+    {
+      problem = std::string("the normals array '") + name + "' has " + std::to_string(a->GetNumberOfComponents()) +
+        " components and " + std::to_string(a->GetNumberOfTuples()) + " tuples; expected 3 components and " +
+        std::to_string(n) + " tuples (one per point)";
+      return nullptr;
+    }
+    if (!IsFloatingVector(a))
+    {
+      problem = std::string("the selected normals array '") + name + "' holds " + a->GetDataTypeAsString() +
+        " values (colours or labels?): normals are floating-point; select a float or double array";
+      return nullptr;
+    }
+    return a;
+  }
+  vtkDataArray* active = pd->GetNormals();
+  if (IsFloatingVector(active) && active->GetNumberOfTuples() == n)
+  {
+    return active;
+  }
+  std::vector<vtkDataArray*> candidates, named;
+  for (int i = 0; i < pd->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* a = pd->GetArray(i);
+    if (IsFloatingVector(a) && a->GetNumberOfTuples() == n)
+    {
+      candidates.push_back(a);
+      if (NameSaysNormals(a->GetName()))
+      {
+        named.push_back(a);
+      }
+    }
+  }
+  if (named.size() == 1)
+  {
+    return named.front();
+  }
+  const std::vector<vtkDataArray*>& listed = named.empty() ? candidates : named;
+  std::string names;
+  for (vtkDataArray* a : listed)
+  {
+    names += std::string(names.empty() ? "" : ", ") + "'" + (a->GetName() ? a->GetName() : "(unnamed)") + "'";
+  }
+  if (candidates.empty())
+  {
+    absent = true;
+    problem = "the input has no normals (no floating-point 3-component point array): set active normals, or run "
+              "vtkGLSNormalEstimation (GLS Normal Estimation) first";
+  }
+  else if (named.empty() && candidates.size() == 1)
+  {
+    problem = "the input has no active normals and its only floating-point 3-component point array, " + names +
+      ", is not named as normals: select it as the normals (SetInputArrayToProcess(0, ...), Normals in ParaView) "
+      "if it holds them, or run vtkGLSNormalEstimation (GLS Normal Estimation) first";
+  }
+  else
+  {
+    problem = "the input has no active normals and several point arrays could be the normals (" + names +
+      "): select one (SetInputArrayToProcess(0, ...), Normals in ParaView)";
+  }
+  return nullptr;
+}
+
+void vtkGLSFilterBase::WarnAboutNormalLengths(
+  const vtkGLSRun& run, const std::vector<double>& normals, const char* name)
+{
+  double off = 0.0, lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (std::size_t i = 0; i + 2 < normals.size(); i += 3)
+  {
+    const double len = std::sqrt(normals[i] * normals[i] + normals[i + 1] * normals[i + 1] + normals[i + 2] * normals[i + 2]);
+    if (len > 0.0 && std::isfinite(len) && std::abs(len - 1.0) > 1e-3)
+    {
+      off += 1.0;
+      lo = std::min(lo, len);
+      hi = std::max(hi, len);
+    }
+  }
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  off = dist.Sum(off);
+  lo = dist.Min(lo);
+  hi = dist.Max(hi);
+  if (off > 0.0 && dist.GetRank() == 0)
+  {
+    vtkWarningMacro(<< static_cast<long long>(off) << " normals of '" << (name ? name : "(unnamed)")
+                    << "' have lengths far from 1 (from " << lo << " to " << hi
+                    << "): they are normalized; if that array does not hold normals, select another.");
+  }
 }
 
 const char* vtkGLSFilterBase::SelectedArrayName(int index)
 {
   vtkInformation* info = this->GetInputArrayInformation(index);
   const char* name = info && info->Has(vtkDataObject::FIELD_NAME()) ? info->Get(vtkDataObject::FIELD_NAME()) : nullptr;
-  return name && name[0] != '\0' ? name : nullptr;
+  if (!name || name[0] == '\0' || std::strcmp(name, vtkGLSArrayNames::AutomaticArray) == 0)
+  {
+    return nullptr;
+  }
+  return name;
+}
+
+void vtkGLSFilterBase::MergeCoincidentPoints(vtkGLSRun& run)
+{
+  this->NoteCoincidentPoints(run, run.Cloud.MergeCoincident());
+}
+
+void vtkGLSFilterBase::NoteCoincidentPoints(vtkGLSRun& run, std::size_t merged)
+{
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  run.CoincidentPoints = static_cast<long long>(merged);
+  const double all = dist.Sum(static_cast<double>(merged));
+  const double total = dist.Sum(static_cast<double>(run.Input->GetNumberOfPoints()));
+  if (all > 0.0 && dist.GetRank() == 0)
+  {
+    vtkWarningMacro(<< static_cast<long long>(all) << " of the " << static_cast<long long>(total)
+                    << " input points coincide with another one (the same coordinates): each position is computed "
+                       "and counted once, and its results are written to every copy.");
+  }
 }
 
 void vtkGLSFilterBase::WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd)
@@ -139,6 +470,13 @@ void vtkGLSFilterBase::WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd)
     ghosts->SetName(vtkGLSArrayNames::GhostPoints);
     ghosts->InsertNextValue(static_cast<vtkIdType>(run.GhostPoints));
     fd->AddArray(ghosts);
+  }
+  if (run.CoincidentPoints > 0)
+  {
+    vtkNew<vtkIdTypeArray> coincident;
+    coincident->SetName(vtkGLSArrayNames::CoincidentPoints);
+    coincident->InsertNextValue(static_cast<vtkIdType>(run.CoincidentPoints));
+    fd->AddArray(coincident);
   }
   if (!run.BackendUsed.empty())
   {

@@ -18,9 +18,19 @@
  *              `- vtkGLSGeometricVariation, vtkGLSContinuousFeatures, vtkGLSAdaptiveBandwidth,
  *                 vtkGLSScaleProfiles, vtkGLSScaleSpaceImage
  *
- * Errors: an input without points (on every process of a distributed run) is an error (vtkErrorMacro, RequestData
- * returns 0). An aborted run (AbortExecute, e.g. ParaView's cancel) returns early; its output then carries the input
- * without partial arrays.
+ * Input: any vtkPointSet (vtkPolyData, vtkUnstructuredGrid, ...; only its points are used), the output has the
+ * input's type; or a composite dataset (vtkMultiBlockDataSet, vtkPartitionedDataSet, ...) of point sets, each block
+ * computed on its own points with lengths relative to the bounding-box diagonal of the whole composite, the output
+ * a composite of the same structure.
+ *
+ * Coincident points (bitwise-equal coordinates, e.g. an OBJ reader splitting vertices per face corner) are merged:
+ * each position is computed and counted once in every neighbourhood and its results are written to every copy; a
+ * warning says how many, and the field data GLSCoincidentPoints holds the count.
+ *
+ * Errors (vtkErrorMacro, RequestData returns 0): an input without points (on every process of a distributed run),
+ * and the filters' own. A failed run leaves its outputs empty, so that nothing downstream runs on stale data. An
+ * aborted run (AbortExecute, e.g. ParaView's cancel) returns early; its output then carries the input without
+ * partial arrays.
  *
  * Distributed runs (pvbatch / pvserver on N MPI ranks): when the Controller has several processes each rank holds a
  * piece of the cloud; every filter then exchanges the points near its piece with the other ranks (ghosts, see
@@ -31,18 +41,23 @@
 #define vtkGLSFilterBase_h
 
 #include "vtkGLSFiltersModule.h"
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkPointSetAlgorithm.h"
 
+#include <string>
+#include <vector>
+
+class vtkCompositeDataSet;
 class vtkDataArray;
+class vtkDataSet;
 class vtkFieldData;
 class vtkMultiProcessController;
-class vtkPolyData;
+class vtkPointSet;
 struct vtkGLSRun;
 
-class VTKGLSFILTERS_EXPORT vtkGLSFilterBase : public vtkPolyDataAlgorithm
+class VTKGLSFILTERS_EXPORT vtkGLSFilterBase : public vtkPointSetAlgorithm
 {
 public:
-  vtkTypeMacro(vtkGLSFilterBase, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkGLSFilterBase, vtkPointSetAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -62,15 +77,23 @@ protected:
   vtkGLSFilterBase();
   ~vtkGLSFilterBase() override;
 
+  /// A vtkPointSet or a composite dataset of point sets.
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  /// The output has the input's type (a composite input gives a composite of the same type).
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  /// The run: PrepareOutputs, DistributeRun, the checks of the input, then Execute. Filters do not override it.
+  /// For filters whose outputs are not the input's type (a table, an image): makes each output port's data object
+  /// of the type its FillOutputPortInformation declares (DATA_TYPE_NAME).
+  int MakeDeclaredOutputs(vtkInformationVector* outputVector);
+
+  /// The run: PrepareOutputs, DistributeRun, the checks of the input, then Execute (per block for a composite
+  /// input). Filters do not override it.
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /// What Execute (and the hooks below it) return.
   enum Outcome
   {
-    FAILED = 0,   ///< an error was reported: RequestData returns 0
+    FAILED = 0,   ///< an error was reported: RequestData returns 0 and the outputs are emptied
     ABORTED = 1,  ///< stopped by AbortExecute: no partial arrays were added
     COMPLETED = 2 ///< the outputs are complete
   };
@@ -78,8 +101,8 @@ protected:
   /// The filter's work on a started run. Returns an Outcome.
   virtual int Execute(vtkGLSRun& run) = 0;
 
-  /// Makes the outputs of the run. Default: the output (port 0, a vtkPolyData) is the input shallow-copied with
-  /// its own field data (run.Output). Filters with other outputs (a table, an image) override it.
+  /// Makes the outputs of the run. Default: the output (port 0) is the input shallow-copied with its own field data
+  /// (run.Output). Filters with other outputs (a table, an image) override it.
   virtual void PrepareOutputs(vtkGLSRun& run);
 
   /// How the run is distributed. Default: as the Controller says. A filter whose input is never cut into pieces
@@ -87,24 +110,52 @@ protected:
   /// an error otherwise, on every rank alike.
   virtual bool DistributeRun(vtkGLSRun& run);
 
+  /// Called once before the blocks of a composite input are run (each block is then a run of its own): a filter
+  /// whose parameters name one block's point (the dissimilarity's query) prepares it here. False with an error.
+  virtual bool BeginComposite(vtkCompositeDataSet* input, double diagonal);
+  /// Called once after the blocks of a composite input were run.
+  virtual void EndComposite();
+
   /// Maps a fraction of the core's work to [begin, end] of this filter's progress; true when the user aborted.
   bool ReportProgress(double fraction, double begin, double end);
 
-  /// The point array selected with SetInputArrayToProcess(index, ...): the named array, or the active normals when
-  /// no name (or an empty one, as ParaView sets before it knows the input's arrays) is selected. Null when absent.
-  vtkDataArray* FindSelectedNormals(int index, vtkPolyData* input);
+  /// The normals a filter uses: the point array selected with SetInputArrayToProcess(index, ...) by name, which
+  /// must be a floating-point array of 3 components; or, when none is selected (no name, an empty one, or
+  /// "(automatic)"), the active normals, else the one floating-point 3-component array whose name says normals
+  /// ("normal" or "nrm" in it, any case). Null with the reason in `problem` otherwise (several candidates, none,
+  /// colours, ...); `absent` tells the case where the input has no candidate at all. A selection of the wrong
+  /// shape is a problem too.
+  vtkDataArray* SelectNormals(int index, vtkDataSet* input, std::string& problem, bool& absent);
 
-  /// The array name selected with SetInputArrayToProcess(index, ...), or null when none (or an empty name).
+  /// Warns (once per run) when the lengths of given normals are far from 1: the count of finite non-zero normals
+  /// whose length is off by more than 1e-3 (they are normalized; such a count suggests another array was meant).
+  void WarnAboutNormalLengths(const vtkGLSRun& run, const std::vector<double>& normals, const char* name);
+
+  /// The array name selected with SetInputArrayToProcess(index, ...), or null when none (or an empty name, or
+  /// "(automatic)").
   const char* SelectedArrayName(int index);
 
+  /// Merges the run's coincident points (vtkGLSCloud::MergeCoincident) and notes how many there were. Collective.
+  void MergeCoincidentPoints(vtkGLSRun& run);
+
+  /// Records that `merged` of this piece's input points coincide with another one (run.CoincidentPoints, written to
+  /// the field data) and, when some do anywhere, says so in one warning (on rank 0). Collective.
+  void NoteCoincidentPoints(vtkGLSRun& run, std::size_t merged);
+
   /// Writes what the run reports in the output's field data: GLSGhostPoints (the ghosts this rank used, in a
-  /// distributed run that exchanged them) and GLSBackend (where the fits ran, when a fit ran).
+  /// distributed run that exchanged them), GLSCoincidentPoints (points merged into another, when some were) and
+  /// GLSBackend (where the fits ran, when a fit ran).
   static void WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd);
 
   int NumberOfThreads;
   vtkMultiProcessController* Controller = nullptr;
 
 private:
+  /// One run on a point set (or a composite's block): `diagonal` > 0 replaces the input's own (a composite's).
+  int RunOn(vtkPointSet* input, vtkInformationVector* outputVector, vtkDataObject* blockOutput, double diagonal);
+  /// Every block of a composite input, with the whole composite's diagonal.
+  int RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVector* outputVector);
+
   /// The distributed context, the input's points (run.Cloud, without normals), the check that some process has
   /// points, and the bounds of the whole input.
   bool BeginRun(vtkGLSRun& run);

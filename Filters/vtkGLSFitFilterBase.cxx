@@ -4,11 +4,13 @@
 
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
-#include "vtkPolyData.h"
+#include "vtkPointSet.h"
 
 #include "gls/Planarity.h"
 
 #include <unistd.h>
+
+#include <string>
 
 vtkGLSFitFilterBase::vtkGLSFitFilterBase()
   : ScaleUnits(RELATIVE_TO_DIAGONAL)
@@ -20,6 +22,17 @@ vtkGLSFitFilterBase::vtkGLSFitFilterBase()
 }
 
 vtkGLSFitFilterBase::~vtkGLSFitFilterBase() = default;
+
+bool vtkGLSFitFilterBase::CheckFitParameters()
+{
+  if (this->MinimumNeighbors != 0 && this->MinimumNeighbors < 3)
+  {
+    vtkErrorMacro("MinimumNeighbors must be 0 (automatic) or at least 3, the fewest neighbours that determine a "
+                  "fit (it is " << this->MinimumNeighbors << ").");
+    return false;
+  }
+  return true;
+}
 
 double vtkGLSFitFilterBase::ToAbsoluteLength(const vtkGLSRun& run, double value) const
 {
@@ -34,19 +47,12 @@ bool vtkGLSFitFilterBase::GatherNormals(vtkGLSRun& run)
     run.Cloud.Normals.clear(); // an empty piece of a distributed input (some rank has points)
     return true;
   }
-  vtkDataArray* nrm = this->FindSelectedNormals(0, run.Input);
+  std::string problem;
+  bool absent = false;
+  vtkDataArray* nrm = this->SelectNormals(0, run.Input, problem, absent);
   if (!nrm)
   {
-    vtkErrorMacro("The input has no normals: select a 3-component point array, set active normals, or run "
-                  "vtkGLSNormalEstimation (GLS Normal Estimation) first.");
-    return false;
-  }
-  if (nrm->GetNumberOfComponents() != 3 || nrm->GetNumberOfTuples() != n)
-  {
-    vtkErrorMacro("The normals array '" << (nrm->GetName() ? nrm->GetName() : "(unnamed)") << "' has "
-                                        << nrm->GetNumberOfComponents() << " components and "
-                                        << nrm->GetNumberOfTuples() << " tuples; expected 3 components and " << n
-                                        << " tuples (one per point).");
+    vtkErrorMacro("Invalid normals: " << problem << ".");
     return false;
   }
   run.Cloud.Normals.resize(3 * static_cast<std::size_t>(n));
@@ -54,6 +60,7 @@ bool vtkGLSFitFilterBase::GatherNormals(vtkGLSRun& run)
   {
     nrm->GetTuple(i, &run.Cloud.Normals[3 * i]);
   }
+  run.NormalsName = nrm->GetName() ? nrm->GetName() : "";
   return true;
 }
 

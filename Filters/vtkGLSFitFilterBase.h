@@ -44,7 +44,8 @@ public:
   ///@{
   /// Fits with fewer neighbours strictly inside the ball are NaN. 0 (default) = automatic: 6 for 3D input, 3 for a
   /// 2D curve (every point that takes part in the fits lies in one plane z = const and has its normal in it).
-  vtkSetClampMacro(MinimumNeighbors, int, 0, VTK_INT_MAX);
+  /// Otherwise at least 3, the floor that keeps a fit determined (1, 2 or a negative value is an error).
+  vtkSetMacro(MinimumNeighbors, int);
   vtkGetMacro(MinimumNeighbors, int);
   ///@}
 
@@ -59,6 +60,9 @@ public:
 protected:
   vtkGLSFitFilterBase();
   ~vtkGLSFitFilterBase() override;
+
+  /// False (with an error naming the property) when MinimumNeighbors is invalid.
+  bool CheckFitParameters();
 
   /// Converts a length given in ScaleUnits into an absolute length for this run's input.
   double ToAbsoluteLength(const vtkGLSRun& run, double value) const;

@@ -8,7 +8,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
-#include "vtkPolyData.h"
+#include "vtkPointSet.h"
 
 #include "gls/Descriptors.h"
 #include "gls/ScaleAnalysis.h"

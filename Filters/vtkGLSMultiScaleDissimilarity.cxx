@@ -11,7 +11,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
-#include "vtkPolyData.h"
+#include "vtkPointSet.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "gls/ScaleAnalysis.h"
@@ -82,7 +82,7 @@ vtkGLSMultiScaleDissimilarity::~vtkGLSMultiScaleDissimilarity() = default;
 
 bool vtkGLSMultiScaleDissimilarity::CheckParameters(vtkGLSRun& run)
 {
-  vtkPolyData* input = run.Input;
+  vtkPointSet* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
   const vtkGLSDistributedCloud& dist = run.Distributed;
   auto state = std::make_unique<QueryState>();
@@ -209,7 +209,7 @@ int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
   {
     return ABORTED; // no partial arrays
   }
-  vtkPolyData* output = run.Output;
+  vtkPointSet* output = run.Output;
   output->GetPointData()->AddArray(delta);
   output->GetPointData()->AddArray(similar);
   output->GetPointData()->SetActiveScalars(vtkGLSArrayNames::Dissimilarity);
@@ -223,7 +223,7 @@ int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
 bool vtkGLSMultiScaleDissimilarity::LocateDistributedQuery(
   const vtkGLSRun& run, double localBest2, vtkIdType& query, long long& globalId, int& owner)
 {
-  vtkPolyData* input = run.Input;
+  vtkPointSet* input = run.Input;
   const vtkGLSDistributedCloud& dist = run.Distributed;
   const std::vector<long long> ids = dist.GlobalIds(input);
   const double none = std::numeric_limits<double>::infinity();

@@ -9,7 +9,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
-#include "vtkPolyData.h"
+#include "vtkPointSet.h"
 
 #include "gls/NormalEstimation.h"
 #include "gls/Planarity.h"
@@ -18,6 +18,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkGLSNormalEstimation);
@@ -38,7 +39,7 @@ vtkGLSNormalEstimation::~vtkGLSNormalEstimation() = default;
 
 int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
 {
-  vtkPolyData* input = run.Input;
+  vtkPointSet* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
   const vtkGLSDistributedCloud& dist = run.Distributed;
   if (this->NeighborhoodType == RADIUS && !(this->Radius > 0.0 && std::isfinite(this->Radius)))
@@ -70,12 +71,14 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
   std::vector<double> reference;
   if (this->Orientation == AGREE_WITH_EXISTING)
   {
-    vtkDataArray* existing = this->FindSelectedNormals(0, input);
-    const bool valid = existing && existing->GetNumberOfComponents() == 3 && existing->GetNumberOfTuples() == n;
-    if (!dist.AllTrue(valid || (dist.IsParallel() && n == 0)))
+    std::string problem;
+    bool absent = false;
+    vtkDataArray* existing = n > 0 ? this->SelectNormals(0, input, problem, absent) : nullptr;
+    if (!dist.AllTrue(existing || (dist.IsParallel() && n == 0)))
     {
-      vtkErrorMacro("AGREE_WITH_EXISTING needs an existing 3-component point normals array with one tuple per "
-                    "point (select it with SetInputArrayToProcess, or set active normals).");
+      vtkErrorMacro("AGREE_WITH_EXISTING needs existing normals (a floating-point 3-component point array with one "
+                    "tuple per point; select it with SetInputArrayToProcess, or set active normals): "
+                    << (problem.empty() ? "another process has none" : problem) << ".");
       return FAILED;
     }
     reference.resize(3 * static_cast<std::size_t>(n));

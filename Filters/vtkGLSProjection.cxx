@@ -10,7 +10,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
-#include "vtkPolyData.h"
+#include "vtkPointSet.h"
 
 #include "gls/MlsProjection.h"
 
@@ -36,9 +36,13 @@ vtkGLSProjection::~vtkGLSProjection() = default;
 int vtkGLSProjection::Execute(vtkGLSRun& run)
 {
   this->LastScaleMode = AUTOMATIC;
+  if (!this->CheckFitParameters())
+  {
+    return FAILED;
+  }
   std::vector<double> scales;
   int mode = AUTOMATIC;
-  vtkPolyData* input = run.Input;
+  vtkPointSet* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
   const std::size_t count = static_cast<std::size_t>(n);
   // Outputs plus the core's copies of points and normals and its grid.
@@ -49,6 +53,8 @@ int vtkGLSProjection::Execute(vtkGLSRun& run)
   {
     return FAILED;
   }
+  this->WarnAboutNormalLengths(run, run.Cloud.Normals, run.NormalsName.c_str());
+  this->NoteCoincidentPoints(run, gls::findCoincidentPoints(run.Cloud.Points.data(), run.Cloud.Owned).merged());
 
   vtkNew<vtkPoints> moved;
   moved->SetDataTypeToDouble();
@@ -82,13 +88,12 @@ int vtkGLSProjection::Execute(vtkGLSRun& run)
       return FAILED;
     }
   }
-  else if (!gls::projectPointCloud(
-             run.Cloud.Points.data(), run.Cloud.Normals.data(), count, scales.data(), settings, out))
+  else if (!this->ProjectMerged(run.Cloud, scales, settings, out))
   {
     return ABORTED; // the input passes through, no partial arrays
   }
   this->LastScaleMode = mode;
-  vtkPolyData* output = run.Output;
+  vtkPointSet* output = run.Output;
   output->SetPoints(moved);
   vtkPointData* pd = output->GetPointData();
   pd->RemoveArray(vtkGLSArrayNames::Normals);
@@ -102,9 +107,46 @@ int vtkGLSProjection::Execute(vtkGLSRun& run)
   return COMPLETED;
 }
 
+bool vtkGLSProjection::ProjectMerged(vtkGLSCloud cloud, const std::vector<double>& scales,
+  const gls::ProjectionSettings& settings, const gls::ProjectionOutputs& out)
+{
+  const std::size_t n = cloud.Size();
+  cloud.Owned = n; // every point is projected (the ghosts of a distributed pass have NaN scales: left in place)
+  if (cloud.MergeCoincident() == 0)
+  {
+    return gls::projectPointCloud(cloud.Points.data(), cloud.Normals.data(), n, scales.data(), settings, out);
+  }
+  // Each distinct position once, at its first copy's scale; the results go back to every copy.
+  const std::size_t m = cloud.Size();
+  const std::vector<double> t = gls::distinctValues(cloud.Copies, scales.data(), 1);
+  std::vector<double> moved(3 * m), eta(3 * m), displacement(m), iterations(m), converged(m);
+  std::vector<int> iterationCounts(m);
+  std::vector<unsigned char> convergedFlags(m);
+  const gls::ProjectionOutputs distinct{ moved.data(), eta.data(), displacement.data(), iterationCounts.data(),
+    convergedFlags.data() };
+  if (!gls::projectPointCloud(cloud.Points.data(), cloud.Normals.data(), m, t.data(), settings, distinct))
+  {
+    return false;
+  }
+  std::copy(iterationCounts.begin(), iterationCounts.end(), iterations.begin());
+  std::copy(convergedFlags.begin(), convergedFlags.end(), converged.begin());
+  std::vector<double> iterationsOut(n), convergedOut(n);
+  cloud.ScatterToInput(moved.data(), 3, out.points);
+  cloud.ScatterToInput(eta.data(), 3, out.normals);
+  cloud.ScatterToInput(displacement.data(), 1, out.displacement);
+  cloud.ScatterToInput(iterations.data(), 1, iterationsOut.data());
+  cloud.ScatterToInput(converged.data(), 1, convergedOut.data());
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    out.iterations[i] = static_cast<int>(iterationsOut[i]);
+    out.converged[i] = static_cast<unsigned char>(convergedOut[i]);
+  }
+  return true;
+}
+
 bool vtkGLSProjection::ResolveSupports(const vtkGLSRun& run, std::vector<double>& scales, int& mode)
 {
-  vtkPolyData* input = run.Input;
+  vtkPointSet* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
   const std::size_t count = static_cast<std::size_t>(n);
   const char* selected = this->SelectedArrayName(1);
@@ -174,9 +216,9 @@ bool vtkGLSProjection::ProjectDistributed(vtkGLSRun& run, const std::vector<doub
   // fit then lacked neighbours) makes every rank redo the projection with the band doubled.
   for (double reach = 2.0 * tmax;; reach *= 2.0)
   {
-    std::vector<double> xyz(run.Cloud.Points), nrm(run.Cloud.Normals);
+    vtkGLSCloud cloud = run.Cloud;
     std::size_t ghostCount = 0;
-    if (!dist.AllTrue(dist.AppendGhosts(xyz, n, { { &nrm, 3 } }, reach, ghostCount)))
+    if (!dist.AllTrue(dist.AppendGhosts(cloud.Points, n, { { &cloud.Normals, 3 } }, reach, ghostCount)))
     {
       vtkErrorMacro("The exchange of ghost points between the processes failed.");
       return false;
@@ -190,7 +232,7 @@ bool vtkGLSProjection::ProjectDistributed(vtkGLSRun& run, const std::vector<doub
     std::vector<unsigned char> convergedAll(total);
     const gls::ProjectionOutputs all{ movedAll.data(), etaAll.data(), moveAll.data(), iterationsAll.data(),
       convergedAll.data() };
-    gls::projectPointCloud(xyz.data(), nrm.data(), total, t.data(), settings, all);
+    this->ProjectMerged(cloud, t, settings, all);
     bool inside = true;
     for (std::size_t i = 0; i < n && inside; ++i)
     {

@@ -39,6 +39,7 @@ namespace gls
 struct ProjectionSettings;
 struct ProjectionOutputs;
 }
+struct vtkGLSCloud;
 
 class VTKGLSFILTERS_EXPORT vtkGLSProjection : public vtkGLSFitFilterBase
 {
@@ -93,6 +94,11 @@ protected:
   /// Each point's support (`scales`) and the ScaleMode used; false (with an error) on a missing or mis-sized
   /// bandwidth array or a bad Scale.
   bool ResolveSupports(const vtkGLSRun& run, std::vector<double>& scales, int& mode);
+
+  /// Projects every point of the cloud (owned and ghosts) at its scale, each distinct position once when some
+  /// coincide (the results go back to every copy). Returns false if aborted.
+  static bool ProjectMerged(vtkGLSCloud cloud, const std::vector<double>& scales,
+    const gls::ProjectionSettings& settings, const gls::ProjectionOutputs& out);
 
   /// The distributed projection (see the class documentation): this piece's points (with their supports) projected
   /// with ghosts into `out`. False (with an error) on a communication failure.

@@ -5,6 +5,7 @@
 #ifndef vtkGLSRun_h
 #define vtkGLSRun_h
 
+#include "vtkGLSCloud.h"
 #include "vtkGLSDistributedCloud.h"
 #include "vtkGLSSampleSource.h"
 
@@ -15,18 +16,8 @@
 
 class vtkDataArray;
 class vtkInformationVector;
-class vtkPolyData;
-
-/// A piece's points and (unit or not) normals: this rank's own points first, then the ghosts other ranks sent.
-struct vtkGLSCloud
-{
-  std::vector<double> Points;  ///< 3 per point
-  std::vector<double> Normals; ///< 3 per point (empty when the filter has none, e.g. normal estimation)
-  std::size_t Owned = 0;       ///< this piece's points, the first ones
-
-  std::size_t Size() const { return this->Points.size() / 3; }
-  std::size_t Ghosts() const { return this->Size() - this->Owned; }
-};
+class vtkDataObject;
+class vtkPointSet;
 
 /// What a filter keeps of its own for one run, between its hooks (e.g. the dissimilarity's query point).
 struct vtkGLSRunState
@@ -43,18 +34,21 @@ struct vtkGLSRun
 
   // Built by vtkGLSFilterBase.
   vtkGLSDistributedCloud Distributed;    ///< the collective steps (serial identities in a serial run)
-  vtkPolyData* Input = nullptr;
+  vtkPointSet* Input = nullptr;          ///< the input (a composite input: one of its blocks)
   vtkInformationVector* OutputVector = nullptr;
-  vtkPolyData* Output = nullptr;         ///< point-data filters: the input with this filter's arrays added
+  vtkDataObject* OutputObject = nullptr; ///< what port 0 writes to (a composite input: the block's output)
+  vtkPointSet* Output = nullptr;         ///< point-data filters: the input with this filter's arrays added
   bool Idle = false;                     ///< this rank takes no part in the run (its outputs stay empty)
   bool HasFinitePoints = false;          ///< some point of the whole (distributed) input has finite coordinates
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 }; ///< of the finite points of the whole input (when HasFinitePoints)
-  double Diagonal = 0.0;                 ///< length of the diagonal of Bounds (0 without finite points)
+  double Diagonal = 0.0;                 ///< length of the diagonal of Bounds (0 without finite points); for a
+                                         ///< composite's block, the whole composite's
 
   vtkGLSCloud Cloud;                     ///< the input's points; the fit filters add the normals (and the ghosts)
 
   // Built by vtkGLSFitFilterBase.
   double MinimumNeighbors = 0.0;         ///< resolved (see vtkGLSFitFilterBase::MinimumNeighbors)
+  std::string NormalsName;               ///< the name of the normals array used
 
   // Built by vtkGLSScaleFilterBase.
   std::vector<double> Scales;            ///< absolute scales (length)
@@ -67,6 +61,7 @@ struct vtkGLSRun
   // Reported in the output's field data (vtkGLSFilterBase::WriteRunFieldData).
   std::string BackendUsed;               ///< where the fits ran ("" when none ran)
   long long GhostPoints = -1;            ///< ghosts this rank used (-1: no exchange)
+  long long CoincidentPoints = 0;        ///< this piece's input points merged into another
 };
 
 #endif

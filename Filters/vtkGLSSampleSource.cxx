@@ -5,11 +5,59 @@
 
 #include "vtkDataArray.h"
 #include "vtkPointData.h"
-#include "vtkPolyData.h"
+#include "vtkDataSet.h"
 
 #include "gls/Numeric.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+
+namespace
+{
+
+/// Forwards the samples of a distinct position to the input points it stands for: all of this piece's copies, or
+/// the requested ones (`requested`: pairs of distinct position and input id, sorted).
+class CopiesSink : public gls::ScaleSampleSink
+{
+public:
+  CopiesSink(gls::ScaleSampleSink& inner, const vtkGLSCloud& cloud,
+    const std::vector<std::pair<std::uint64_t, std::uint64_t>>* requested)
+    : Inner(inner)
+    , Cloud(cloud)
+    , Requested(requested)
+  {
+  }
+
+  void consume(std::uint64_t position, const gls::ScaleSample* samples, int thread) override
+  {
+    if (this->Requested)
+    {
+      auto it = std::lower_bound(this->Requested->begin(), this->Requested->end(),
+        std::make_pair(position, std::uint64_t(0)));
+      for (; it != this->Requested->end() && it->first == position; ++it)
+      {
+        this->Inner.consume(it->second, samples, thread);
+      }
+      return;
+    }
+    const gls::CoincidentPoints& c = this->Cloud.Copies;
+    for (std::uint64_t k = c.copyStart[position]; k < c.copyStart[position + 1]; ++k)
+    {
+      if (c.copies[k] < this->Cloud.InputOwned)
+      {
+        this->Inner.consume(c.copies[k], samples, thread);
+      }
+    }
+  }
+
+private:
+  gls::ScaleSampleSink& Inner;
+  const vtkGLSCloud& Cloud;
+  const std::vector<std::pair<std::uint64_t, std::uint64_t>>* Requested;
+};
+
+}
 
 std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Fit(
   const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings)
@@ -17,6 +65,7 @@ std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Fit(
   std::unique_ptr<vtkGLSSampleSource> source(new vtkGLSSampleSource);
   source->PointCount = cloud.Owned;
   source->ScaleCount = settings.scales.size();
+  source->Cloud = &cloud;
   if (cloud.Owned == 0)
   {
     return source; // an empty piece of a distributed input: nothing to fit
@@ -37,7 +86,7 @@ std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Fit(
 }
 
 std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Stored(
-  vtkPolyData* input, std::size_t scaleCount, bool descriptors, bool derivatives)
+  vtkDataSet* input, std::size_t scaleCount, bool descriptors, bool derivatives)
 {
   std::unique_ptr<vtkGLSSampleSource> source(new vtkGLSSampleSource);
   source->PointCount = static_cast<std::size_t>(input->GetNumberOfPoints());
@@ -75,6 +124,30 @@ bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std:
   const gls::ParallelOptions& parallel, gls::Backend backend, gls::RunReport& report) const
 {
   report = gls::RunReport();
+  if (this->Engine && this->Cloud->IsMerged())
+  {
+    // Each distinct position once; its samples to the input points it stands for.
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> requested;
+    std::vector<std::uint64_t> positions;
+    if (ids)
+    {
+      for (std::uint64_t id : *ids)
+      {
+        requested.emplace_back(this->Cloud->Copies.representative[id], id);
+      }
+      std::sort(requested.begin(), requested.end());
+      for (const auto& r : requested)
+      {
+        if (positions.empty() || positions.back() != r.first)
+        {
+          positions.push_back(r.first);
+        }
+      }
+    }
+    CopiesSink copies(sink, *this->Cloud, ids ? &requested : nullptr);
+    const std::vector<std::uint64_t>* order = ids ? &positions : (this->OwnedOrder.empty() ? nullptr : &this->OwnedOrder);
+    return this->Engine->run(copies, order, gls::EvaluationMethod::OnePass, &parallel, backend, &report);
+  }
   if (this->Engine)
   {
     const std::vector<std::uint64_t>* order = ids || this->OwnedOrder.empty() ? ids : &this->OwnedOrder;

@@ -13,21 +13,23 @@
 #include <vector>
 
 class vtkDataArray;
-class vtkPolyData;
+class vtkDataSet;
 struct vtkGLSCloud;
 
 class vtkGLSSampleSource
 {
 public:
   /// A fit of the cloud's points and normals (owned points, then ghosts) at settings.scales. Only the owned points
-  /// are evaluated; the ghosts are neighbours only. An empty piece has nothing to fit.
+  /// are evaluated; the ghosts are neighbours only. An empty piece has nothing to fit. When the cloud merged
+  /// coincident points, each distinct position is evaluated once and its samples go to every copy; the sink sees
+  /// the input's point ids either way. The cloud must outlive the source.
   static std::unique_ptr<vtkGLSSampleSource> Fit(const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings);
 
   /// The arrays a vtkGLSScaleSpace stored for `scaleCount` scales: the descriptors (GLSTau, GLSKappa, GLSFitness)
   /// and/or the derivatives (GLSdTau, GLSdEta, GLSdKappa), as asked. Null when any asked array is missing or has
   /// the wrong shape.
   static std::unique_ptr<vtkGLSSampleSource> Stored(
-    vtkPolyData* input, std::size_t scaleCount, bool descriptors, bool derivatives);
+    vtkDataSet* input, std::size_t scaleCount, bool descriptors, bool derivatives);
 
   /// Nothing to feed: an empty piece of a distributed input that goes along with the others.
   static std::unique_ptr<vtkGLSSampleSource> Empty();
@@ -50,6 +52,7 @@ private:
 
   std::unique_ptr<gls::ScaleSpaceEngine> Engine; ///< null for an empty piece
   std::vector<std::uint64_t> OwnedOrder;         ///< with ghosts: the engine's order without them
+  const vtkGLSCloud* Cloud = nullptr;            ///< the fitted cloud (its merge of coincident points)
   std::size_t PointCount = 0;
   std::size_t ScaleCount = 0;
   std::vector<std::pair<int, vtkDataArray*>> StoredArrays; ///< (descriptor id, its array), for the stored samples

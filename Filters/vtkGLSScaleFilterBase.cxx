@@ -8,12 +8,58 @@
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkPolyData.h"
+#include "vtkPointSet.h"
 
 #include "gls/ScaleSampling.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
+#include <string>
+
+namespace
+{
+
+/// Forwards the samples and keeps, per scale, how many were valid, and the neighbour counts of every 61st point
+/// (a deterministic sample, for a median).
+class CoverageSink : public gls::ScaleSampleSink
+{
+public:
+  CoverageSink(gls::ScaleSampleSink& inner, std::size_t scales, int threads)
+    : Inner(inner)
+    , S(scales)
+    , Valid(static_cast<std::size_t>(threads), std::vector<double>(scales, 0.0))
+    , Points(static_cast<std::size_t>(threads), 0.0)
+    , Neighbors(static_cast<std::size_t>(threads))
+  {
+  }
+  void consume(std::uint64_t id, const gls::ScaleSample* s, int thread) override
+  {
+    this->Inner.consume(id, s, thread);
+    const std::size_t t = static_cast<std::size_t>(thread);
+    this->Points[t] += 1.0;
+    for (std::size_t k = 0; k < this->S; ++k)
+    {
+      this->Valid[t][k] += s[k].valid ? 1.0 : 0.0;
+    }
+    if (id % 61 == 0)
+    {
+      for (std::size_t k = 0; k < this->S; ++k)
+      {
+        this->Neighbors[t].push_back(s[k].neighbors);
+      }
+    }
+  }
+
+  gls::ScaleSampleSink& Inner;
+  std::size_t S;
+  std::vector<std::vector<double>> Valid;
+  std::vector<double> Points;
+  std::vector<std::vector<double>> Neighbors; ///< rows of S counts
+};
+
+}
 
 vtkGLSScaleFilterBase::vtkGLSScaleFilterBase()
   : MinScale(0.008)
@@ -44,7 +90,8 @@ void vtkGLSScaleFilterBase::RemoveAllScales()
 int vtkGLSScaleFilterBase::Execute(vtkGLSRun& run)
 {
   this->LastBackendUsed.clear();
-  if (!this->CheckParameters(run) || !this->PrepareSamples(run, this->GetSampleRequest(run)))
+  if (!this->CheckFitParameters() || !this->CheckParameters(run) ||
+    !this->PrepareSamples(run, this->GetSampleRequest(run)))
   {
     return FAILED;
   }
@@ -77,7 +124,7 @@ bool vtkGLSScaleFilterBase::GatherFitCloud(vtkGLSRun& run)
 bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& request)
 {
   const vtkGLSDistributedCloud& dist = run.Distributed;
-  vtkPolyData* input = run.Input;
+  vtkPointSet* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
   const bool emptyPiece = dist.IsParallel() && n == 0;
   // Every rank must take the same path: stored arrays only when every piece has them (an empty piece goes along).
@@ -128,6 +175,7 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   {
     return false;
   }
+  this->WarnAboutNormalLengths(run, run.Cloud.Normals, run.NormalsName.c_str());
   this->ResolveMinimumNeighbors(run);
   // Distributed: the other pieces' points within the largest scale of this piece join the fit after the owned
   // points; only the owned ones are evaluated.
@@ -135,6 +183,7 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   {
     return false;
   }
+  this->MergeCoincidentPoints(run);
   gls::ScaleSpaceSettings settings;
   settings.scales = run.Scales;
   settings.minNeighbors = run.MinimumNeighbors;
@@ -152,8 +201,15 @@ bool vtkGLSScaleFilterBase::FeedSamples(vtkGLSRun& run, gls::ScaleSampleSink& si
     return this->ReportProgress(f, progressBegin, progressEnd);
   };
   gls::RunReport report;
-  const bool completed =
-    run.Samples->Feed(sink, ids, parallel, static_cast<gls::Backend>(this->Backend), report);
+  const int threads = gls::resolveThreadCount(this->NumberOfThreads);
+  const bool diagnose = !ids && run.Samples->RunsFits(); // every point of a fit: say when most fits are NaN
+  CoverageSink coverage(sink, run.Scales.size(), threads);
+  const bool completed = run.Samples->Feed(
+    diagnose ? coverage : sink, ids, parallel, static_cast<gls::Backend>(this->Backend), report);
+  if (!ids && completed)
+  {
+    this->WarnAboutUndefinedScales(run, diagnose ? &coverage : nullptr);
+  }
   if (run.Samples->RunsFits())
   {
     run.BackendUsed = gls::backendName(report.used);
@@ -167,7 +223,81 @@ bool vtkGLSScaleFilterBase::FeedSamples(vtkGLSRun& run, gls::ScaleSampleSink& si
   return completed;
 }
 
-std::vector<double> vtkGLSScaleFilterBase::ComputeAbsoluteScales(vtkPolyData* input)
+void vtkGLSScaleFilterBase::WarnAboutUndefinedScales(const vtkGLSRun& run, const gls::ScaleSampleSink* diagnosis)
+{
+  // Collective: every rank of a fit reaches this after feeding all its points (an empty piece with no sink too).
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  const std::size_t S = run.Scales.size();
+  const auto* coverage = static_cast<const CoverageSink*>(diagnosis);
+  double points = 0.0;
+  std::vector<double> valid(S, 0.0), rows;
+  if (coverage)
+  {
+    for (std::size_t t = 0; t < coverage->Points.size(); ++t)
+    {
+      points += coverage->Points[t];
+      for (std::size_t k = 0; k < S; ++k)
+      {
+        valid[k] += coverage->Valid[t][k];
+      }
+      rows.insert(rows.end(), coverage->Neighbors[t].begin(), coverage->Neighbors[t].end());
+    }
+  }
+  if (!dist.AllTrue(true) || S == 0)
+  {
+    return;
+  }
+  points = dist.Sum(points);
+  for (double& v : valid)
+  {
+    v = dist.Sum(v);
+  }
+  std::vector<double> all;
+  std::vector<long long> counts;
+  if (!dist.GatherRows(rows, static_cast<int>(S), 0, all, counts) || dist.GetRank() != 0 || !(points > 0.0))
+  {
+    return;
+  }
+  std::vector<std::size_t> undefined;
+  for (std::size_t k = 0; k < S; ++k)
+  {
+    if (valid[k] < 0.5 * points)
+    {
+      undefined.push_back(k);
+    }
+  }
+  if (undefined.empty())
+  {
+    return;
+  }
+  // The median neighbour count over the sampled points, at the undefined scales.
+  std::vector<double> neighbors;
+  for (std::size_t r = 0; r < all.size() / S; ++r)
+  {
+    for (std::size_t k : undefined)
+    {
+      neighbors.push_back(all[r * S + k]);
+    }
+  }
+  double median = 0.0;
+  if (!neighbors.empty())
+  {
+    std::nth_element(neighbors.begin(), neighbors.begin() + static_cast<long>(neighbors.size() / 2), neighbors.end());
+    median = neighbors[neighbors.size() / 2];
+  }
+  std::ostringstream range;
+  range << run.Scales[undefined.front()];
+  if (undefined.size() > 1)
+  {
+    range << " to " << run.Scales[undefined.back()];
+  }
+  vtkWarningMacro("At " << undefined.size() << " of the " << S << " scales (t = " << range.str()
+                        << ") most fits are undefined (NaN): the median neighbour count there is " << median
+                        << ", below MinimumNeighbors " << run.MinimumNeighbors
+                        << ". Use larger scales (MinScale, Scales) or a denser cloud.");
+}
+
+std::vector<double> vtkGLSScaleFilterBase::ComputeAbsoluteScales(vtkPointSet* input)
 {
   const vtkGLSDistributedCloud serial(nullptr);
   const vtkIdType n = input->GetNumberOfPoints();

@@ -108,7 +108,7 @@ public:
 
   /// The absolute scales this filter would fit for the given (serial) input, or an empty vector (and an error) when
   /// the parameters are invalid.
-  std::vector<double> ComputeAbsoluteScales(vtkPolyData* input);
+  std::vector<double> ComputeAbsoluteScales(vtkPointSet* input);
 
 protected:
   vtkGLSScaleFilterBase();
@@ -175,6 +175,10 @@ private:
   /// The samples of the run: stored arrays when the request allows and they are there, else a fit of the cloud
   /// (scales, memory budget, cloud, ghosts, engine). Collective; false (with an error) on failure.
   bool PrepareSamples(vtkGLSRun& run, const SampleRequest& request);
+
+  /// After a fit of every point: one warning (on rank 0) when most fits are NaN at some scales, with the median
+  /// neighbour count there. `diagnosis` is the coverage the feed gathered (null for stored samples). Collective.
+  void WarnAboutUndefinedScales(const vtkGLSRun& run, const gls::ScaleSampleSink* diagnosis);
 
   /// Reads GLSScales from the field data; empty if absent or invalid.
   static std::vector<double> ReadStoredScales(vtkFieldData* fd);

@@ -7,7 +7,7 @@
 #include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPolyData.h"
+#include "vtkPointSet.h"
 #include "vtkTable.h"
 
 #include "gls/Descriptors.h"
@@ -84,6 +84,17 @@ vtkTable* vtkGLSScaleProfiles::GetOutputTable()
   return vtkTable::SafeDownCast(this->GetOutputDataObject(0));
 }
 
+int vtkGLSScaleProfiles::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  return 1;
+}
+
+int vtkGLSScaleProfiles::RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  return this->MakeDeclaredOutputs(outputVector);
+}
+
 int vtkGLSScaleProfiles::FillOutputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkTable");
@@ -94,6 +105,10 @@ void vtkGLSScaleProfiles::PrepareOutputs(vtkGLSRun&) {}
 
 bool vtkGLSScaleProfiles::CheckParameters(vtkGLSRun& run)
 {
+  if (!this->Superclass::CheckParameters(run))
+  {
+    return false;
+  }
   if (this->PointIds.empty())
   {
     vtkErrorMacro("No point selected: AddPointId (PointIds in ParaView) names the points to profile.");
@@ -176,7 +191,7 @@ int vtkGLSScaleProfiles::ComputeOutputs(vtkGLSRun& run)
 bool vtkGLSScaleProfiles::LocateSelectedPoints(
   const vtkGLSRun& run, std::vector<std::uint64_t>& ids, std::vector<std::size_t>& slots)
 {
-  vtkPolyData* input = run.Input;
+  vtkPointSet* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
   const vtkGLSDistributedCloud& dist = run.Distributed;
   if (!dist.IsParallel())

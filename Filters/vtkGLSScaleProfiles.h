@@ -52,7 +52,11 @@ protected:
   vtkGLSScaleProfiles();
   ~vtkGLSScaleProfiles() override;
 
+  /// A vtkPointSet (a composite input is run block by block by the pipeline).
+  int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
+  /// A vtkTable.
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// The output is a table: nothing of the input is copied.
   void PrepareOutputs(vtkGLSRun& run) override;
   /// Locates the selected points (before anything is fitted): an error when none is selected or one is out of range.

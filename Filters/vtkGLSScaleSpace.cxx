@@ -8,7 +8,7 @@
 #include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
-#include "vtkPolyData.h"
+#include "vtkPointSet.h"
 #include "vtkSmartPointer.h"
 
 #include "gls/ScaleSpaceEngine.h" // gls::ScaleSampleSink

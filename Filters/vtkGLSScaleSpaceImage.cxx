@@ -168,13 +168,25 @@ vtkPolyData* vtkGLSScaleSpaceImage::GetCrossingsOutput()
   return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
 }
 
+int vtkGLSScaleSpaceImage::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+int vtkGLSScaleSpaceImage::RequestDataObject(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  return this->MakeDeclaredOutputs(outputVector);
+}
+
 int vtkGLSScaleSpaceImage::FillOutputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkImageData" : "vtkPolyData");
   return 1;
 }
 
-int vtkGLSScaleSpaceImage::RequestInformation(
+int vtkGLSScaleSpaceImage::ExecuteInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   // The image's extent depends on the curve (one column per curve point by default). It is announced here when the
@@ -227,8 +239,23 @@ bool vtkGLSScaleSpaceImage::DistributeRun(vtkGLSRun& run)
 
 bool vtkGLSScaleSpaceImage::CheckParameters(vtkGLSRun& run)
 {
+  if (!this->Superclass::CheckParameters(run))
+  {
+    return false;
+  }
   auto state = std::make_unique<CurveState>();
-  const std::string why = vtkGLSCurve::Extract(run.Input, this->Closed, state->Curve);
+  vtkPolyData* input = vtkPolyData::SafeDownCast(run.Input);
+  const bool hasLines = input->GetLines() && input->GetLines()->GetNumberOfCells() > 0;
+  const bool hasSurface = (input->GetPolys() && input->GetPolys()->GetNumberOfCells() > 0) ||
+    (input->GetStrips() && input->GetStrips()->GetNumberOfCells() > 0);
+  if (!hasLines && hasSurface)
+  {
+    vtkErrorMacro("The input is a surface (it has polygons and no line cell): the scale-space image needs a curve, "
+                  "a polyline or the points of a planar curve in order. Cut the surface first (Slice, vtkCutter) and "
+                  "join the segments (vtkStripper).");
+    return false;
+  }
+  const std::string why = vtkGLSCurve::Extract(input, this->Closed, state->Curve);
   if (!why.empty())
   {
     vtkErrorMacro("Invalid curve: " << why << ".");
@@ -292,15 +319,14 @@ bool vtkGLSScaleSpaceImage::ResolveScales(vtkGLSRun& run)
 bool vtkGLSScaleSpaceImage::GatherFitCloud(vtkGLSRun& run)
 {
   const vtkGLSCurve::Curve& curve = static_cast<const CurveState&>(*run.State).Curve;
-  vtkPolyData* input = run.Input;
+  vtkPointSet* input = run.Input;
   const std::size_t n = curve.Ids.size();
-  vtkDataArray* given = this->FindSelectedNormals(0, input);
-  if (given && (given->GetNumberOfComponents() != 3 || given->GetNumberOfTuples() != input->GetNumberOfPoints()))
+  std::string problem;
+  bool absent = false;
+  vtkDataArray* given = this->SelectNormals(0, input, problem, absent);
+  if (!given && !absent)
   {
-    vtkErrorMacro("The normals array '" << (given->GetName() ? given->GetName() : "(unnamed)") << "' has "
-                                        << given->GetNumberOfComponents() << " components and "
-                                        << given->GetNumberOfTuples() << " tuples; expected 3 components and "
-                                        << input->GetNumberOfPoints() << " tuples (one per point).");
+    vtkErrorMacro("Invalid normals: " << problem << ".");
     return false;
   }
   const double diagonal = gls::boundingDiagonal(curve.Points);

@@ -103,8 +103,13 @@ protected:
   vtkGLSScaleSpaceImage();
   ~vtkGLSScaleSpaceImage() override;
 
+  /// A vtkPolyData (a composite input is run block by block by the pipeline).
+  int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
-  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// A vtkImageData and a vtkPolyData.
+  int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// Announces the image's extent when the input is at hand.
+  int ExecuteInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /// The outputs (an image and polylines) are made from nothing of the input.
   void PrepareOutputs(vtkGLSRun& run) override;

@@ -8,6 +8,7 @@
 #include "gls/Descriptors.h"
 #include "gls/VariationSink.h"
 
+#include <cmath>
 #include <vector>
 
 vtkGLSVariationFilterBase::vtkGLSVariationFilterBase()
@@ -18,6 +19,29 @@ vtkGLSVariationFilterBase::vtkGLSVariationFilterBase()
 }
 
 vtkGLSVariationFilterBase::~vtkGLSVariationFilterBase() = default;
+
+bool vtkGLSVariationFilterBase::CheckParameters(vtkGLSRun&)
+{
+  const struct
+  {
+    const char* Name;
+    double Value;
+  } weights[] = { { "WTau", this->WTau }, { "WEta", this->WEta }, { "WKappa", this->WKappa } };
+  for (const auto& w : weights)
+  {
+    if (!(w.Value >= 0.0) || !std::isfinite(w.Value))
+    {
+      vtkErrorMacro(<< w.Name << " must be a finite weight >= 0 (it is " << w.Value << ").");
+      return false;
+    }
+  }
+  if (!(this->WTau + this->WEta + this->WKappa > 0.0))
+  {
+    vtkErrorMacro("WTau, WEta and WKappa are all 0: nu would be 0 everywhere; make one of them positive.");
+    return false;
+  }
+  return true;
+}
 
 gls::VariationWeights vtkGLSVariationFilterBase::Weights() const
 {

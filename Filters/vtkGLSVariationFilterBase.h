@@ -26,18 +26,22 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Weights of the three terms of nu (dimensionless, >= 0, default 1).
-  vtkSetClampMacro(WTau, double, 0.0, VTK_DOUBLE_MAX);
+  /// Weights of the three terms of nu (dimensionless, default 1). Each must be finite and >= 0, and one positive;
+  /// otherwise RequestData stops with an error naming the weight.
+  vtkSetMacro(WTau, double);
   vtkGetMacro(WTau, double);
-  vtkSetClampMacro(WEta, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(WEta, double);
   vtkGetMacro(WEta, double);
-  vtkSetClampMacro(WKappa, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(WKappa, double);
   vtkGetMacro(WKappa, double);
   ///@}
 
 protected:
   vtkGLSVariationFilterBase();
   ~vtkGLSVariationFilterBase() override;
+
+  /// The weights must be valid (see WTau). Filters that check more call this first.
+  bool CheckParameters(vtkGLSRun& run) override;
 
   /// The weights as the core takes them.
   gls::VariationWeights Weights() const;

@@ -57,7 +57,7 @@ inline vtkSmartPointer<vtkPolyData> makePolyData(const Cloud& c)
   return makePolyData(c.points, c.normals);
 }
 
-/// Counts the error events of an object and keeps the last message.
+/// Counts the error (or warning) events of an object and keeps their messages, one after the other.
 class ErrorCatcher : public vtkCommand
 {
 public:
@@ -65,7 +65,7 @@ public:
   void Execute(vtkObject*, unsigned long, void* data) override
   {
     ++this->Count;
-    this->Message = data ? static_cast<const char*>(data) : "";
+    this->Message += data ? static_cast<const char*>(data) : "";
   }
   int Count = 0;
   std::string Message;

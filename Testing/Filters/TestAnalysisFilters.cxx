@@ -201,6 +201,7 @@ TEST(ContinuousFeaturesFilter, SphereIsZeroAndBunnySpreadsOverTheUnitInterval)
   // Log measure on the stored nu: recompute one point by hand (trapezoid in ln t).
   vtkNew<vtkGLSContinuousFeatures> logf;
   logf->SetFeatureMeasureToLogScale();
+  logf->SetSigmaModeToAbsolute();
   logf->SetSigma(0.5);
   auto l = run(logf.Get(), nu);
   const auto scales = fieldArray(nu, "GLSScales");
@@ -338,6 +339,7 @@ TEST(FeaturesFilter, ZeroNegativeOrNonFiniteSigmaIsAnError)
   {
     vtkNew<vtkGLSContinuousFeatures> f;
     auto errors = catchErrors(f);
+    f->SetSigmaModeToAbsolute();
     f->SetSigma(sigma);
     f->SetInputData(makePolyData(c));
     f->Update();
@@ -390,7 +392,7 @@ TEST(AllFilters, PlaneGivesFlatDescriptorsThroughTheWholePipeline)
   dissimilarity->SetInputConnection(features->GetOutputPort());
   dissimilarity->SetQueryPointId(1234);
   dissimilarity->Update();
-  vtkPolyData* out = dissimilarity->GetOutput();
+  vtkPolyData* out = dissimilarity->GetPolyDataOutput();
   const auto n = values(out->GetPointData()->GetNormals());
   for (std::size_t i = 0; i < c.size(); ++i)
   {

@@ -63,8 +63,8 @@ TEST(AdaptiveBandwidthFilter, FollowsTheNoiseOfEachRegion)
   configureBandwidth(f);
   f->SetInputData(makePolyData(curve.Points, curve.Normals));
   f->Update();
-  const std::vector<double> b = pointArray(f->GetOutput(), "GLSBandwidth");
-  const std::vector<double> raw = pointArray(f->GetOutput(), "GLSRawBandwidth");
+  const std::vector<double> b = pointArray(f->GetPolyDataOutput(), "GLSBandwidth");
+  const std::vector<double> raw = pointArray(f->GetPolyDataOutput(), "GLSRawBandwidth");
   ASSERT_EQ(b.size(), curve.size());
   const double a = regionMedian(b, curve, 0), bb = regionMedian(b, curve, 1), c = regionMedian(b, curve, 2),
                d = regionMedian(raw, curve, 3);
@@ -78,7 +78,7 @@ TEST(AdaptiveBandwidthFilter, FollowsTheNoiseOfEachRegion)
   {
     EXPECT_TRUE(v >= 0.004 * (1 - 1e-12) && v <= 0.15 * (1 + 1e-12)) << v;
   }
-  EXPECT_EQ(fieldArray(f->GetOutput(), "GLSScales").size(), 40u);
+  EXPECT_EQ(fieldArray(f->GetPolyDataOutput(), "GLSScales").size(), 40u);
 }
 
 TEST(AdaptiveBandwidthFilter, UpstreamVariationGivesTheSameBandwidth)
@@ -102,7 +102,7 @@ TEST(AdaptiveBandwidthFilter, UpstreamVariationGivesTheSameBandwidth)
   reused->SetScaleUnitsToAbsolute();
   reused->SetMaxScale(7.0); // ignored: the upstream scales are used
   reused->Update();
-  EXPECT_EQ(pointArray(fused->GetOutput(), "GLSBandwidth"), pointArray(reused->GetOutput(), "GLSBandwidth"));
+  EXPECT_EQ(pointArray(fused->GetPolyDataOutput(), "GLSBandwidth"), pointArray(reused->GetPolyDataOutput(), "GLSBandwidth"));
 }
 
 TEST(ProjectionFilter, Figure9CaseDenoisesTheNoisyPartsAndLeavesTheCleanPart)
@@ -118,7 +118,7 @@ TEST(ProjectionFilter, Figure9CaseDenoisesTheNoisyPartsAndLeavesTheCleanPart)
   adaptive->SetInputConnection(bandwidth->GetOutputPort());
   adaptive->Update();
   EXPECT_EQ(adaptive->GetLastScaleMode(), vtkGLSProjection::BANDWIDTH_ARRAY);
-  vtkPolyData* out = adaptive->GetOutput();
+  vtkPolyData* out = adaptive->GetPolyDataOutput();
   const NoisyCurve::Scores after = curve.score(points(out).data(), pointArray(out, "Normals").data());
 
   // Noisy positions (A, B): RMS distance to the clean curve down at least 3 times; noisy normals: RMS angle down
@@ -144,7 +144,7 @@ TEST(ProjectionFilter, Figure9CaseDenoisesTheNoisyPartsAndLeavesTheCleanPart)
     global->Update();
     EXPECT_EQ(global->GetLastScaleMode(), vtkGLSProjection::FIXED_SCALE);
     const NoisyCurve::Scores s =
-      curve.score(points(global->GetOutput()).data(), pointArray(global->GetOutput(), "Normals").data());
+      curve.score(points(global->GetPolyDataOutput()).data(), pointArray(global->GetPolyDataOutput(), "Normals").data());
     if (s.totalPositionRms < bestRms)
     {
       bestRms = s.totalPositionRms;
@@ -176,7 +176,7 @@ TEST(ProjectionFilter, NoisySphereProjectsOntoTheSphereWithRadialNormals)
   f->SetScaleUnitsToAbsolute();
   f->SetScale(0.25);
   f->Update();
-  vtkPolyData* out = f->GetOutput();
+  vtkPolyData* out = f->GetPolyDataOutput();
   const std::vector<double> p = points(out), n = pointArray(out, "Normals"), d = pointArray(out, "GLSDisplacement");
   double before = 0, after = 0;
   for (std::size_t i = 0; i < c.size(); ++i)
@@ -213,7 +213,7 @@ TEST(ProjectionFilter, BitwiseIdenticalForAnyThreadCountAndClearErrors)
     f->SetScaleUnitsToAbsolute();
     f->SetScale(0.05);
     f->Update();
-    const std::vector<double> p = points(f->GetOutput());
+    const std::vector<double> p = points(f->GetPolyDataOutput());
     if (reference.empty())
     {
       reference = p;

@@ -2,6 +2,7 @@
 // concurrency (two instances of each filter running at once in two threads give the results they give alone).
 #include "FilterTestUtilities.h"
 
+#include "vtkGLSFilterBase.h"
 #include "vtkGLSContinuousFeatures.h"
 #include "vtkGLSGeometricVariation.h"
 #include "vtkGLSMultiScaleDissimilarity.h"
@@ -88,19 +89,19 @@ TEST(Reliability, TwoInstancesInTwoThreadsGiveTheResultsTheyGiveAlone)
   struct Case
   {
     const char* array;
-    std::function<vtkSmartPointer<vtkPolyDataAlgorithm>()> make;
+    std::function<vtkSmartPointer<vtkGLSFilterBase>()> make;
   };
   const std::vector<Case> cases = {
-    { "Normals", [] { return vtkSmartPointer<vtkPolyDataAlgorithm>(vtkSmartPointer<vtkGLSNormalEstimation>::New()); } },
-    { "GLSKappa", [] { return vtkSmartPointer<vtkPolyDataAlgorithm>(vtkSmartPointer<vtkGLSScaleSpace>::New()); } },
+    { "Normals", [] { return vtkSmartPointer<vtkGLSFilterBase>(vtkSmartPointer<vtkGLSNormalEstimation>::New()); } },
+    { "GLSKappa", [] { return vtkSmartPointer<vtkGLSFilterBase>(vtkSmartPointer<vtkGLSScaleSpace>::New()); } },
     { "GLSGeometricVariation",
-      [] { return vtkSmartPointer<vtkPolyDataAlgorithm>(vtkSmartPointer<vtkGLSGeometricVariation>::New()); } },
+      [] { return vtkSmartPointer<vtkGLSFilterBase>(vtkSmartPointer<vtkGLSGeometricVariation>::New()); } },
     { "GLSFeature",
-      [] { return vtkSmartPointer<vtkPolyDataAlgorithm>(vtkSmartPointer<vtkGLSContinuousFeatures>::New()); } },
+      [] { return vtkSmartPointer<vtkGLSFilterBase>(vtkSmartPointer<vtkGLSContinuousFeatures>::New()); } },
     { "GLSDissimilarity",
-      [] { return vtkSmartPointer<vtkPolyDataAlgorithm>(vtkSmartPointer<vtkGLSMultiScaleDissimilarity>::New()); } },
+      [] { return vtkSmartPointer<vtkGLSFilterBase>(vtkSmartPointer<vtkGLSMultiScaleDissimilarity>::New()); } },
   };
-  auto result = [](vtkPolyDataAlgorithm* f, const char* array) {
+  auto result = [](vtkGLSFilterBase* f, const char* array) {
     vtkDataArray* out = std::string(array) == "Normals" ? f->GetOutput()->GetPointData()->GetNormals()
                                                         : f->GetOutput()->GetPointData()->GetArray(array);
     return values(out);
@@ -123,7 +124,7 @@ TEST(Reliability, TwoInstancesInTwoThreadsGiveTheResultsTheyGiveAlone)
     t1.join();
     t2.join();
     std::thread t3([&] { a3->Update(); });
-    vtkSmartPointer<vtkPolyDataAlgorithm> a4 = cs.make();
+    vtkSmartPointer<vtkGLSFilterBase> a4 = cs.make();
     a4->SetInputData(inputA);
     std::thread t4([&] { a4->Update(); });
     t3.join();

@@ -67,10 +67,10 @@ TEST(ScaleProfiles, BunnyProfilesEqualTheScaleSpaceAtTheSameScales)
   p->AddPointId(1234);
   p->Update();
   vtkTable* t = p->GetOutputTable();
-  const auto scales = fieldArray(v->GetOutput(), "GLSScales");
+  const auto scales = fieldArray(v->GetPolyDataOutput(), "GLSScales");
   EXPECT_EQ(values(vtkDataArray::SafeDownCast(t->GetColumnByName("t"))), scales);
-  const auto kappa = pointArray(v->GetOutput(), "GLSKappa");
-  const auto nu = pointArray(v->GetOutput(), "GLSGeometricVariation");
+  const auto kappa = pointArray(v->GetPolyDataOutput(), "GLSKappa");
+  const auto nu = pointArray(v->GetPolyDataOutput(), "GLSGeometricVariation");
   const auto pk = values(vtkDataArray::SafeDownCast(t->GetColumnByName("t*kappa (1234)")));
   const auto pn = values(vtkDataArray::SafeDownCast(t->GetColumnByName("nu (1234)")));
   for (std::size_t k = 0; k < 20; ++k)

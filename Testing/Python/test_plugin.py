@@ -169,7 +169,7 @@ class PluginProxies(unittest.TestCase):
         n = NS['GLSNormalEstimation'](Input=src, NumberOfNeighbors=12)
         s = NS['GLSScaleSpace'](Input=n, NumberOfScales=8, ScaleSampling='Linear', MinScale=0.01, MaxScale=0.05)
         v = NS['GLSGeometricVariation'](Input=s, WTau=2.0)
-        f = NS['GLSContinuousFeatures'](Input=v, Sigma=0.2)
+        f = NS['GLSContinuousFeatures'](Input=v, SigmaMode='Absolute', Sigma=0.2)
         d = NS['GLSMultiScaleDissimilarity'](Input=f, QueryPointId=777, PriorMinScale=0.02, PriorMaxScale=0.04,
                                              Threshold=0.02)
         proxy_out = fetch(d)
@@ -184,6 +184,7 @@ class PluginProxies(unittest.TestCase):
         variation = glsvtk.vtkGLSGeometricVariation()
         variation.SetWTau(2.0)
         features = glsvtk.vtkGLSContinuousFeatures()
+        features.SetSigmaModeToAbsolute()
         features.SetSigma(0.2)
         dissimilarity = glsvtk.vtkGLSMultiScaleDissimilarity()
         dissimilarity.SetQueryPointId(777)

@@ -55,6 +55,46 @@ double continuousFeature(const double* nu, const double* scales, int count, doub
   return length > 0.0 ? integral / length : std::numeric_limits<double>::quiet_NaN();
 }
 
+double sigmaForMedianFeature(const std::vector<double>& nu, std::size_t rows, const double* scales, int count,
+  FeatureMeasure measure, double targetMedian)
+{
+  std::vector<double> f(rows);
+  // The median of f over the rows whose feature is defined; f decreases as sigma grows.
+  const auto median = [&](double sigma) {
+    std::size_t m = 0;
+    for (std::size_t r = 0; r < rows; ++r)
+    {
+      const double v = continuousFeature(&nu[r * static_cast<std::size_t>(count)], scales, count, sigma, measure);
+      if (!std::isnan(v))
+      {
+        f[m++] = v;
+      }
+    }
+    if (m == 0)
+    {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    std::nth_element(f.begin(), f.begin() + static_cast<long>(m / 2), f.begin() + static_cast<long>(m));
+    return f[m / 2];
+  };
+  const double atFloor = median(kMinimumRelativeSigma);
+  if (std::isnan(atFloor))
+  {
+    return atFloor;
+  }
+  if (!(atFloor > targetMedian))
+  {
+    return kMinimumRelativeSigma;
+  }
+  double lo = std::log(kMinimumRelativeSigma), hi = std::log(1e12);
+  while (hi - lo > 1e-6)
+  {
+    const double mid = 0.5 * (lo + hi);
+    (median(std::exp(mid)) > targetMedian ? lo : hi) = mid;
+  }
+  return std::exp(hi);
+}
+
 std::vector<double> scalePrior(
   const std::vector<double>& scales, ScalePriorShape shape, double minScale, double maxScale, std::string& why)
 {

@@ -31,6 +31,17 @@ enum class FeatureMeasure
 /// f = tanh(nu_0/sigma).
 double continuousFeature(const double* nu, const double* scales, int count, double sigma, FeatureMeasure measure);
 
+/// The smallest sigma the data-relative rule may choose (dimensionless): nu below it is no variation. On a perfect
+/// sphere or plane nu is about 1e-20, so f stays 0 there whatever the data-relative rule would pick.
+constexpr double kMinimumRelativeSigma = 1e-3;
+
+/// The data-relative sigma: the value at which the median of continuousFeature over the given rows (`rows` points,
+/// nu at `count` scales each, row-major; rows whose feature is NaN are left out) equals `targetMedian` (in (0, 1)),
+/// found by bisection in log sigma to 1e-6 relative; never below kMinimumRelativeSigma (then the median is below the
+/// target: the data hardly varies). NaN when no row has a defined feature.
+double sigmaForMedianFeature(const std::vector<double>& nu, std::size_t rows, const double* scales, int count,
+  FeatureMeasure measure, double targetMedian);
+
 enum class ScalePriorShape
 {
   Box = 0,          ///< h = 1 on [minScale, maxScale]

@@ -1,0 +1,43 @@
+#include "vtkGLSCloud.h"
+
+#include <algorithm>
+
+std::size_t vtkGLSCloud::MergeCoincident()
+{
+  this->InputOwned = this->Owned;
+  gls::CoincidentPoints copies = gls::findCoincidentPoints(this->Points.data(), this->Size());
+  if (copies.merged() == 0)
+  {
+    return 0;
+  }
+  // Owned points come first, so the positions first seen among them are the first distinct ones.
+  std::size_t owned = 0;
+  while (owned < copies.distinct.size() && copies.distinct[owned] < this->Owned)
+  {
+    ++owned;
+  }
+  const std::size_t mergedOwned = this->Owned - owned;
+  if (!this->Normals.empty())
+  {
+    this->Normals = gls::mergedNormals(copies, this->Normals.data());
+  }
+  this->Points = gls::distinctValues(copies, this->Points.data(), 3);
+  this->Owned = owned;
+  this->Copies = std::move(copies);
+  return mergedOwned;
+}
+
+void vtkGLSCloud::ScatterToInput(const double* values, int width, double* out) const
+{
+  const std::size_t w = static_cast<std::size_t>(width);
+  if (!this->IsMerged())
+  {
+    std::copy(values, values + w * this->Owned, out);
+    return;
+  }
+  for (std::size_t i = 0; i < this->InputOwned; ++i)
+  {
+    const std::size_t u = this->Copies.representative[i];
+    std::copy(values + w * u, values + w * u + w, out + w * i);
+  }
+}

@@ -1,0 +1,35 @@
+// The points a GLS filter computes on (private to the module): this piece's points with their normals, then the
+// ghosts other ranks sent, and, when some points coincide, their merging (gls/CoincidentPoints.h): each distinct
+// position is computed and counted once and its results go back to every copy.
+#ifndef vtkGLSCloud_h
+#define vtkGLSCloud_h
+
+#include "gls/CoincidentPoints.h"
+
+#include <cstddef>
+#include <vector>
+
+struct vtkGLSCloud
+{
+  std::vector<double> Points;  ///< 3 per point
+  std::vector<double> Normals; ///< 3 per point (empty when the filter has none, e.g. normal estimation)
+  std::size_t Owned = 0;       ///< this piece's points, the first ones
+
+  /// After MergeCoincident: which input points (owned, then ghosts) share a position. Empty when none was merged.
+  gls::CoincidentPoints Copies;
+  std::size_t InputOwned = 0; ///< this piece's input points (Owned before the merge)
+
+  std::size_t Size() const { return this->Points.size() / 3; }
+  std::size_t Ghosts() const { return this->Size() - this->Owned; }
+  bool IsMerged() const { return !this->Copies.representative.empty(); }
+
+  /// Merges the points at bitwise-equal coordinates: Points (and Normals, by gls::mergedNormals) become the
+  /// distinct positions, this piece's first, and Owned their number. Returns how many of this piece's input
+  /// points were merged into an earlier one; nothing changes (and 0 is returned) when every position is distinct.
+  std::size_t MergeCoincident();
+
+  /// Writes per-position values (width each, `Owned` positions) back to every copy of this piece's input points.
+  void ScatterToInput(const double* values, int width, double* out) const;
+};
+
+#endif
