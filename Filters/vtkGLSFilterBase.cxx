@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <vector>
 
 namespace
@@ -80,9 +81,17 @@ vtkCxxSetObjectMacro(vtkGLSFilterBase, Controller, vtkMultiProcessController);
 
 int vtkGLSFilterBase::FillInputPortInformation(int, vtkInformation* info)
 {
+  // The composite type first: the composite pipeline looks at the first type only to decide whether to iterate
+  // over the blocks itself (this filter iterates, with the whole composite's diagonal).
   info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
-  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  return 1;
+}
+
+int vtkGLSFilterBase::FillOutputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkDataObject");
   return 1;
 }
 
@@ -221,21 +230,29 @@ int vtkGLSFilterBase::RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVect
   double bounds[6];
   const double diagonal = dist.FiniteBounds(xyz.data(), xyz.size() / 3, bounds) ? DiagonalOf(bounds) : 0.0;
   xyz = std::vector<double>();
-  if (!this->BeginComposite(input, diagonal))
+  // The blocks as point sets (an empty one stands for a missing block: it still takes part in a distributed run).
+  std::vector<vtkSmartPointer<vtkPointSet>> blocks;
+  std::vector<bool> present;
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    vtkSmartPointer<vtkPointSet> block = vtkPointSet::SafeDownCast(it->GetCurrentDataObject());
+    present.push_back(block != nullptr);
+    blocks.push_back(block ? block : vtkSmartPointer<vtkPointSet>(vtkSmartPointer<vtkPolyData>::New()));
+  }
+  std::vector<std::size_t> order(blocks.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  if (!this->BeginComposite(blocks, diagonal, order))
   {
     this->EndComposite();
     return 0;
   }
+  std::vector<vtkSmartPointer<vtkDataObject>> outputs(blocks.size());
   int result = 1;
   int computed = 0;
-  for (it->InitTraversal(); !it->IsDoneWithTraversal() && result; it->GoToNextItem())
+  for (std::size_t k = 0; k < order.size() && result; ++k)
   {
-    vtkSmartPointer<vtkPointSet> block = vtkPointSet::SafeDownCast(it->GetCurrentDataObject());
-    if (!block)
-    {
-      block = vtkSmartPointer<vtkPolyData>::New(); // an empty block still takes part in a distributed run
-    }
-    vtkSmartPointer<vtkDataObject> blockOutput;
+    vtkPointSet* block = blocks[order[k]];
+    vtkSmartPointer<vtkDataObject>& blockOutput = outputs[order[k]];
     blockOutput.TakeReference(block->NewInstance());
     if (dist.Sum(static_cast<double>(block->GetNumberOfPoints())) > 0.0)
     {
@@ -246,9 +263,13 @@ int vtkGLSFilterBase::RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVect
     {
       blockOutput->ShallowCopy(block); // a block without points (on every process) passes through
     }
-    if (it->GetCurrentDataObject())
+  }
+  std::size_t leaf = 0;
+  for (it->InitTraversal(); !it->IsDoneWithTraversal() && result; it->GoToNextItem(), ++leaf)
+  {
+    if (present[leaf])
     {
-      output->SetDataSet(it, blockOutput);
+      output->SetDataSet(it, outputs[leaf]);
     }
   }
   this->EndComposite();
@@ -260,7 +281,8 @@ int vtkGLSFilterBase::RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVect
   return result;
 }
 
-bool vtkGLSFilterBase::BeginComposite(vtkCompositeDataSet*, double)
+bool vtkGLSFilterBase::BeginComposite(
+  const std::vector<vtkSmartPointer<vtkPointSet>>&, double, std::vector<std::size_t>&)
 {
   return true;
 }

@@ -42,6 +42,7 @@
 
 #include "vtkGLSFiltersModule.h"
 #include "vtkPointSetAlgorithm.h"
+#include "vtkSmartPointer.h" // for the composite hook
 
 #include <string>
 #include <vector>
@@ -79,6 +80,8 @@ protected:
 
   /// A vtkPointSet or a composite dataset of point sets.
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  /// Any data object: RequestDataObject makes it the input's type.
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
   /// The output has the input's type (a composite input gives a composite of the same type).
   int RequestDataObject(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
@@ -110,9 +113,12 @@ protected:
   /// an error otherwise, on every rank alike.
   virtual bool DistributeRun(vtkGLSRun& run);
 
-  /// Called once before the blocks of a composite input are run (each block is then a run of its own): a filter
-  /// whose parameters name one block's point (the dissimilarity's query) prepares it here. False with an error.
-  virtual bool BeginComposite(vtkCompositeDataSet* input, double diagonal);
+  /// Called once before the blocks of a composite input are run, each as a run of its own, in `order` (indices
+  /// into `blocks`, the composite's leaves; an empty point set stands for a missing leaf): a filter whose
+  /// parameters name one block's point (the dissimilarity's query) finds it here and may run its block first.
+  /// `diagonal` is the whole composite's. False with an error. Collective.
+  virtual bool BeginComposite(
+    const std::vector<vtkSmartPointer<vtkPointSet>>& blocks, double diagonal, std::vector<std::size_t>& order);
   /// Called once after the blocks of a composite input were run.
   virtual void EndComposite();
 

@@ -66,6 +66,17 @@ struct QueryState : vtkGLSRunState
 
 } // namespace
 
+struct vtkGLSMultiScaleDissimilarity::CompositeQuery
+{
+  std::size_t Block = 0;     ///< the block (leaf index) holding the query
+  long long Offset = 0;      ///< points of the blocks before it
+  vtkIdType Local = -1;      ///< the query's id in its block (-1: by coordinates)
+  long long Flat = -1;       ///< the query's id over all the blocks
+  bool Known = false;        ///< the query's block ran: Samples and Scales hold its descriptors
+  std::vector<gls::ScaleSample> Samples;
+  std::vector<double> Scales;
+};
+
 vtkGLSMultiScaleDissimilarity::vtkGLSMultiScaleDissimilarity()
   : ReuseInputScaleSpace(true)
   , QueryPointId(0)
@@ -86,15 +97,23 @@ bool vtkGLSMultiScaleDissimilarity::CheckParameters(vtkGLSRun& run)
   const vtkIdType n = input->GetNumberOfPoints();
   const vtkGLSDistributedCloud& dist = run.Distributed;
   auto state = std::make_unique<QueryState>();
-  if (!this->UseQueryPointCoordinates && this->QueryPointId < 0)
+  if (this->Composite && this->Composite->Known)
+  {
+    state->GlobalId = this->Composite->Flat; // another block: compared with the query of the first one run
+    run.State = std::move(state);
+    return true;
+  }
+  const vtkIdType wanted = this->Composite ? this->Composite->Local : this->QueryPointId;
+  const bool byCoordinates = this->UseQueryPointCoordinates;
+  if (!byCoordinates && wanted < 0)
   {
     vtkErrorMacro("QueryPointId must be a point id, >= 0 (it is " << this->QueryPointId << ").");
     return false;
   }
   // The query point (in a distributed run, this piece's index of it, -1 on the other ranks).
-  vtkIdType query = this->QueryPointId;
+  vtkIdType query = wanted;
   double best = VTK_DOUBLE_MAX;
-  if (this->UseQueryPointCoordinates)
+  if (byCoordinates)
   {
     query = -1;
     for (vtkIdType i = 0; i < n; ++i)
@@ -115,7 +134,7 @@ bool vtkGLSMultiScaleDissimilarity::CheckParameters(vtkGLSRun& run)
     }
   }
   long long queryGlobalId = query;
-  if (dist.IsParallel() && !this->LocateDistributedQuery(run, best, query, queryGlobalId, state->Owner))
+  if (dist.IsParallel() && !this->LocateDistributedQuery(run, wanted, best, query, queryGlobalId, state->Owner))
   {
     return false;
   }
@@ -125,9 +144,72 @@ bool vtkGLSMultiScaleDissimilarity::CheckParameters(vtkGLSRun& run)
     return false;
   }
   state->Index = query;
-  state->GlobalId = queryGlobalId;
+  state->GlobalId = this->Composite ? this->Composite->Offset + queryGlobalId : queryGlobalId;
   run.State = std::move(state);
   return true;
+}
+
+bool vtkGLSMultiScaleDissimilarity::BeginComposite(
+  const std::vector<vtkSmartPointer<vtkPointSet>>& blocks, double, std::vector<std::size_t>& order)
+{
+  const vtkGLSDistributedCloud dist(this->Controller);
+  auto composite = std::make_unique<CompositeQuery>();
+  std::vector<long long> offsets(blocks.size() + 1, 0);
+  for (std::size_t b = 0; b < blocks.size(); ++b)
+  {
+    offsets[b + 1] = offsets[b] + static_cast<long long>(dist.Sum(static_cast<double>(blocks[b]->GetNumberOfPoints())));
+  }
+  if (this->UseQueryPointCoordinates)
+  {
+    // The block holding the nearest point of all (the first such block on a tie).
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+    {
+      double mine = std::numeric_limits<double>::infinity();
+      for (vtkIdType i = 0; i < blocks[b]->GetNumberOfPoints(); ++i)
+      {
+        double p[3];
+        blocks[b]->GetPoint(i, p);
+        mine = std::min(mine, vtkMath::Distance2BetweenPoints(p, this->QueryPoint));
+      }
+      mine = dist.Min(mine);
+      if (mine < best)
+      {
+        best = mine;
+        composite->Block = b;
+      }
+    }
+    if (!(best < std::numeric_limits<double>::infinity()))
+    {
+      vtkErrorMacro("No input point with finite coordinates to snap the query point to.");
+      return false;
+    }
+  }
+  else
+  {
+    if (this->QueryPointId < 0 || this->QueryPointId >= offsets.back())
+    {
+      vtkErrorMacro("QueryPointId " << this->QueryPointId << " is out of range: the " << blocks.size()
+                                    << " blocks have " << offsets.back() << " points in all (QueryPointId counts "
+                                       "them block after block).");
+      return false;
+    }
+    while (this->QueryPointId >= offsets[composite->Block + 1])
+    {
+      ++composite->Block;
+    }
+    composite->Local = static_cast<vtkIdType>(this->QueryPointId - offsets[composite->Block]);
+  }
+  composite->Offset = offsets[composite->Block];
+  order.erase(std::find(order.begin(), order.end(), composite->Block));
+  order.insert(order.begin(), composite->Block);
+  this->Composite = std::move(composite);
+  return true;
+}
+
+void vtkGLSMultiScaleDissimilarity::EndComposite()
+{
+  this->Composite.reset();
 }
 
 vtkGLSScaleFilterBase::SampleRequest vtkGLSMultiScaleDissimilarity::GetSampleRequest(const vtkGLSRun&) const
@@ -161,12 +243,24 @@ int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
   CaptureSink querySink;
   querySink.Samples.resize(scales.size());
   int queryStatus = 1; // 1 computed, 0 aborted
-  if (query.Index >= 0)
+  const bool known = this->Composite && this->Composite->Known;
+  if (known)
+  {
+    // A composite's other block: the query's descriptors at the same scales.
+    if (this->Composite->Scales != scales)
+    {
+      vtkErrorMacro("The blocks of the composite input have different scales (an upstream scale space per block?): "
+                    "the dissimilarity compares descriptors scale by scale; turn ReuseInputScaleSpace off.");
+      return FAILED;
+    }
+    querySink.Samples = this->Composite->Samples;
+  }
+  else if (query.Index >= 0)
   {
     const std::vector<std::uint64_t> queryIds{ static_cast<std::uint64_t>(query.Index) };
     queryStatus = this->FeedSamples(run, querySink, &queryIds, 0.0, 0.02) ? 1 : 0;
   }
-  if (run.Distributed.IsParallel())
+  if (run.Distributed.IsParallel() && !known)
   {
     static_assert(std::is_trivially_copyable<gls::ScaleSample>::value, "sent as bytes");
     vtkMultiProcessController* c = this->GetController();
@@ -182,6 +276,13 @@ int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
   for (std::size_t k = 0; k < scales.size(); ++k)
   {
     anyValid = anyValid || (prior[k] > 0.0 && querySink.Samples[k].valid);
+  }
+  if (this->Composite && !known)
+  {
+    this->Composite->Known = true;
+    this->Composite->Flat = query.GlobalId;
+    this->Composite->Samples = querySink.Samples;
+    this->Composite->Scales = scales;
   }
   if (!anyValid)
   {
@@ -220,8 +321,8 @@ int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
   return COMPLETED;
 }
 
-bool vtkGLSMultiScaleDissimilarity::LocateDistributedQuery(
-  const vtkGLSRun& run, double localBest2, vtkIdType& query, long long& globalId, int& owner)
+bool vtkGLSMultiScaleDissimilarity::LocateDistributedQuery(const vtkGLSRun& run, vtkIdType wanted,
+  double localBest2, vtkIdType& query, long long& globalId, int& owner)
 {
   vtkPointSet* input = run.Input;
   const vtkGLSDistributedCloud& dist = run.Distributed;
@@ -251,7 +352,7 @@ bool vtkGLSMultiScaleDissimilarity::LocateDistributedQuery(
   }
   else
   {
-    globalId = this->QueryPointId;
+    globalId = wanted;
   }
   query = -1;
   for (std::size_t i = 0; i < ids.size() && query < 0; ++i)

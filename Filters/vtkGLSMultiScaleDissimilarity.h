@@ -15,6 +15,9 @@
  * Point-data outputs: GLSDissimilarity (dimensionless, >= 0; 0 at the query point; NaN where no scale of the prior
  * has both fits defined) and GLSSimilar (unsigned char: 1 where GLSDissimilarity < Threshold, else 0). Field data:
  * GLSQueryPointId (the query point used) and GLSScales (length).
+ * Composite inputs (a multiblock of clouds): QueryPointId counts the points of the blocks one after the other (the
+ * field data GLSQueryPointId holds that flat id in every block's output); every block is compared with that point;
+ * the blocks must have the same scales (relative scales are relative to the whole composite, so they do).
  * Errors: a query id out of range, a query point with non-finite coordinates or without any defined fit inside the
  * prior, a prior range that holds no sampled scale.
  */
@@ -23,6 +26,8 @@
 
 #include "vtkGLSFiltersModule.h"
 #include "vtkGLSScaleFilterBase.h" // IWYU pragma: keep
+
+#include <memory> // for std::unique_ptr
 
 class VTKGLSFILTERS_EXPORT vtkGLSMultiScaleDissimilarity : public vtkGLSScaleFilterBase
 {
@@ -95,6 +100,13 @@ protected:
 
   /// Locates the query point (before anything is fitted): an error when it is out of range or there is no point.
   bool CheckParameters(vtkGLSRun& run) override;
+
+  /// A composite input: the query is a point of one block (QueryPointId counts the points of the blocks one after
+  /// the other; with UseQueryPointCoordinates, the nearest point of all blocks). That block is run first; the
+  /// others are compared with its query's descriptors.
+  bool BeginComposite(const std::vector<vtkSmartPointer<vtkPointSet>>& blocks, double diagonal,
+    std::vector<std::size_t>& order) override;
+  void EndComposite() override;
   SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
   int ComputeOutputs(vtkGLSRun& run) override;
 
@@ -102,8 +114,12 @@ protected:
   /// piece's nearest squared distance `localBest2`), sets `query` to its index in this piece (-1 elsewhere),
   /// `globalId`, and `owner` (the rank whose piece holds it). False (with an error, on every rank) when no piece
   /// has it.
-  bool LocateDistributedQuery(
-    const vtkGLSRun& run, double localBest2, vtkIdType& query, long long& globalId, int& owner);
+  bool LocateDistributedQuery(const vtkGLSRun& run, vtkIdType wanted, double localBest2, vtkIdType& query,
+    long long& globalId, int& owner);
+
+  struct CompositeQuery;
+  /// During the run of a composite input only: the query's block and, once it ran, its descriptors.
+  std::unique_ptr<CompositeQuery> Composite;
 
   bool ReuseInputScaleSpace;
   vtkIdType QueryPointId;

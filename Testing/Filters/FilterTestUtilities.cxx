@@ -14,8 +14,13 @@ vtkSmartPointer<vtkPolyData> bunnyCloud()
 
 vtkSmartPointer<vtkPolyData> bunnyMeshWithNormals()
 {
+  return meshWithNormals("stanford-bunny.obj");
+}
+
+vtkSmartPointer<vtkPolyData> meshWithNormals(const std::string& file)
+{
   vtkNew<vtkOBJReader> reader;
-  reader->SetFileName(dataFile("stanford-bunny.obj").c_str());
+  reader->SetFileName(dataFile(file).c_str());
   vtkNew<vtkPolyDataNormals> normals;
   normals->SetInputConnection(reader->GetOutputPort());
   normals->SplittingOff();

@@ -131,4 +131,7 @@ vtkSmartPointer<vtkPolyData> bunnyCloud();
 /// The bundled bunny mesh with area-weighted vertex normals from vtkPolyDataNormals, oriented by the file's faces.
 vtkSmartPointer<vtkPolyData> bunnyMeshWithNormals();
 
+/// A bundled mesh (an OBJ file of Testing/Data) with its vertex normals, as bunnyMeshWithNormals.
+vtkSmartPointer<vtkPolyData> meshWithNormals(const std::string& file);
+
 } // namespace glstest

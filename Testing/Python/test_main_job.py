@@ -107,8 +107,10 @@ class MainJob(unittest.TestCase):
             self.assertIsNotNone(pd.GetPointData().GetArray(name), name)
         feature = vtk_to_numpy(pd.GetPointData().GetArray('GLSFeature'))
         self.assertTrue(np.all((feature >= 0) & (feature <= 1)))
+        # The data-relative sigma: features stand out from a low background (median 0.28, the filter's target).
         self.assertLess(np.percentile(feature, 5), 0.15)
-        self.assertGreater(np.percentile(feature, 95), 0.85)
+        self.assertLess(np.median(feature), 0.3)
+        self.assertGreater(np.percentile(feature, 95), 0.6)
         self.assertGreater(feature.std(), 0.15)
         for png in (files['-features.png'], files['-profiles.png'], files['-denoising.png'],
                     files['-scale-space.png']):
