@@ -2,6 +2,8 @@
 the plugin's GLS Point Cloud Reader (the column layouts are in docs/main-job.md and gls/PointTextParser.h)."""
 import os
 
+import gls_ply
+
 READERS = {'.ply': 'ParaView (PLY)', '.obj': 'ParaView (OBJ)', '.stl': 'ParaView (STL)',
            '.vtp': 'ParaView (VTK XML polydata)'}
 TEXT = ('.xyz', '.pts', '.csv', '.txt')
@@ -35,6 +37,9 @@ def open_cloud(path, make_proxy, watch):
     if ext in TEXT:
         reader = make_proxy('GLSPointCloudReader', registrationName=os.path.basename(path), FileName=path)
     else:
+        damage = gls_ply.check(path) if ext == '.ply' else None
+        if damage:  # ParaView's PLY reader would crash on it
+            raise InputError('%s: a damaged or truncated PLY file: %s' % (path, damage))
         try:
             reader = simple.OpenDataFile(path)
         except RuntimeError:

@@ -6,6 +6,11 @@ import os
 import shutil
 import tempfile
 
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_STRING
+
+import gls_watch
+
 
 class OutputError(Exception):
     """The output directory cannot be created or written (one line for the user)."""
@@ -68,6 +73,16 @@ def save_state(path, vtp, final_vtp):
     from paraview import simple
     simple.ResetSession()
     reader = simple.XMLPolyDataReader(registrationName=os.path.basename(final_vtp), FileName=[os.path.abspath(vtp)])
+    errors = []
+
+    @calldata_type(VTK_STRING)
+    def on_error(_obj, _event, message):  # the harmless unknown-key message of write_vtp's files is dropped
+        if 'InformationKey' not in message:
+            errors.append(gls_watch.one_line(message))
+    algorithm = reader.GetClientSideObject()  # a vtkFileSeriesReader around the vtkXMLPolyDataReader
+    for target in (algorithm, getattr(algorithm, 'GetReader', lambda: None)()):
+        if target is not None:
+            target.AddObserver('ErrorEvent', on_error)
     view = simple.GetActiveViewOrCreate('RenderView')
     display = simple.Show(reader, view)
     simple.ColorBy(display, ('POINTS', 'GLSFeature'))
@@ -76,6 +91,8 @@ def save_state(path, vtp, final_vtp):
     lut.RescaleTransferFunction(0.0, 1.0)
     display.SetScalarBarVisibility(view, True)
     view.ResetCamera()
+    if errors:
+        raise gls_watch.StageError('reading the written %s back: %s' % (os.path.basename(final_vtp), errors[0]))
     simple.SaveState(path)
     with open(path) as f:
         state = f.read()

@@ -35,9 +35,13 @@ class Watch:
         algorithm = proxy.GetClientSideObject()
         if progress:
             algorithm.AddObserver('ProgressEvent', self._on_progress(label))
-        algorithm.AddObserver('ErrorEvent', self._on_message(label, self.errors.append))
-        algorithm.AddObserver('WarningEvent', self._on_message(label, self._print_warning))
-        algorithm.GetExecutive().AddObserver('ErrorEvent', self._on_message(label, self._note_failure))
+        # ParaView's readers are often a vtkFileSeriesReader around the reader that reports the errors.
+        inner = algorithm.GetReader() if hasattr(algorithm, 'GetReader') else None
+        for target in (algorithm, inner):
+            if target is not None:
+                target.AddObserver('ErrorEvent', self._on_message(label, self.errors.append))
+                target.AddObserver('WarningEvent', self._on_message(label, self._print_warning))
+                target.GetExecutive().AddObserver('ErrorEvent', self._on_message(label, self._note_failure))
         return proxy
 
     def check(self):
