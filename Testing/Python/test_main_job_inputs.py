@@ -236,7 +236,7 @@ class Inputs(unittest.TestCase):
         self.assertUnitSphereKappa(pd)
         self.assertEqual(pd.GetNumberOfVerts(), pd.GetNumberOfPoints())  # so that the .vtp shows in ParaView
         # The picture shows the points (it was the background only: it drew cells, and there were none).
-        self.assertLess(central_background(os.path.join(out, 'cloud-features.png')), 0.95)
+        self.assertLess(central_background(os.path.join(out, 'cloud-features.png')), 0.93)  # drawn: 0.90
 
     def test_obj_with_texture_coordinates(self):
         """spot.obj: 2,930 vertices split per face corner into 17,568 points by ParaView's reader. The analysis of
