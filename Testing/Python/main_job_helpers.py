@@ -1,12 +1,13 @@
 """Shared by the main-job tests: running gls-analyze as a user does (no display), reading what it wrote, and
-writing input files (a Fibonacci sphere, exactly on the sphere, with exact normals)."""
-import math
+writing input files (shapes.sphere: points exactly on a sphere, with exact normals)."""
 import os
 import re
 import subprocess
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from shapes import sphere
 
 
 def run(analyze, *args):
@@ -74,18 +75,8 @@ def central_background(path):
     return float(np.all(rgb[h // 4:3 * h // 4, w // 3:2 * w // 3] == rgb[0, 0], axis=2).mean())
 
 
-def sphere_points(n, radius=1.0):
-    """(points, unit outward normals) of a Fibonacci sphere."""
-    i = np.arange(n) + 0.5
-    z = 1 - 2 * i / n
-    r = np.sqrt(1 - z * z)
-    a = math.pi * (3 - math.sqrt(5)) * np.arange(n)
-    normals = np.stack([r * np.cos(a), r * np.sin(a), z], axis=1)
-    return radius * normals, normals
-
-
 def write_sphere(path, n, radius, with_normals, separator, header=None):
-    points, normals = sphere_points(n, radius)
+    points, normals = sphere(n, radius)
     data = np.hstack([points, normals]) if with_normals else points
     np.savetxt(path, data, delimiter=separator, header=header or '', comments='')
 

@@ -12,7 +12,8 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import main_job_helpers as helpers
-from main_job_helpers import central_background, error_lines, failure_text, point_array, read_vtp, sphere_points
+from main_job_helpers import central_background, error_lines, failure_text, point_array, read_vtp
+from shapes import sphere
 
 ANALYZE, WORK, DATA = sys.argv[1], sys.argv[2], sys.argv[3]
 QUICK = ('--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2')  # a few scales: the sphere needs no more
@@ -40,7 +41,7 @@ class Inputs(unittest.TestCase):
     def setUpClass(cls):
         shutil.rmtree(WORK, ignore_errors=True)
         os.makedirs(WORK)
-        cls.points, cls.normals = sphere_points(3000)
+        cls.points, cls.normals = sphere(3000)
         cls.colours = np.rint(np.abs(cls.points) * 255).astype(int)
 
     def assertFailsInOneLine(self, result, expected_start, out=None, created=True):
