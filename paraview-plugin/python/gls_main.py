@@ -68,7 +68,8 @@ def parse_arguments(argv):
     p.add_argument('--min-scale', type=float, default=0.008, help='smallest scale / diagonal, > 0 (default 0.008)')
     p.add_argument('--max-scale', type=float, default=0.08,
                    help='largest scale / diagonal, > --min-scale (default 0.08)')
-    p.add_argument('--sigma', type=float, default=0.1, help='tanh scale of the features, > 0 (default 0.1)')
+    p.add_argument('--sigma', type=float, default=None,
+                   help="tanh scale of the features, > 0 (default: GLS Continuous Features' own)")
     p.add_argument('--noise', type=float, default=0.0,
                    help='denoising picture: Gaussian noise added along the normals first, standard deviation as a '
                         'fraction of the diagonal, >= 0 (default 0: denoise the input as it is)')
@@ -85,7 +86,7 @@ def validate(args):
     if not (math.isfinite(args.max_scale) and args.max_scale > args.min_scale):
         raise UsageError('--max-scale must be larger than --min-scale; got --min-scale %g, --max-scale %g'
                          % (args.min_scale, args.max_scale))
-    if not (math.isfinite(args.sigma) and args.sigma > 0):
+    if args.sigma is not None and not (math.isfinite(args.sigma) and args.sigma > 0):
         raise UsageError('--sigma must be positive; got %g' % args.sigma)
     if not (math.isfinite(args.noise) and args.noise >= 0):
         raise UsageError('--noise must be 0 or positive; got %g' % args.noise)
@@ -139,8 +140,9 @@ def analyze(args, outputs):
                                          MaxScale=args.max_scale, ScaleSampling='Quadratic'), 'scale space')
     variation = watch.watch(gls_filter('GLSGeometricVariation', registrationName='Variation', Input=scale_space,
                                        Normals=NORMALS), 'geometric variation')
+    sigma = {} if args.sigma is None else {'Sigma': args.sigma}  # else the filter's default
     features = watch.watch(gls_filter('GLSContinuousFeatures', registrationName='Features', Input=variation,
-                                      Normals=NORMALS, Sigma=args.sigma), 'continuous features')
+                                      Normals=NORMALS, **sigma), 'continuous features')
     features.UpdatePipeline()
     watch.check()
     result = simple.servermanager.Fetch(features)
