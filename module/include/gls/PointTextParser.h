@@ -14,8 +14,9 @@
 //     ("1,5 2,25 3").
 // Every line must then use the same separators; a line that does not reads as "not a number" with its number.
 //
-// Columns, by a header line (a line before the data with a field that is not a number; separators: blanks, ',' or
-// ';'; a leading "//", as CloudCompare writes, is ignored), names compared without case:
+// Columns, by a header line (a line before the data with a field that starts with a letter or '_', or that starts
+// with "//" as CloudCompare writes it, which is ignored; separators: blanks, ',' or ';'), names compared without
+// case:
 //   x y z (required); nx ny nz, normal_x normal_y normal_z or normalx normaly normalz (normals, all three or none);
 //   r g b, red green blue or rf gf bf (colours, all three or none); intensity; any other name is kept as a column
 //   of its own (PointText::otherColumns) under that name.
