@@ -23,6 +23,8 @@ constexpr const char* Bandwidth = "GLSBandwidth";          // adaptive bandwidth
 constexpr const char* RawBandwidth = "GLSRawBandwidth";    // adaptive bandwidth before smoothing (length)
 constexpr const char* Displacement = "GLSDisplacement";    // projection: distance moved (length)
 constexpr const char* ProjectionIterations = "GLSProjectionIterations"; // projection: fits made per point
+constexpr const char* Colors = "RGB";                      // point cloud reader: 0-255 colours (as VTK's PLY reader)
+constexpr const char* Intensity = "Intensity";             // point cloud reader: a scanner's return intensity
 }
 
 #endif

@@ -4,6 +4,7 @@
 
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -12,14 +13,47 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "gls/PointTextParser.h"
 
 #include <algorithm>
 #include <cctype>
 #include <numeric>
+#include <set>
 
 vtkStandardNewMacro(vtkGLSPointCloudReader);
+
+namespace
+{
+
+/// A point array named `name` holding `values` (components per tuple), copied.
+template <class Array, class T>
+vtkSmartPointer<Array> pointArray(const char* name, int components, const std::vector<T>& values)
+{
+  auto array = vtkSmartPointer<Array>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / components));
+  std::copy(values.begin(), values.end(), array->GetPointer(0));
+  return array;
+}
+
+/// One vertex cell per point.
+vtkSmartPointer<vtkCellArray> vertexCells(vtkIdType n)
+{
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfTuples(n + 1);
+  connectivity->SetNumberOfTuples(n);
+  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + n + 1, vtkIdType(0));
+  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + n, vtkIdType(0));
+  auto verts = vtkSmartPointer<vtkCellArray>::New();
+  verts->SetData(offsets, connectivity);
+  return verts;
+}
+
+} // namespace
 
 vtkGLSPointCloudReader::vtkGLSPointCloudReader()
 {
@@ -40,6 +74,7 @@ int vtkGLSPointCloudReader::CanReadFile(const char* name)
 int vtkGLSPointCloudReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->ColumnLayout.clear();
   if (this->FileName.empty())
   {
     vtkErrorMacro("No FileName set.");
@@ -51,32 +86,44 @@ int vtkGLSPointCloudReader::RequestData(vtkInformation*, vtkInformationVector**,
     vtkErrorMacro("Cannot read the point cloud: " << text.error);
     return 0;
   }
+  if (!text.warning.empty())
+  {
+    vtkWarningMacro("" << text.warning);
+  }
+  this->ColumnLayout = text.layout;
   const vtkIdType n = static_cast<vtkIdType>(text.points.size() / 3);
-  vtkNew<vtkDoubleArray> coordinates;
-  coordinates->SetNumberOfComponents(3);
-  coordinates->SetNumberOfTuples(n);
-  std::copy(text.points.begin(), text.points.end(), coordinates->GetPointer(0));
   vtkNew<vtkPoints> points;
-  points->SetData(coordinates);
+  points->SetData(pointArray<vtkDoubleArray>("Points", 3, text.points));
   output->SetPoints(points);
+  output->SetVerts(vertexCells(n));
 
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfTuples(n + 1);
-  connectivity->SetNumberOfTuples(n);
-  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + n + 1, vtkIdType(0));
-  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + n, vtkIdType(0));
-  vtkNew<vtkCellArray> verts;
-  verts->SetData(offsets, connectivity);
-  output->SetVerts(verts);
-
+  vtkPointData* pd = output->GetPointData();
+  std::set<std::string> names;
   if (!text.normals.empty())
   {
-    vtkNew<vtkDoubleArray> normals;
-    normals->SetName(vtkGLSArrayNames::Normals);
-    normals->SetNumberOfComponents(3);
-    normals->SetNumberOfTuples(n);
-    std::copy(text.normals.begin(), text.normals.end(), normals->GetPointer(0));
-    output->GetPointData()->SetNormals(normals);
+    pd->SetNormals(pointArray<vtkDoubleArray>(vtkGLSArrayNames::Normals, 3, text.normals));
+    names.insert(vtkGLSArrayNames::Normals);
+  }
+  if (!text.colors.empty())
+  {
+    pd->SetScalars(pointArray<vtkUnsignedCharArray>(vtkGLSArrayNames::Colors, 3, text.colors));
+    names.insert(vtkGLSArrayNames::Colors);
+  }
+  if (!text.intensity.empty())
+  {
+    pd->AddArray(pointArray<vtkFloatArray>(vtkGLSArrayNames::Intensity, 1, text.intensity));
+    names.insert(vtkGLSArrayNames::Intensity);
+  }
+  for (const gls::PointTextColumn& column : text.otherColumns)
+  {
+    // A name already taken (twice in the header, or one of the arrays above) gets a suffix, so no data is lost.
+    std::string name = column.name;
+    for (int k = 2; names.count(name); ++k)
+    {
+      name = column.name + " (" + std::to_string(k) + ")";
+    }
+    names.insert(name);
+    pd->AddArray(pointArray<vtkDoubleArray>(name.c_str(), 1, column.values));
   }
   return 1;
 }
@@ -85,4 +132,5 @@ void vtkGLSPointCloudReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "ColumnLayout: " << this->ColumnLayout << "\n";
 }

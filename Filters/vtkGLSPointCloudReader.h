@@ -1,13 +1,22 @@
 /**
  * @class   vtkGLSPointCloudReader
- * @brief   Reads a text point cloud (XYZ, PTS, CSV): x y z [nx ny nz] per line.
+ * @brief   Reads a text point cloud (XYZ, PTS, CSV, TXT): points with normals, colours, intensity, other columns.
  *
- * Fields are separated by spaces, tabs, commas or semicolons; '#' starts a comment. A file has 3 columns (x y z) or
- * 6 (x y z nx ny nz), or any number after a header line naming x, y, z and optionally nx, ny, nz (case-insensitive;
- * other columns are ignored). Output: a vtkPolyData with double-precision points, one vertex cell per point, and,
- * when the file has normals, the point array `Normals` (active normals, as given: not normalized). Non-finite
- * values are kept (the GLS filters leave such points out). A missing or unreadable file, or a malformed line, is a
- * vtkErrorMacro naming the file and the line, and RequestData returns 0.
+ * One point per line. Columns are named by a header line (x y z, nx ny nz, r g b or red green blue, intensity, any
+ * other name), or, without a header, follow the standard layouts: 3 x y z; 4 x y z intensity; 6 x y z nx ny nz
+ * (unit vectors) or x y z r g b (0-255 integers); 7 x y z intensity r g b (Leica PTS, with its point-count line);
+ * 9 x y z r g b nx ny nz or x y z nx ny nz r g b. Colours are never read as normals. Fields are separated by blanks,
+ * commas or semicolons (with decimal commas: "1,5;2,5;3"). The rules are in gls/PointTextParser.h and
+ * docs/main-job.md.
+ *
+ * Output: a vtkPolyData with double-precision points and one vertex cell per point; point arrays `Normals`
+ * (double, active normals, as given: not normalized), `RGB` (unsigned char, 3 components, 0-255, active scalars,
+ * as VTK's PLY reader names them), `Intensity` (float, as given) and one double array per other named column,
+ * each only when the file has it. Non-finite values are kept (the GLS filters leave such points out).
+ * Normals whose length is far from 1 (|length - 1| > 0.01, zero included) give one vtkWarningMacro with their
+ * count. A missing or unreadable file, a malformed line, or columns whose meaning cannot be told (the error says
+ * how to name them in a header line) is a vtkErrorMacro naming the file and the line; the output is then empty
+ * and RequestData returns 0.
  */
 #ifndef vtkGLSPointCloudReader_h
 #define vtkGLSPointCloudReader_h
@@ -33,6 +42,10 @@ public:
   /// Whether the reader can read the file (used by ParaView): true for the extensions .xyz, .pts, .csv, .txt.
   int CanReadFile(const char* name);
 
+  /// How the last file read was understood, e.g. "x y z r g b (6 columns, no header: 0-255 integers, so
+  /// colours)"; empty before a read and after a failed one.
+  vtkGetCharFromStdStringMacro(ColumnLayout);
+
 protected:
   vtkGLSPointCloudReader();
   ~vtkGLSPointCloudReader() override;
@@ -40,6 +53,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::string FileName;
+  std::string ColumnLayout;
 
 private:
   vtkGLSPointCloudReader(const vtkGLSPointCloudReader&) = delete;

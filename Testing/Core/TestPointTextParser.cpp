@@ -1,4 +1,5 @@
-// The text point-cloud parser: formats, headers, separators, and clear errors with line numbers.
+// The text point-cloud parser: the standard layouts without a header (normals and colours told apart by their
+// values), headers, separators and decimal commas, point-count lines, and clear errors with line numbers.
 #include "gls/PointTextParser.h"
 
 #include <gtest/gtest.h>
@@ -14,40 +15,196 @@ gls::PointText parse(const std::string& s)
   return gls::parsePointText(s.data(), s.size());
 }
 
+using Bytes = std::vector<unsigned char>;
+using Doubles = std::vector<double>;
+using Floats = std::vector<float>;
+
+bool contains(const std::string& text, const std::string& part)
+{
+  return text.find(part) != std::string::npos;
+}
+
 } // namespace
 
-TEST(PointTextParser, ReadsThreeAndSixColumnsWithAnySeparator)
+TEST(PointTextParser, ThreeAndFourColumnsAreXyzAndIntensity)
 {
-  const auto a = parse("# a comment\n1 2 3\n4\t5\t6  # trailing comment\n\n7,8,9\n");
+  const auto a = parse("# a comment\n1 2 3\n4\t5\t6  # trailing comment\n\n-1e3 +2.5 .5\n");
   ASSERT_TRUE(a.error.empty()) << a.error;
-  EXPECT_EQ(a.points, (std::vector<double>{ 1, 2, 3, 4, 5, 6, 7, 8, 9 }));
-  EXPECT_TRUE(a.normals.empty());
-  const auto b = parse("1;2;3;0;0;1\r\n-1e3 +2.5 .5 1 0 0\r\n");
+  EXPECT_EQ(a.points, (Doubles{ 1, 2, 3, 4, 5, 6, -1000, 2.5, 0.5 }));
+  EXPECT_TRUE(a.normals.empty() && a.colors.empty() && a.intensity.empty() && a.otherColumns.empty());
+  EXPECT_EQ(a.layout, "x y z (3 columns, no header)");
+  const auto b = parse("1 2 3 0.5\n4 5 6 -7\n");
   ASSERT_TRUE(b.error.empty()) << b.error;
-  EXPECT_EQ(b.points, (std::vector<double>{ 1, 2, 3, -1000, 2.5, 0.5 }));
-  EXPECT_EQ(b.normals, (std::vector<double>{ 0, 0, 1, 1, 0, 0 }));
+  EXPECT_EQ(b.points, (Doubles{ 1, 2, 3, 4, 5, 6 }));
+  EXPECT_EQ(b.intensity, (Floats{ 0.5f, -7.0f }));
+  EXPECT_TRUE(b.normals.empty());
   const auto c = parse("1 2 nan\n");
   ASSERT_TRUE(c.error.empty());
   EXPECT_TRUE(std::isnan(c.points[2])); // non-finite values are kept: the filters leave such points out
 }
 
+TEST(PointTextParser, SixColumnsAreNormalsWhenUnitAndColoursWhenBytes)
+{
+  // Unit vectors (a zero normal allowed): normals, as given; the zero one is counted in the warning.
+  const auto n = parse("0 0 0 0 0 1\n1 0 0 0.6 -0.8 0\n2 0 0 0 0 0\n3 0 0 0.577 0.577 0.577\n");
+  ASSERT_TRUE(n.error.empty()) << n.error;
+  EXPECT_EQ(n.normals, (Doubles{ 0, 0, 1, 0.6, -0.8, 0, 0, 0, 0, 0.577, 0.577, 0.577 }));
+  EXPECT_TRUE(n.colors.empty());
+  EXPECT_EQ(n.layout, "x y z nx ny nz (6 columns, no header: unit vectors, so normals)");
+  EXPECT_TRUE(contains(n.warning, "1 of 4 normals have a length far from 1")) << n.warning;
+  EXPECT_TRUE(contains(n.warning, "the first at line 3: 0")) << n.warning;
+
+  // x y z r g b: the case (colour vectors of length 100 to 400 read as normals) -> colours, no normals.
+  const auto c = parse("0 0 0 255 128 0\n1 0 0 10 20 30\n2 0 0 200 200 200\n");
+  ASSERT_TRUE(c.error.empty()) << c.error;
+  EXPECT_EQ(c.points, (Doubles{ 0, 0, 0, 1, 0, 0, 2, 0, 0 }));
+  EXPECT_EQ(c.colors, (Bytes{ 255, 128, 0, 10, 20, 30, 200, 200, 200 }));
+  EXPECT_TRUE(c.normals.empty());
+  EXPECT_TRUE(c.warning.empty());
+  EXPECT_EQ(c.layout, "x y z r g b (6 columns, no header: 0-255 integers, so colours)");
+
+  // Neither (0-1 colours or unnormalized normals look alike): an error naming the way out.
+  EXPECT_EQ(parse("0 0 0 0.5 0.5 0.5\n1 0 0 0.25 0 1\n").error,
+    "line 1: 6 columns without a header, but columns 4-6 are neither unit normals (line 1: length 0.866025) nor "
+    "0-255 integer colours (line 1: 0.5); add a header line naming the columns, e.g. 'x y z nx ny nz' or "
+    "'x y z r g b'");
+  EXPECT_TRUE(contains(parse("0 0 0 0 0 2\n1 0 0 0 -1 0\n").error, "neither unit normals (line 1: length 2)"));
+}
+
+TEST(PointTextParser, LeicaPtsAndNineColumnLayouts)
+{
+  // Leica PTS: a point-count line, then x y z intensity r g b.
+  const auto l = parse("3\n1 2 3 -1024 255 0 0\n4 5 6 0 0 255 0\n7 8 9 2047 1 2 3\n");
+  ASSERT_TRUE(l.error.empty()) << l.error;
+  EXPECT_EQ(l.points, (Doubles{ 1, 2, 3, 4, 5, 6, 7, 8, 9 }));
+  EXPECT_EQ(l.intensity, (Floats{ -1024, 0, 2047 }));
+  EXPECT_EQ(l.colors, (Bytes{ 255, 0, 0, 0, 255, 0, 1, 2, 3 }));
+  EXPECT_TRUE(l.normals.empty());
+  EXPECT_EQ(l.layout, "x y z intensity r g b (7 columns, no header: Leica PTS); 1 point count line");
+  // ... and x y z intensity.
+  const auto li = parse("2\n1 2 3 -5\n4 5 6 7\n");
+  ASSERT_TRUE(li.error.empty()) << li.error;
+  EXPECT_EQ(li.intensity, (Floats{ -5, 7 }));
+  EXPECT_TRUE(contains(parse("1 2 3 4 0.5 -0.5 0\n").error,
+    "line 1: 7 columns without a header are read as x y z intensity r g b (Leica PTS), but columns 5-7 are not "
+    "colours (line 1: 0.5); add a header line"));
+
+  // Nine columns: CloudCompare's order (colours, then normals) and the other one, told apart by the values.
+  const auto cc = parse("0 0 0 255 0 0 0 0 1\n1 1 1 0 255 7 1 0 0\n");
+  ASSERT_TRUE(cc.error.empty()) << cc.error;
+  EXPECT_EQ(cc.colors, (Bytes{ 255, 0, 0, 0, 255, 7 }));
+  EXPECT_EQ(cc.normals, (Doubles{ 0, 0, 1, 1, 0, 0 }));
+  EXPECT_EQ(cc.layout, "x y z r g b nx ny nz (9 columns, no header: CloudCompare's order)");
+  const auto nc = parse("0 0 0 0 0 -1 0.5 0.25 1\n1 1 1 0 1 0 0 0 0\n");
+  ASSERT_TRUE(nc.error.empty()) << nc.error;
+  EXPECT_EQ(nc.normals, (Doubles{ 0, 0, -1, 0, 1, 0 }));
+  EXPECT_EQ(nc.colors, (Bytes{ 128, 64, 255, 0, 0, 0 })); // fractions, times 255, rounded
+  EXPECT_EQ(nc.layout, "x y z nx ny nz r g b (9 columns, no header); colours as 0-1 fractions");
+  EXPECT_TRUE(contains(parse("0 0 0 1 0 0 0 1 0\n").error, "both columns 4-6 and 7-9 could be the normals"));
+  EXPECT_TRUE(contains(parse("0 0 0 2 0 0 0 3 0\n").error, "neither columns 4-6 nor 7-9 are unit normals"));
+
+  EXPECT_EQ(parse("1 2 3 4 5\n").error,
+    "line 1: 5 columns without a header: expected 3 (x y z), 4 (x y z intensity), 6 (x y z nx ny nz, or x y z r g "
+    "b), 7 (x y z intensity r g b) or 9 (x y z r g b nx ny nz, or x y z nx ny nz r g b), or a header line naming "
+    "the columns");
+}
+
 TEST(PointTextParser, HeaderNamesTheColumns)
 {
-  const auto a = parse("id,Z,intensity,X,Y,NX,NY,NZ\n7,3,0.5,1,2,0,1,0\n");
+  const auto a = parse("id,Z,intensity,X,Y,NX,NY,NZ\n7,3,0.5,1,2,0,1,0\n8,6,1.5,4,5,1,0,0\n");
   ASSERT_TRUE(a.error.empty()) << a.error;
-  EXPECT_EQ(a.points, (std::vector<double>{ 1, 2, 3 }));
-  EXPECT_EQ(a.normals, (std::vector<double>{ 0, 1, 0 }));
+  EXPECT_EQ(a.points, (Doubles{ 1, 2, 3, 4, 5, 6 }));
+  EXPECT_EQ(a.normals, (Doubles{ 0, 1, 0, 1, 0, 0 }));
+  EXPECT_EQ(a.intensity, (Floats{ 0.5f, 1.5f }));
+  ASSERT_EQ(a.otherColumns.size(), 1u);
+  EXPECT_EQ(a.otherColumns[0].name, "id");
+  EXPECT_EQ(a.otherColumns[0].values, (Doubles{ 7, 8 }));
+  EXPECT_EQ(a.layout, "id z intensity x y nx ny nz (header line 1)");
+
+  // CloudCompare's ASCII export: "//" header, a point-count line, colours, a scalar field, then normals.
+  const auto cc = parse("//X,Y,Z,R,G,B,Scalar_field,Nx,Ny,Nz\n2\n1,2,3,10,20,30,0.25,0,0,1\n4,5,6,0,0,0,-1,0,2,0\n");
+  ASSERT_TRUE(cc.error.empty()) << cc.error;
+  EXPECT_EQ(cc.colors, (Bytes{ 10, 20, 30, 0, 0, 0 }));
+  EXPECT_EQ(cc.normals, (Doubles{ 0, 0, 1, 0, 2, 0 })); // as given
+  ASSERT_EQ(cc.otherColumns.size(), 1u);
+  EXPECT_EQ(cc.otherColumns[0].name, "Scalar_field");
+  EXPECT_EQ(cc.otherColumns[0].values, (Doubles{ 0.25, -1 }));
+  EXPECT_TRUE(contains(cc.warning, "1 of 2 normals have a length far from 1")) << cc.warning;
+  EXPECT_TRUE(contains(cc.warning, "line 4: 2")) << cc.warning;
+
+  // red green blue as 0-1 fractions, alpha kept as a column of its own.
+  const auto f = parse("x y z red green blue alpha\n1 2 3 0.2 0.4 1 0.5\n");
+  ASSERT_TRUE(f.error.empty()) << f.error;
+  EXPECT_EQ(f.colors, (Bytes{ 51, 102, 255 }));
+  ASSERT_EQ(f.otherColumns.size(), 1u);
+  EXPECT_EQ(f.otherColumns[0].name, "alpha");
+  EXPECT_EQ(f.layout, "x y z r g b alpha (header line 1); colours as 0-1 fractions");
+
+  EXPECT_EQ(parse("x y z r g b\n1 2 3 300 0 0\n").error,
+    "line 2: colour value 300: the colour columns must hold integers in [0, 255], or only fractions in [0, 1]");
+  EXPECT_EQ(parse("x y z r g b\n1 2 3 0.5 0 0\n1 2 3 7 0 0\n").error,
+    "line 2: colour value 0.5: the colour columns must hold integers in [0, 255], or only fractions in [0, 1]");
+  EXPECT_EQ(parse("x y z x\n1 2 3 4\n").error, "line 1: columns 1 and 4 both name x");
+  EXPECT_EQ(parse("x y z r g\n1 2 3 4 5\n").error,
+    "line 1: a header naming colours must name all of r, g and b (or red, green, blue)");
+}
+
+TEST(PointTextParser, SeparatorsAndDecimalCommas)
+{
+  // European CSV: ';' between fields, decimal commas.
+  const auto eu = parse("x;y;z\n1,5;-2,25;3\n4;5;6,125\n");
+  ASSERT_TRUE(eu.error.empty()) << eu.error;
+  EXPECT_EQ(eu.points, (Doubles{ 1.5, -2.25, 3, 4, 5, 6.125 }));
+  EXPECT_EQ(eu.layout, "x y z (header line 1); decimal commas");
+  const auto eu6 = parse("1,5;2,5;3,5;0;0;1\r\n");
+  ASSERT_TRUE(eu6.error.empty()) << eu6.error;
+  EXPECT_EQ(eu6.points, (Doubles{ 1.5, 2.5, 3.5 }));
+  EXPECT_EQ(eu6.normals, (Doubles{ 0, 0, 1 }));
+  // Blank-separated with decimal commas (not six numbers).
+  const auto blanks = parse("1,5 2,5 3,5\n4\t5,75\t6\n");
+  ASSERT_TRUE(blanks.error.empty()) << blanks.error;
+  EXPECT_EQ(blanks.points, (Doubles{ 1.5, 2.5, 3.5, 4, 5.75, 6 }));
+  // Comma-separated, with or without blanks, quotes, a byte-order mark, a trailing delimiter.
+  const auto csv = parse("\xEF\xBB\xBF\"x\",\"y\",\"z\"\n1, 2, 3\n\"4.5\",5,6,\n");
+  ASSERT_TRUE(csv.error.empty()) << csv.error;
+  EXPECT_EQ(csv.points, (Doubles{ 1, 2, 3, 4.5, 5, 6 }));
+  EXPECT_EQ(csv.layout, "x y z (header line 1)");
+
+  EXPECT_EQ(parse("1;2;3\n1,2,3\n").error,
+    "line 2: not a number in column 1: '1,2,3'; this file's fields are separated by ';', with decimal commas "
+    "allowed");
+  EXPECT_EQ(parse("1,2,3\n1 2 3\n").error,
+    "line 2: not a number in column 1: '1 2 3'; this file's fields are separated by ','");
+  EXPECT_EQ(parse("1,,3\n").error, "line 1: empty field in column 2");
+  EXPECT_EQ(parse("1;2,5,5;3\n").error, "line 1: not a number in column 2: '2,5,5'");
+}
+
+TEST(PointTextParser, PointCountLinesAreChecked)
+{
+  const auto two = parse("2\n0 0 0 1\n1 0 0 2\n1\n0 1 0 3\n");
+  ASSERT_TRUE(two.error.empty()) << two.error;
+  EXPECT_EQ(two.points, (Doubles{ 0, 0, 0, 1, 0, 0, 0, 1, 0 }));
+  EXPECT_EQ(two.intensity, (Floats{ 1, 2, 3 }));
+  EXPECT_EQ(two.layout, "x y z intensity (4 columns, no header); 2 point count lines");
+  EXPECT_EQ(parse("3\n0 0 0\n1 1 1\n").error, "line 1: the point count line says 3 points, but 2 follow");
+  EXPECT_EQ(parse("1\n0 0 0\n1 1 1\n2\n0 0 0\n").error, "line 1: the point count line says 1 point, but 2 follow");
 }
 
 TEST(PointTextParser, MalformedInputGivesTheLine)
 {
   EXPECT_EQ(parse("1 2 3\n4 5\n").error, "line 2: expected 3 columns like the lines before, got 2");
-  EXPECT_EQ(parse("1 2 3 4\n").error,
-    "line 1: expected 3 (x y z) or 6 (x y z nx ny nz) columns, or a header naming them; got 4");
-  EXPECT_EQ(parse("1 2 3\n4 5 six\n").error, "line 2: not a number in '4 5...'");
+  EXPECT_EQ(parse("x y z\n4 5\n").error, "line 2: expected 3 columns as the header line names, got 2");
+  EXPECT_EQ(parse("1 2 3\n4 5 six\n").error,
+    "line 2: not a number in column 3: 'six'; this file's fields are separated by blanks, with decimal commas "
+    "allowed");
   EXPECT_EQ(parse("a b c\n1 2 3\n").error, "line 1: a header line must name the columns x, y and z");
-  EXPECT_EQ(parse("x y z nx\n").error, "line 1: a header naming normals must name all of nx, ny and nz");
+  EXPECT_EQ(parse("x y z nx\n1 2 3 4\n").error, "line 1: a header naming normals must name all of nx, ny and nz");
+  EXPECT_EQ(parse("x y z\n1 2 3\nx y z\n").error,
+    "line 3: not a number in column 1: 'x'; this file's fields are separated by blanks, with decimal commas "
+    "allowed");
   EXPECT_EQ(parse("# nothing\n\n").error, "line 2: no points found");
+  EXPECT_EQ(parse("x y z\n").error, "line 1: no points found");
   EXPECT_EQ(parse("").error, "line 0: no points found");
+  EXPECT_TRUE(parse("1 2 3\n4 5\n").points.empty());
   EXPECT_NE(gls::readPointTextFile("/nonexistent/cloud.xyz").error.find("cannot be opened"), std::string::npos);
 }

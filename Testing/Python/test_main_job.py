@@ -3,84 +3,21 @@
     pvpython test_main_job.py <build/bin/gls-analyze> <work dir>"""
 import math
 import os
-import re
 import shutil
-import subprocess
 import sys
 import unittest
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader
-from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+
+import main_job_helpers as helpers
+from main_job_helpers import denoising_rms, failure_text, image_stats, polydata_from, read_vtp, write_sphere
 
 ANALYZE, WORK = sys.argv[1], sys.argv[2]
 
 
 def run(*args):
-    env = dict(os.environ)
-    env.pop('DISPLAY', None)  # the main job's own virtual X server, as on a headless machine
-    return subprocess.run([ANALYZE, *args], capture_output=True, text=True, timeout=300, env=env)
-
-
-def failure_text(result):
-    """The error lines of a failed run first (a crash's stack trace would push them out of a plain tail)."""
-    errors = [line for line in result.stderr.splitlines()
-              if ('ERR|' in line or 'Error' in line or 'error' in line) and 'L2_NORM' not in line]
-    return '\n'.join(errors[:20]) + '\n...\n' + result.stderr[-1500:]
-
-
-def denoising_rms(stdout):
-    """The main job's "RMS distance to the input surface A -> B" figures."""
-    m = re.search(r'RMS distance to the input surface (\S+) -> (\S+)', stdout)
-    return float(m.group(1)), float(m.group(2))
-
-
-def read_vtp(path):
-    reader = vtkXMLPolyDataReader()
-    reader.SetFileName(path)
-    reader.Update()
-    return reader.GetOutput()
-
-
-def image_stats(path):
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    pixels = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(-1, image.GetNumberOfScalarComponents())
-    rgb = pixels[:, :3]
-    background = np.all(rgb == rgb[0], axis=1).mean()
-    return background, len(np.unique(rgb, axis=0))
-
-
-def write_sphere(path, n, radius, with_normals, separator, header=None):
-    i = np.arange(n) + 0.5
-    z = 1 - 2 * i / n
-    r = np.sqrt(1 - z * z)
-    a = math.pi * (3 - math.sqrt(5)) * np.arange(n)
-    nrm = np.stack([r * np.cos(a), r * np.sin(a), z], axis=1)
-    data = np.hstack([radius * nrm, nrm]) if with_normals else radius * nrm
-    np.savetxt(path, data, delimiter=separator, header=header or '', comments='')
-
-
-def polydata_from(points, normals):
-    from vtkmodules.util.numpy_support import numpy_to_vtk
-    from vtkmodules.vtkCommonCore import vtkPoints
-    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
-    pd = vtkPolyData()
-    pts = vtkPoints()
-    pts.SetData(numpy_to_vtk(np.ascontiguousarray(points), deep=True))
-    pd.SetPoints(pts)
-    verts = vtkCellArray()
-    for i in range(len(points)):
-        verts.InsertNextCell(1)
-        verts.InsertCellPoint(i)
-    pd.SetVerts(verts)
-    n = numpy_to_vtk(np.ascontiguousarray(normals, dtype=np.float32), deep=True)  # PLY keeps float normals
-    n.SetName('Normals')
-    pd.GetPointData().SetNormals(n)
-    return pd
+    return helpers.run(ANALYZE, *args)
 
 
 class MainJob(unittest.TestCase):

@@ -19,6 +19,7 @@ from vtkmodules.vtkIOGeometry import vtkOBJReader
 from vtkmodules.vtkIOImage import vtkPNGReader
 
 import glsvtk
+from shapes import sphere
 
 PLUGIN, BUNNY = sys.argv[1], sys.argv[2]
 NS = {}
@@ -39,15 +40,6 @@ def polydata(points, normals=None):
         a.SetName('Normals')
         pd.GetPointData().SetNormals(a)
     return pd
-
-
-def sphere(n, radius):
-    i = np.arange(n) + 0.5
-    z = 1 - 2 * i / n
-    r = np.sqrt(1 - z * z)
-    a = math.pi * (3 - math.sqrt(5)) * np.arange(n)
-    normals = np.stack([r * np.cos(a), r * np.sin(a), z], axis=1)
-    return radius * normals, normals
 
 
 def flower_curve(n, amplitude=0.25):

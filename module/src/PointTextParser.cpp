@@ -1,8 +1,9 @@
 #include "gls/PointTextParser.h"
 
-#include <algorithm>
-#include <cctype>
-#include <charconv>
+#include "PointTextLayout.h"
+#include "PointTextTable.h"
+
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -11,50 +12,44 @@ namespace gls
 namespace
 {
 
-bool isSeparator(char c)
+void copyColumns(const pointtext::Table& t, const int columns[3], std::vector<double>& out)
 {
-  return c == ' ' || c == '\t' || c == ',' || c == ';' || c == '\r';
-}
-
-/// Splits one line (without its comment) into fields.
-void splitFields(const char* begin, const char* end, std::vector<std::string>& fields)
-{
-  fields.clear();
-  const char* p = begin;
-  while (p < end)
+  out.resize(3 * t.rows());
+  for (std::size_t row = 0; row < t.rows(); ++row)
   {
-    while (p < end && isSeparator(*p))
+    for (int k = 0; k < 3; ++k)
     {
-      ++p;
-    }
-    const char* start = p;
-    while (p < end && !isSeparator(*p))
-    {
-      ++p;
-    }
-    if (p > start)
-    {
-      fields.emplace_back(start, p);
+      out[3 * row + k] = t.at(row, columns[k]);
     }
   }
 }
 
-bool parseNumber(const std::string& field, double& value)
+/// "K of N normals have a length far from 1 ...", or "" when every normal is unit length within the tolerance.
+std::string normalLengthWarning(const pointtext::Table& t, const std::vector<double>& normals)
 {
-  const char* first = field.data();
-  const char* last = field.data() + field.size();
-  if (first < last && *first == '+')
+  std::size_t far = 0, firstRow = 0;
+  double firstLength = 0;
+  for (std::size_t row = 0; row < t.rows(); ++row)
   {
-    ++first;
+    const double length = std::hypot(normals[3 * row], normals[3 * row + 1], normals[3 * row + 2]);
+    if (!(std::abs(length - 1) <= unitLengthTolerance))
+    {
+      if (far++ == 0)
+      {
+        firstRow = row;
+        firstLength = length;
+      }
+    }
   }
-  const auto result = std::from_chars(first, last, value);
-  return result.ec == std::errc() && result.ptr == last;
-}
-
-std::string lower(std::string s)
-{
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
+  if (far == 0)
+  {
+    return {};
+  }
+  std::ostringstream s;
+  s << far << " of " << t.rows() << " normals have a length far from 1 (|length - 1| > " << unitLengthTolerance
+    << "; the first at line " << t.lines[firstRow] << ": " << firstLength
+    << "); the GLS filters use their directions and leave zero or non-finite ones out";
+  return s.str();
 }
 
 } // namespace
@@ -62,107 +57,59 @@ std::string lower(std::string s)
 PointText parsePointText(const char* text, std::size_t size)
 {
   PointText out;
-  std::vector<std::string> fields;
-  std::vector<double> values;
-  int columns[6] = { 0, 1, 2, -1, -1, -1 }; // x y z nx ny nz
-  std::size_t width = 0;                     // fields per data line, once known
-  bool haveHeader = false, seenData = false;
-  std::size_t lineNumber = 0;
-  const char* p = text;
-  const char* end = text + size;
-  auto fail = [&](const std::string& what) {
-    std::ostringstream msg;
-    msg << "line " << lineNumber << ": " << what;
-    out.error = msg.str();
-    out.points.clear();
-    out.normals.clear();
-    return out;
-  };
-  while (p < end)
+  pointtext::Table table;
+  pointtext::Layout layout;
+  out.error = pointtext::readTable(text, size, table);
+  if (out.error.empty())
   {
-    const char* eol = std::find(p, end, '\n');
-    const char* hash = std::find(p, eol, '#');
-    ++lineNumber;
-    splitFields(p, hash, fields);
-    p = eol < end ? eol + 1 : end;
-    if (fields.empty())
+    out.error = pointtext::chooseLayout(table, layout);
+  }
+  if (!out.error.empty())
+  {
+    return out;
+  }
+  const std::size_t n = table.rows();
+  copyColumns(table, layout.xyz, out.points);
+  if (layout.normals[0] >= 0)
+  {
+    copyColumns(table, layout.normals, out.normals);
+    out.warning = normalLengthWarning(table, out.normals);
+  }
+  if (layout.colors[0] >= 0)
+  {
+    std::vector<double> colors;
+    copyColumns(table, layout.colors, colors);
+    out.colors.resize(colors.size());
+    for (std::size_t i = 0; i < colors.size(); ++i)
     {
-      continue;
-    }
-    values.resize(fields.size());
-    bool numeric = true;
-    for (std::size_t i = 0; i < fields.size() && numeric; ++i)
-    {
-      numeric = parseNumber(fields[i], values[i]);
-    }
-    if (!numeric)
-    {
-      if (seenData || haveHeader)
-      {
-        return fail("not a number in '" + fields[0] + (fields.size() > 1 ? " " + fields[1] : "") + "...'");
-      }
-      // A header naming the columns.
-      const char* names[6] = { "x", "y", "z", "nx", "ny", "nz" };
-      for (int c = 0; c < 6; ++c)
-      {
-        columns[c] = -1;
-        for (std::size_t i = 0; i < fields.size(); ++i)
-        {
-          if (lower(fields[i]) == names[c])
-          {
-            columns[c] = static_cast<int>(i);
-          }
-        }
-      }
-      if (columns[0] < 0 || columns[1] < 0 || columns[2] < 0)
-      {
-        return fail("a header line must name the columns x, y and z");
-      }
-      const int normalColumns = (columns[3] >= 0) + (columns[4] >= 0) + (columns[5] >= 0);
-      if (normalColumns != 0 && normalColumns != 3)
-      {
-        return fail("a header naming normals must name all of nx, ny and nz");
-      }
-      haveHeader = true;
-      width = fields.size();
-      continue;
-    }
-    if (!seenData && !haveHeader)
-    {
-      if (fields.size() != 3 && fields.size() != 6)
-      {
-        return fail("expected 3 (x y z) or 6 (x y z nx ny nz) columns, or a header naming them; got " +
-          std::to_string(fields.size()));
-      }
-      width = fields.size();
-      if (width == 6)
-      {
-        columns[3] = 3;
-        columns[4] = 4;
-        columns[5] = 5;
-      }
-    }
-    if (fields.size() != width)
-    {
-      return fail("expected " + std::to_string(width) + " columns like the lines before, got " +
-        std::to_string(fields.size()));
-    }
-    seenData = true;
-    for (int c = 0; c < 3; ++c)
-    {
-      out.points.push_back(values[static_cast<std::size_t>(columns[c])]);
-    }
-    if (columns[3] >= 0)
-    {
-      for (int c = 3; c < 6; ++c)
-      {
-        out.normals.push_back(values[static_cast<std::size_t>(columns[c])]);
-      }
+      out.colors[i] = static_cast<unsigned char>(layout.colorFractions ? std::lround(255 * colors[i]) : colors[i]);
     }
   }
-  if (out.points.empty())
+  if (layout.intensity >= 0)
   {
-    return fail("no points found");
+    out.intensity.resize(n);
+    for (std::size_t row = 0; row < n; ++row)
+    {
+      out.intensity[row] = static_cast<float>(table.at(row, layout.intensity));
+    }
+  }
+  for (const int c : layout.others)
+  {
+    PointTextColumn column{ table.names[c], std::vector<double>(n) };
+    for (std::size_t row = 0; row < n; ++row)
+    {
+      column.values[row] = table.at(row, c);
+    }
+    out.otherColumns.push_back(std::move(column));
+  }
+  out.layout = layout.description;
+  if (table.countLines > 0)
+  {
+    out.layout += "; " + std::to_string(table.countLines) + " point count line" + (table.countLines > 1 ? "s" : "");
+  }
+  if (table.decimalCommas)
+  {
+    out.layout += "; decimal commas";
   }
   return out;
 }
@@ -183,6 +130,10 @@ PointText readPointTextFile(const std::string& path)
   if (!out.error.empty())
   {
     out.error = path + ": " + out.error;
+  }
+  if (!out.warning.empty())
+  {
+    out.warning = path + ": " + out.warning;
   }
   return out;
 }

@@ -3,6 +3,8 @@ by the plane through its bounding-box centre across its smallest extent, the lon
 and GLS Scale Space Image gives kappa against arclength and scale, with the zero crossings of kappa."""
 import numpy as np
 
+import gls_cloud
+
 
 def longest_section(mesh):
     """The longest polyline of the mesh's central cross-section as a vtkPolyData with one polyline cell (its last
@@ -58,15 +60,16 @@ def longest_section(mesh):
     return curve, axis
 
 
-def scale_space_image(make_proxy, curve, scales=200, min_scale=0.005, max_scale=0.15):
+def scale_space_image(make_proxy, curve, watch, scales=200, min_scale=0.005, max_scale=0.15):
     """Runs GLS Scale Space Image on the curve (scales linear, fractions of the curve's bounding-box diagonal);
-    returns (image, zero crossings) as VTK data."""
+    returns (image, zero crossings) as VTK data; raises gls_watch.StageError when the filter reports an error."""
     from paraview import simple
-    source = simple.TrivialProducer()
-    source.GetClientSideObject().SetOutput(curve)
+    source = gls_cloud.producer(curve)
     image = make_proxy('GLSScaleSpaceImage', registrationName='CrossSection', Input=source,
                        NumberOfScales=scales, MinScale=min_scale, MaxScale=max_scale)
+    watch.watch(image, 'scale-space image', progress=False)
     image.UpdatePipeline()
+    watch.check()
     result = (simple.servermanager.Fetch(image, idx=0), simple.servermanager.Fetch(image, idx=1))
     simple.Delete(image)
     simple.Delete(source)

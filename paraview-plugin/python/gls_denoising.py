@@ -7,11 +7,17 @@ smoothed over 6 d -- the ranges of the denoising benchmark (Testing/Benchmarks/g
 this rule beats every single global scale."""
 import numpy as np
 
+import gls_cloud
 import gls_render
+import gls_watch
+
+NORMALS = ['POINTS', 'Normals']  # the normals every GLS stage of the main job reads, named (never a guess)
 
 
-def nearest_neighbour_distance(polydata, samples=2000):
-    """Median distance from a point to its nearest neighbour (length), on an evenly spaced subset of the points."""
+def nearest_neighbour_distance(polydata, samples=2000, neighbours=16):
+    """Median distance from a point to its nearest neighbour at a positive distance (length), on an evenly spaced
+    subset of the points; copies at the same position are skipped (up to `neighbours` - 1 of them), so coincident
+    points do not make it 0. 0 when no sampled point has a distinct neighbour among its nearest."""
     from vtkmodules.vtkCommonCore import vtkIdList
     from vtkmodules.vtkCommonDataModel import vtkStaticPointLocator
     locator = vtkStaticPointLocator()
@@ -21,13 +27,13 @@ def nearest_neighbour_distance(polydata, samples=2000):
     n = polydata.GetNumberOfPoints()
     distances = []
     for i in np.linspace(0, n - 1, min(n, samples)).astype(int):
-        p = polydata.GetPoint(int(i))
-        locator.FindClosestNPoints(2, p, ids)
-        q = [polydata.GetPoint(ids.GetId(k)) for k in range(ids.GetNumberOfIds()) if ids.GetId(k) != i]
-        if q:
-            distances.append(float(np.linalg.norm(np.subtract(q[0], p))))
-    positive = [d for d in distances if d > 0]
-    return float(np.median(positive)) if positive else 0.0
+        p = np.array(polydata.GetPoint(int(i)))
+        locator.FindClosestNPoints(min(n, neighbours), p, ids)
+        gaps = [np.linalg.norm(np.subtract(polydata.GetPoint(ids.GetId(k)), p)) for k in range(ids.GetNumberOfIds())]
+        positive = [d for d in gaps if d > 0]
+        if positive:
+            distances.append(float(min(positive)))
+    return float(np.median(distances)) if distances else 0.0
 
 
 def with_noise(polydata, sigma, seed=1):
@@ -57,34 +63,15 @@ def signed_offsets(points, reference, normals):
 def offset_cloud(points, reference, normals, shift):
     """Points (shifted by `shift` for a side-by-side view) carrying GLSOffset: the signed distance along the
     reference normal from the reference position (length)."""
-    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
-    from vtkmodules.vtkCommonCore import vtkPoints
-    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
-    pd = vtkPolyData()
-    pts = vtkPoints()
-    pts.SetData(numpy_to_vtk(np.ascontiguousarray(points + np.asarray(shift)), deep=True))
-    pd.SetPoints(pts)
-    verts = vtkCellArray()  # one vertex cell per point: offsets 0..n, connectivity 0..n-1
-    verts.SetData(numpy_to_vtkIdTypeArray(np.arange(len(points) + 1, dtype=np.int64), deep=True),
-                  numpy_to_vtkIdTypeArray(np.arange(len(points), dtype=np.int64), deep=True))
-    pd.SetVerts(verts)
-    offset = numpy_to_vtk(np.ascontiguousarray(signed_offsets(points, reference, normals)), deep=True)
-    offset.SetName('GLSOffset')
-    pd.GetPointData().SetScalars(offset)
-    return pd
+    return gls_cloud.vertex_cloud(points + np.asarray(shift),
+                                  {'GLSOffset': signed_offsets(points, reference, normals)})
 
 
-def producer(polydata):
-    from paraview import simple
-    source = simple.TrivialProducer()
-    source.GetClientSideObject().SetOutput(polydata)
-    return source
-
-
-def denoise(make_proxy, upstream, noise, progress):
+def denoise(make_proxy, upstream, noise, watch):
     """Runs the stage on the fetched upstream cloud (with Normals). noise: standard deviation of the synthetic
     noise as a fraction of the bounding-box diagonal (0: the input as it is). Returns a dict with the noisy cloud,
-    the projection's output, the reference points and normals, the scales used and the wall time."""
+    the projection's output, the reference points and normals, the scales used and the wall time; raises
+    gls_watch.StageError when a stage reports an error or the points have no distinct neighbours."""
     import time
     from paraview import simple
     diagonal = float(np.sqrt(sum((upstream.GetBounds()[2 * a + 1] - upstream.GetBounds()[2 * a]) ** 2
@@ -92,16 +79,17 @@ def denoise(make_proxy, upstream, noise, progress):
     noisy, reference, normals = with_noise(upstream, noise * diagonal)
     d = nearest_neighbour_distance(noisy)
     if not d > 0:
-        raise ValueError('the points have no distinct neighbours: nothing to denoise')
+        raise gls_watch.StageError('denoising: the points have no distinct neighbours (all at one position?)')
     start = time.time()
-    source = producer(noisy)
-    bandwidth = make_proxy('GLSAdaptiveBandwidth', registrationName='Bandwidth', Input=source,
+    source = gls_cloud.producer(noisy)
+    bandwidth = make_proxy('GLSAdaptiveBandwidth', registrationName='Bandwidth', Input=source, Normals=NORMALS,
                            ScaleUnits='Absolute', MinScale=1.5 * d, MaxScale=8.0 * d, NumberOfScales=40,
                            ScaleSampling='Logarithmic', SmoothingRadius=6.0 * d)
-    progress.watch(bandwidth, 'adaptive bandwidth')
-    projection = make_proxy('GLSProjection', registrationName='Denoised', Input=bandwidth)
-    progress.watch(projection, 'projection')
+    watch.watch(bandwidth, 'adaptive bandwidth')
+    projection = make_proxy('GLSProjection', registrationName='Denoised', Input=bandwidth, Normals=NORMALS)
+    watch.watch(projection, 'projection')
     projection.UpdatePipeline()
+    watch.check()
     result = simple.servermanager.Fetch(projection)
     elapsed = time.time() - start
     for proxy in (projection, bandwidth, source):
@@ -137,7 +125,7 @@ def render(path, stage, title):
     lut = simple.GetColorTransferFunction('GLSOffset')
     lut.ApplyPreset('Cool to Warm', True)
     lut.RescaleTransferFunction(-limit, limit)
-    sources = [producer(before), producer(after)]
+    sources = [gls_cloud.producer(before), gls_cloud.producer(after)]
     for source in sources:
         display = simple.Show(source, view)
         display.SetRepresentationType('Points')

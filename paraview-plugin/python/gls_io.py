@@ -1,18 +1,21 @@
-"""Point-cloud input for the GLS main job: PLY, OBJ, VTP through ParaView's readers, XYZ/PTS/CSV/TXT through the
-plugin's GLS Point Cloud Reader (x y z [nx ny nz]; see vtkGLSPointCloudReader)."""
+"""Point-cloud input for the GLS main job: PLY, OBJ, STL, VTP through ParaView's readers, XYZ/PTS/CSV/TXT through
+the plugin's GLS Point Cloud Reader (the column layouts are in docs/main-job.md and gls/PointTextParser.h)."""
 import os
 
-SUPPORTED = ('.ply', '.obj', '.vtp', '.xyz', '.csv', '.txt', '.pts')
+import gls_ply
+
+READERS = {'.ply': 'ParaView (PLY)', '.obj': 'ParaView (OBJ)', '.stl': 'ParaView (STL)',
+           '.vtp': 'ParaView (VTK XML polydata)'}
+TEXT = ('.xyz', '.pts', '.csv', '.txt')
+SUPPORTED = tuple(READERS) + TEXT
 
 
 class InputError(Exception):
-    """A missing, unreadable or malformed input file, with a message for the user."""
+    """A missing, unreadable, empty or malformed input file, with a one-line message for the user."""
 
 
-def open_cloud(path, make_proxy):
-    """A ParaView source proxy producing the file's points (and normals if any); raises InputError.
-    make_proxy(name, **properties) creates a plugin proxy (LoadPlugin put the constructors in the caller's module)."""
-    from paraview import simple
+def check_file(path):
+    """Raises InputError unless `path` is a readable file of a supported type (before ParaView starts)."""
     if not os.path.isfile(path):
         raise InputError('%s: no such file' % path)
     if not os.access(path, os.R_OK):
@@ -20,17 +23,43 @@ def open_cloud(path, make_proxy):
     ext = os.path.splitext(path)[1].lower()
     if ext not in SUPPORTED:
         raise InputError('%s: unsupported type %r (use %s)' % (path, ext, ', '.join(SUPPORTED)))
-    if ext in ('.xyz', '.csv', '.txt', '.pts'):
+    if os.path.getsize(path) == 0:
+        raise InputError('%s: the file is empty' % path)
+
+
+def open_cloud(path, make_proxy, watch):
+    """(source proxy, polydata, description of how it was read) for the file; raises InputError. make_proxy(name,
+    **properties) creates a plugin proxy; watch (gls_watch.Watch) turns the reader's errors into the message."""
+    from paraview import simple
+    import gls_watch
+    check_file(path)
+    ext = os.path.splitext(path)[1].lower()
+    if ext in TEXT:
         reader = make_proxy('GLSPointCloudReader', registrationName=os.path.basename(path), FileName=path)
-        reader.UpdatePipeline()
-        if reader.GetDataInformation().GetNumberOfPoints() == 0:
-            raise InputError('%s: no points could be read (the reader says why above)' % path)
-        return reader
-    reader = simple.OpenDataFile(path)
-    if reader is None:
-        raise InputError('%s: ParaView has no reader for it' % path)
+    else:
+        damage = gls_ply.check(path) if ext == '.ply' else None
+        if damage:  # ParaView's PLY reader would crash on it
+            raise InputError('%s: a damaged or truncated PLY file: %s' % (path, damage))
+        try:
+            reader = simple.OpenDataFile(path)
+        except RuntimeError:
+            reader = None
+        if reader is None:
+            raise InputError('%s: no ParaView reader accepts it (not a valid %s file?)' % (path, ext[1:].upper()))
+    watch.watch(reader, 'reader', progress=False)
     reader.UpdatePipeline()
-    info = reader.GetDataInformation()
-    if info.GetNumberOfPoints() == 0:
-        raise InputError('%s: unreadable or empty (no points)' % path)
-    return reader
+    try:
+        watch.check()
+    except gls_watch.StageError as e:
+        raise InputError(str(e))
+    data = simple.servermanager.Fetch(reader)
+    if not data.IsA('vtkPolyData'):
+        raise InputError('%s: the reader gives a %s, not a point cloud or surface' % (path, data.GetClassName()))
+    if data.GetNumberOfPoints() == 0:
+        raise InputError('%s: no points (an empty %s file?)' % (path, ext[1:].upper()))
+    if ext in TEXT:
+        reader.UpdatePropertyInformation()
+        description = 'columns ' + reader.GetProperty('ColumnLayout').GetElement(0)
+    else:
+        description = 'read by %s' % READERS[ext]
+    return reader, data, description

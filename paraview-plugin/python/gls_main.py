@@ -2,8 +2,8 @@
 
     gls-analyze [input] [--output-dir DIR] [--scales N] [--min-scale F] [--max-scale F] [--sigma S] [--noise F]
 
-Reads a point cloud or mesh (PLY, OBJ, VTP, XYZ/CSV with or without normals; default: the bundled bunny scan),
-estimates oriented normals when the file has none, computes the GLS scale space (N quadratic scales from
+Reads a point cloud or mesh (PLY, OBJ, STL, VTP, or a text file: XYZ/PTS/CSV/TXT; default: the bundled bunny
+scan), estimates oriented normals when the file has none, computes the GLS scale space (N quadratic scales from
 --min-scale to --max-scale, fractions of the bounding-box diagonal), the geometric variation and the continuous
 features, and writes to the output directory:
   <name>-gls.vtp        every array (inline binary VTK XML)
@@ -15,63 +15,82 @@ features, and writes to the output directory:
   <name>-scale-space.png  a mesh only: the scale-space image (t*kappa against arclength and scale, zero crossings
                         of kappa) of its central cross-section (GLS Scale Space Image; the paper's Figures 6-8)
   <name>-gls.pvsm       a ParaView state that opens the .vtp coloured by the features
+Files appear only when every stage succeeded. Exit status: 0 done; 2 the input, the options or a stage's result
+cannot be used (one line on stderr says why; nothing written); 1 an internal error (a traceback, nothing
+written); 3 no X server could be started. docs/main-job.md has the details (column layouts of text files).
 """
 import argparse
+import math
 import os
 import sys
 import time
+import traceback
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
 import numpy as np  # noqa: E402
 
+import gls_cloud  # noqa: E402
+import gls_coincident  # noqa: E402
 import gls_cross_section  # noqa: E402
 import gls_denoising  # noqa: E402
 import gls_io  # noqa: E402
+import gls_outputs  # noqa: E402
+import gls_profiles  # noqa: E402
 import gls_render  # noqa: E402
+import gls_watch  # noqa: E402
+
+NORMALS = gls_denoising.NORMALS
+
+
+class UsageError(Exception):
+    """A bad option value (one line)."""
+
+
+class AnalysisError(Exception):
+    """The analysis ran but its result cannot be used (one line, with the advice)."""
+
+
+class ArgumentParser(argparse.ArgumentParser):
+    def error(self, message):
+        raise UsageError(message)
 
 
 def parse_arguments(argv):
-    p = argparse.ArgumentParser(prog='gls-analyze', description=__doc__.split('\n\n')[1],
-                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = ArgumentParser(prog='gls-analyze', description=__doc__.split('\n\n')[1],
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('input', nargs='?', default=os.environ.get('GLS_DEFAULT_INPUT'),
                    help='point cloud or mesh (default: the bundled bunny)')
     p.add_argument('--output-dir', default='gls-output', help='where the results go (default ./gls-output)')
     p.add_argument('--plugin', default=os.environ.get('GLS_PLUGIN'), help='path of GrowingLeastSquares.so')
-    p.add_argument('--scales', type=int, default=20, help='number of scales (default 20)')
-    p.add_argument('--min-scale', type=float, default=0.008, help='smallest scale / diagonal (default 0.008)')
-    p.add_argument('--max-scale', type=float, default=0.08, help='largest scale / diagonal (default 0.08)')
-    p.add_argument('--sigma', type=float, default=0.1, help='tanh scale of the features (default 0.1)')
+    p.add_argument('--scales', type=int, default=20, help='number of scales, at least 2 (default 20)')
+    p.add_argument('--min-scale', type=float, default=0.008, help='smallest scale / diagonal, > 0 (default 0.008)')
+    p.add_argument('--max-scale', type=float, default=0.08,
+                   help='largest scale / diagonal, > --min-scale (default 0.08)')
+    p.add_argument('--sigma', type=float, default=None,
+                   help='an absolute tanh scale of the features, > 0 (default: relative to the data, so that the '
+                        'median feature is 0.28)')
     p.add_argument('--noise', type=float, default=0.0,
                    help='denoising picture: Gaussian noise added along the normals first, standard deviation as a '
-                        'fraction of the diagonal (default 0: denoise the input as it is)')
+                        'fraction of the diagonal, >= 0 (default 0: denoise the input as it is)')
     return p.parse_args(argv)
 
 
-class Progress:
-    """A progress line on the terminal (redrawn in place), one line per quarter when not a terminal."""
-
-    def __init__(self):
-        self.tty = sys.stderr.isatty()
-        self.last = None
-
-    def watch(self, proxy, label):
-        algorithm = proxy.GetClientSideObject()
-
-        def report(obj, _event):
-            step = int(obj.GetProgress() * (100 if self.tty else 4))
-            if (label, step) == self.last:
-                return
-            self.last = (label, step)
-            pct = 100.0 * obj.GetProgress()
-            if self.tty:
-                sys.stderr.write('\r  %-24s %3.0f%%%s' % (label, pct, '\n' if pct >= 100 else ''))
-            else:
-                sys.stderr.write('  %-24s %3.0f%%\n' % (label, pct))
-            sys.stderr.flush()
-
-        algorithm.AddObserver('ProgressEvent', report)
+def validate(args):
+    """Raises UsageError for an option value the analysis cannot use, before anything runs."""
+    if args.scales < 2:
+        raise UsageError('--scales must be at least 2 (the features integrate over the scales); got %d'
+                         % args.scales)
+    if not (math.isfinite(args.min_scale) and args.min_scale > 0):
+        raise UsageError('--min-scale must be a positive fraction of the diagonal; got %g' % args.min_scale)
+    if not (math.isfinite(args.max_scale) and args.max_scale > args.min_scale):
+        raise UsageError('--max-scale must be larger than --min-scale; got --min-scale %g, --max-scale %g'
+                         % (args.min_scale, args.max_scale))
+    if args.sigma is not None and not (math.isfinite(args.sigma) and args.sigma > 0):
+        raise UsageError('--sigma must be positive; got %g' % args.sigma)
+    if not (math.isfinite(args.noise) and args.noise >= 0):
+        raise UsageError('--noise must be 0 or positive; got %g' % args.noise)
 
 
 def gls_filter(name, **properties):
@@ -79,195 +98,136 @@ def gls_filter(name, **properties):
     return globals()[name](**properties)
 
 
-def has_normals(source):
-    info = source.GetDataInformation().GetPointDataInformation()
-    for i in range(info.GetNumberOfArrays()):
-        a = info.GetArrayInformation(i)
-        if a.GetName() == 'Normals' and a.GetNumberOfComponents() == 3:
-            return True
-    return False
-
-
-def select_profile_points(feature, pertinent_count):
-    """A few telling points: the flattest, the most featured, a median one, one with several pertinent scales."""
-    valid = np.where(np.isfinite(feature))[0]
-    order = valid[np.argsort(feature[valid], kind='stable')]
-    picks = {'lowest feature': int(order[0]), 'median feature': int(order[len(order) // 2]),
-             'highest feature': int(order[-1])}
-    several = np.where(pertinent_count >= 2)[0]
-    if len(several):
-        picks['2+ pertinent scales'] = int(several[len(several) // 2])
-    return picks
-
-
-def plot_profiles(path, title, table, picks, pertinent):
-    """kappa and nu against scale for the picked points, from a GLS Scale Profiles table (finely sampled)."""
-    import matplotlib
-    matplotlib.use('Agg')
-    import matplotlib.pyplot as plt
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-
-    def column(name):
-        return vtk_to_numpy(table.GetColumnByName(name))
-
-    t = column('t')
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
-    for label, pid in picks.items():
-        line, = ax1.plot(t, column('t*kappa (%d)' % pid) / t, label='%s (point %d)' % (label, pid))
-        ax2.semilogy(t, np.maximum(column('nu (%d)' % pid), 1e-12), color=line.get_color())
-        for scale in pertinent[pid]:
-            if np.isfinite(scale):
-                ax2.axvline(scale, color=line.get_color(), ls=':', lw=1)
-    ax1.set_ylabel('kappa (1/length)')
-    ax1.axhline(0, color='gray', lw=0.5)
-    ax1.legend(fontsize=8)
-    ax1.set_title(title)
-    ax2.set_ylabel('nu (dimensionless, log)')
-    ax2.set_xlabel('scale t (length), %d scales; dotted: pertinent scales' % len(t))
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
-def render_features(path, source, title):
-    from paraview import simple
-    view = simple.CreateRenderView()
-    view.ViewSize = [1200, 900]
-    view.OrientationAxesVisibility = 0
-    display = simple.Show(source, view)
-    if source.GetDataInformation().GetNumberOfCells() == source.GetDataInformation().GetNumberOfPoints():
-        display.SetRepresentationType('Points')
-        display.PointSize = 3
-    simple.ColorBy(display, ('POINTS', 'GLSFeature'))
-    lut = simple.GetColorTransferFunction('GLSFeature')
-    lut.ApplyPreset('Inferno (matplotlib)', True)
-    lut.RescaleTransferFunction(0.0, 1.0)
-    display.SetScalarBarVisibility(view, True)
-    gls_render.save_picture(path, view, lut, 'GLS feature f', title, 22, [1200, 900])
-    simple.Delete(view)
-
-
-def write_vtp(path, polydata):
-    """Inline binary VTK XML (ParaView 5.11's reader fails on some appended files). Reading it back, ParaView 5.11
-    prints a harmless "Error reading InformationKey ... L2_NORM_RANGE" for the vector arrays: its writer stores
-    that range cache and its reader does not know the key; the data are read correctly."""
-    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
-    writer = vtkXMLPolyDataWriter()
-    writer.SetFileName(path)
-    writer.SetInputData(polydata)
-    writer.SetDataModeToBinary()
-    writer.SetCompressorTypeToZLib()
-    writer.SetHeaderTypeToUInt64()
-    if writer.Write() != 1:
-        raise IOError('cannot write %s' % path)
-
-
-def save_state(path, vtp):
-    """A state that opens the written .vtp coloured by the features (no plugin needed to open it)."""
-    from paraview import simple
-    simple.ResetSession()
-    reader = simple.XMLPolyDataReader(registrationName=os.path.basename(vtp), FileName=[os.path.abspath(vtp)])
-    view = simple.GetActiveViewOrCreate('RenderView')
-    display = simple.Show(reader, view)
-    simple.ColorBy(display, ('POINTS', 'GLSFeature'))
-    lut = simple.GetColorTransferFunction('GLSFeature')
-    lut.ApplyPreset('Inferno (matplotlib)', True)
-    lut.RescaleTransferFunction(0.0, 1.0)
-    display.SetScalarBarVisibility(view, True)
-    view.ResetCamera()
-    simple.SaveState(path)
-
-
-def main(argv):
-    args = parse_arguments(argv)
-    if not args.input:
-        print('gls-analyze: no input given and GLS_DEFAULT_INPUT is not set', file=sys.stderr)
-        return 2
-    if not args.plugin or not os.path.isfile(args.plugin):
-        print('gls-analyze: plugin not found (%s); build the project first' % args.plugin, file=sys.stderr)
-        return 2
-    from paraview import simple
-    simple.LoadPlugin(args.plugin, remote=False, ns=globals())
-    try:
-        source = gls_io.open_cloud(args.input, gls_filter)
-    except gls_io.InputError as e:
-        print('gls-analyze: %s' % e, file=sys.stderr)
-        return 2
-    os.makedirs(args.output_dir, exist_ok=True)
-    name = os.path.splitext(os.path.basename(args.input))[0]
-    out = lambda suffix: os.path.join(args.output_dir, name + suffix)  # noqa: E731
-    count = source.GetDataInformation().GetNumberOfPoints()
-    print('input: %s (%d points)' % (args.input, count))
-
-    progress = Progress()
-    start = time.time()
-    upstream = source
-    if not has_normals(source):
-        upstream = gls_filter('GLSNormalEstimation', registrationName='Normals', Input=source)
-        progress.watch(upstream, 'normals')
-    scale_space = gls_filter('GLSScaleSpace', registrationName='ScaleSpace', Input=upstream, NumberOfScales=args.scales,
-                                       MinScale=args.min_scale, MaxScale=args.max_scale,
-                                       ScaleSampling='Quadratic')
-    progress.watch(scale_space, 'scale space')
-    variation = gls_filter('GLSGeometricVariation', registrationName='Variation', Input=scale_space)
-    progress.watch(variation, 'geometric variation')
-    features = gls_filter('GLSContinuousFeatures', registrationName='Features', Input=variation, Sigma=args.sigma)
-    progress.watch(features, 'continuous features')
-    features.UpdatePipeline()
-    result = simple.servermanager.Fetch(features)
-    if result.GetPointData().GetArray('GLSFeature') is None:
-        print('gls-analyze: the pipeline failed (see the messages above)', file=sys.stderr)
-        return 1
-    elapsed = time.time() - start
-
+def checked_features(result):
+    """The GLSFeature values of the pipeline's output; AnalysisError when there is no finite one."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
     pd = result.GetPointData()
+    if pd.GetArray('GLSFeature') is None:
+        raise AnalysisError('the pipeline gave no features (see the messages above)')
     feature = vtk_to_numpy(pd.GetArray('GLSFeature'))
+    if not np.isfinite(feature).any():
+        counts = pd.GetArray('GLSNeighborCount')
+        scales = vtk_to_numpy(result.GetFieldData().GetArray('GLSScales'))
+        median = int(np.median(vtk_to_numpy(counts).reshape(len(feature), -1)[:, -1])) if counts else 0
+        raise AnalysisError('no point has a defined feature: at the largest scale (%.4g) the median point has %d '
+                            'neighbour(s), too few for a fit (%d points in all); use larger scales (--min-scale, '
+                            '--max-scale) or a denser cloud' % (scales[-1], median, result.GetNumberOfPoints()))
+    return feature
+
+
+def analyze(args, outputs):
+    """Runs every stage, writing into `outputs`' staging folder; raises InputError, StageError or AnalysisError."""
+    from paraview import simple
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    simple.LoadPlugin(args.plugin, remote=False, ns=globals())
+    watch = gls_watch.Watch()
+    source, data, description = gls_io.open_cloud(args.input, gls_filter, watch)
+    count = data.GetNumberOfPoints()
+    print('input: %s (%d points; %s)' % (args.input, count, description))
+    merged = gls_coincident.merge(data)
+    if merged is not None:
+        print(merged.note())
+        source = gls_cloud.producer(merged.polydata)
+    analysed = merged.polydata if merged is not None else data
+    if analysed.GetNumberOfPoints() < 2:
+        raise gls_io.InputError('%s: all %d points are at one position: nothing to analyse' % (args.input, count))
+
+    start = time.time()
+    upstream = source
+    if not gls_cloud.has_normals(analysed):
+        upstream = watch.watch(gls_filter('GLSNormalEstimation', registrationName='Normals', Input=source), 'normals')
+    scale_space = watch.watch(gls_filter('GLSScaleSpace', registrationName='ScaleSpace', Input=upstream,
+                                         Normals=NORMALS, NumberOfScales=args.scales, MinScale=args.min_scale,
+                                         MaxScale=args.max_scale, ScaleSampling='Quadratic'), 'scale space')
+    variation = watch.watch(gls_filter('GLSGeometricVariation', registrationName='Variation', Input=scale_space,
+                                       Normals=NORMALS), 'geometric variation')
+    # --sigma: an absolute sigma; else the filter's default, relative to the data (median feature 0.28).
+    sigma = {} if args.sigma is None else {'SigmaMode': 'Absolute', 'Sigma': args.sigma}
+    features = watch.watch(gls_filter('GLSContinuousFeatures', registrationName='Features', Input=variation,
+                                      Normals=NORMALS, **sigma), 'continuous features')
+    features.UpdatePipeline()
+    watch.check()
+    result = simple.servermanager.Fetch(features)
+    feature = checked_features(result)
+    elapsed = time.time() - start
+    pd = result.GetPointData()
     scales = vtk_to_numpy(result.GetFieldData().GetArray('GLSScales'))
     print('GLS pipeline: %.2f s; %d scales from %.4g to %.4g; feature in [%.3f, %.3f], median %.3f'
           % (elapsed, len(scales), scales[0], scales[-1], np.nanmin(feature), np.nanmax(feature),
              np.nanmedian(feature)))
 
-    vtp = out('-gls.vtp')
-    write_vtp(vtp, result)
-    print('wrote %s' % vtp)
-    png = out('-features.png')
-    render_features(png, features, 'GLS continuous features: %s (%d points)' % (name, count))
-    print('wrote %s' % png)
-    picks = select_profile_points(feature, vtk_to_numpy(pd.GetArray('GLSPertinentScaleCount')))
-    profiles = gls_filter('GLSScaleProfiles', registrationName='Profiles', Input=upstream,
-                          PointIds=list(picks.values()), NumberOfScales=300, MinScale=args.min_scale,
-                          MaxScale=args.max_scale, ScaleSampling='Quadratic')
-    profiles.UpdatePipeline()
-    chart = out('-profiles.png')
-    plot_profiles(chart, 'GLS scale profiles: %s' % name, simple.servermanager.Fetch(profiles), picks,
-                  vtk_to_numpy(pd.GetArray('GLSPertinentScales')))
-    print('wrote %s' % chart)
+    output = merged.scatter(result) if merged is not None else result
+    if output.GetNumberOfCells() == 0:  # a cloud without cells: vertices, so that ParaView shows the .vtp
+        output.SetVerts(gls_cloud.vertex_cells(output.GetNumberOfPoints()))
+    vtp = outputs.path('-gls.vtp')
+    gls_outputs.write_vtp(vtp, output)
+    gls_render.render_features(outputs.path('-features.png'), output,
+                               'GLS continuous features: %s (%d points)' % (outputs.name, count))
 
-    mesh = simple.servermanager.Fetch(source)
-    cloud = mesh if upstream is source else simple.servermanager.Fetch(upstream)
-    stage = gls_denoising.denoise(gls_filter, cloud, args.noise, progress)
+    picks = gls_profiles.select_profile_points(feature, vtk_to_numpy(pd.GetArray('GLSPertinentScaleCount')))
+    profiles = watch.watch(gls_filter('GLSScaleProfiles', registrationName='Profiles', Input=upstream,
+                                      Normals=NORMALS, PointIds=list(picks.values()), NumberOfScales=300,
+                                      MinScale=args.min_scale, MaxScale=args.max_scale, ScaleSampling='Quadratic'),
+                           'scale profiles', progress=False)
+    profiles.UpdatePipeline()
+    watch.check()
+    gls_profiles.plot_profiles(outputs.path('-profiles.png'), 'GLS scale profiles: %s' % outputs.name,
+                               simple.servermanager.Fetch(profiles), picks,
+                               vtk_to_numpy(pd.GetArray('GLSPertinentScales')))
+
+    cloud = analysed if upstream is source else simple.servermanager.Fetch(upstream)
+    stage = gls_denoising.denoise(gls_filter, cloud, args.noise, watch)
     rms = gls_denoising.offsets(stage)
     print('denoising: %.2f s; bandwidth searched from %.4g to %.4g; RMS distance to the input surface %.4g -> %.4g'
           % (stage['seconds'], 1.5 * stage['spacing'], 8.0 * stage['spacing'], rms['noisy'], rms['denoised']))
-    picture = out('-denoising.png')
-    gls_denoising.render(picture, stage, 'GLS denoising: %s%s (left) -> adaptive-bandwidth MLS projection (right)'
-                         % (name, ' + noise %.3g x diagonal' % args.noise if args.noise > 0 else ''))
-    print('wrote %s' % picture)
+    gls_denoising.render(outputs.path('-denoising.png'), stage,
+                         'GLS denoising: %s%s (left) -> adaptive-bandwidth MLS projection (right)'
+                         % (outputs.name, ' + noise %.3g x diagonal' % args.noise if args.noise > 0 else ''))
 
-    curve, axis = gls_cross_section.longest_section(mesh)
+    curve, axis = gls_cross_section.longest_section(analysed)
     if curve is None:
         print('scale-space image: skipped (the input has no polygons to cut a cross-section from)')
     else:
-        image, crossings = gls_cross_section.scale_space_image(gls_filter, curve)
-        picture = out('-scale-space.png')
-        gls_cross_section.plot(picture, 'GLS scale-space image of the central cross-section of %s (%d points)'
-                               % (name, curve.GetNumberOfPoints()), curve, axis, image, crossings)
-        print('wrote %s' % picture)
+        image, crossings = gls_cross_section.scale_space_image(gls_filter, curve, watch)
+        gls_cross_section.plot(outputs.path('-scale-space.png'),
+                               'GLS scale-space image of the central cross-section of %s (%d points)'
+                               % (outputs.name, curve.GetNumberOfPoints()), curve, axis, image, crossings)
+    gls_outputs.save_state(outputs.path('-gls.pvsm'), vtp, outputs.final('-gls.vtp'))
 
-    state = out('-gls.pvsm')
-    save_state(state, vtp)
-    print('wrote %s' % state)
+
+def fail(message, status=2):
+    print('gls-analyze: %s' % message, file=sys.stderr)
+    return status
+
+
+def main(argv):
+    try:
+        args = parse_arguments(argv)
+        validate(args)
+    except UsageError as e:
+        return fail('%s (gls-analyze --help lists the options)' % e)
+    if not args.input:
+        return fail('no input given and GLS_DEFAULT_INPUT is not set')
+    if not args.plugin or not os.path.isfile(args.plugin):
+        return fail('plugin not found (%s); build the project first' % args.plugin)
+    try:
+        gls_io.check_file(args.input)
+        outputs = gls_outputs.Outputs(args.output_dir, os.path.splitext(os.path.basename(args.input))[0])
+    except (gls_io.InputError, gls_outputs.OutputError) as e:
+        return fail(e)
+    try:
+        analyze(args, outputs)
+    except (gls_io.InputError, gls_watch.StageError, AnalysisError) as e:
+        outputs.discard()
+        return fail('%s; no results written' % e)
+    except BaseException as e:
+        outputs.discard()
+        if isinstance(e, (KeyboardInterrupt, SystemExit)):
+            raise
+        traceback.print_exc()
+        return fail('internal error (the traceback above); no results written', 1)
+    for path in outputs.commit():
+        print('wrote %s' % path)
     return 0
 
 

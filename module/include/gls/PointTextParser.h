@@ -1,7 +1,37 @@
-// Parser of text point clouds (XYZ, PTS, CSV): one point per line, fields separated by spaces, tabs, commas or
-// semicolons; '#' starts a comment; blank lines are skipped. Columns: 3 (x y z) or 6 (x y z nx ny nz), or any number
-// after a header line that names them (x, y, z and optionally nx, ny, nz, case-insensitive; other columns are
-// ignored). Numbers are read locale-independently. Never throws; malformed input gives an error with its line.
+// Parser of text point clouds (XYZ, PTS, CSV, TXT): one point per line. Never throws; malformed input gives an
+// error naming its line. Numbers are read locale-independently. docs/main-job.md shows the layouts with examples.
+//
+// Lines: '#' starts a comment; blank lines are skipped; a UTF-8 byte-order mark is skipped; fields may be quoted
+// ("1.5"). A line holding one non-negative integer is a point-count line (Leica PTS, CloudCompare): the points that
+// follow it, up to the next count line or the end, must be that many.
+//
+// Separators are chosen by the first data line (a line of numbers with more than one field):
+//   - it contains ';': fields are separated by ';' (and blanks); a comma between two digits is a decimal comma
+//     (European CSV: "1,5;2,25;3");
+//   - else it contains ',' that is not between two digits of blank-separated fields: fields are separated by ','
+//     (and blanks), the decimal mark is '.';
+//   - else fields are separated by blanks (spaces, tabs); a comma between two digits is a decimal comma
+//     ("1,5 2,25 3").
+// Every line must then use the same separators; a line that does not reads as "not a number" with its number.
+//
+// Columns, by a header line (a line before the data with a field that starts with a letter or '_', or that starts
+// with "//" as CloudCompare writes it, which is ignored; separators: blanks, ',' or ';'), names compared without
+// case:
+//   x y z (required); nx ny nz, normal_x normal_y normal_z or normalx normaly normalz (normals, all three or none);
+//   r g b, red green blue or rf gf bf (colours, all three or none); intensity; any other name is kept as a column
+//   of its own (PointText::otherColumns) under that name.
+// Without a header, by the number of columns (the standard layouts):
+//   3: x y z;   4: x y z intensity;
+//   6: x y z nx ny nz when columns 4-6 are unit vectors (|length - 1| <= unitLengthTolerance, zero or non-finite
+//      vectors allowed), else x y z r g b when they are integers in [0, 255], else an error asking for a header;
+//   7: x y z intensity r g b (Leica PTS; columns 5-7 must be colour values, else an error asking for a header);
+//   9: x y z r g b nx ny nz (CloudCompare's order) or x y z nx ny nz r g b, whichever triple is unit vectors
+//      beside a triple of colour values; an error asking for a header when neither or both fit;
+//   any other count: an error listing these layouts.
+// Colour values: when every value of the three columns is in [0, 1] they are fractions (scaled by 255 and rounded),
+// else each must be an integer in [0, 255]; anything else is an error with its line. Normals are kept as given (the
+// GLS filters normalize them and leave zero or non-finite ones out); normals whose length is far from 1
+// (|length - 1| > unitLengthTolerance, zero and non-finite included) give PointText::warning with their count.
 #pragma once
 
 #include <cstddef>
@@ -11,11 +41,27 @@
 namespace gls
 {
 
+/// Largest |length - 1| of a vector read as a unit normal: 0.01 admits normals written with two decimals
+/// (each component off by at most 0.005 moves the length by at most 0.0087).
+constexpr double unitLengthTolerance = 0.01;
+
+/// A column the parser keeps under the name its header gives it (not x, y, z, normals, colours or intensity).
+struct PointTextColumn
+{
+  std::string name;           ///< as in the header
+  std::vector<double> values; ///< one per point
+};
+
 struct PointText
 {
-  std::vector<double> points;  ///< 3 per point
-  std::vector<double> normals; ///< 3 per point, or empty when the file has none
-  std::string error;           ///< empty on success, else "line N: what is wrong"
+  std::vector<double> points;                ///< 3 per point
+  std::vector<double> normals;               ///< 3 per point, as given, or empty when the file has none
+  std::vector<unsigned char> colors;         ///< r g b per point (0-255), or empty
+  std::vector<float> intensity;              ///< 1 per point, as given, or empty
+  std::vector<PointTextColumn> otherColumns; ///< the header's other named columns, in file order
+  std::string layout;  ///< how the columns were read, e.g. "x y z r g b (6 columns, no header: 0-255 integers)"
+  std::string warning; ///< empty, or what the caller should report (normals far from unit length, with the count)
+  std::string error;   ///< empty on success, else "line N: what is wrong" (the other members are then empty)
 };
 
 /// Parses `size` bytes of text.

@@ -1,0 +1,49 @@
+"""The main job's scale profiles: a few telling points of the analysed cloud, and kappa and nu against finely
+sampled scales for them (from a GLS Scale Profiles table), plotted with their pertinent scales."""
+import numpy as np
+
+
+def select_profile_points(feature, pertinent_count):
+    """A few telling points, each once: the flattest, the most featured, a median one, one with several pertinent
+    scales. `feature` must have a finite value."""
+    valid = np.where(np.isfinite(feature))[0]
+    order = valid[np.argsort(feature[valid], kind='stable')]
+    candidates = [('lowest feature', order[0]), ('median feature', order[len(order) // 2]),
+                  ('highest feature', order[-1])]
+    several = np.where(pertinent_count >= 2)[0]
+    if len(several):
+        candidates.append(('2+ pertinent scales', several[len(several) // 2]))
+    picks = {}
+    for label, pid in candidates:
+        if int(pid) not in picks.values():
+            picks[label] = int(pid)
+    return picks
+
+
+def plot_profiles(path, title, table, picks, pertinent):
+    """kappa and nu against scale for the picked points, from a GLS Scale Profiles table (finely sampled)."""
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    def column(name):
+        return vtk_to_numpy(table.GetColumnByName(name))
+
+    t = column('t')
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    for label, pid in picks.items():
+        line, = ax1.plot(t, column('t*kappa (%d)' % pid) / t, label='%s (point %d)' % (label, pid))
+        ax2.semilogy(t, np.maximum(column('nu (%d)' % pid), 1e-12), color=line.get_color())
+        for scale in pertinent[pid]:
+            if np.isfinite(scale):
+                ax2.axvline(scale, color=line.get_color(), ls=':', lw=1)
+    ax1.set_ylabel('kappa (1/length)')
+    ax1.axhline(0, color='gray', lw=0.5)
+    ax1.legend(fontsize=8)
+    ax1.set_title(title)
+    ax2.set_ylabel('nu (dimensionless, log)')
+    ax2.set_xlabel('scale t (length), %d scales; dotted: pertinent scales' % len(t))
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
