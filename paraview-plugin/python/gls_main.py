@@ -181,7 +181,8 @@ def save_state(path, vtp):
 def main(argv):
     args = parse_arguments(argv)
     if not args.input:
-        print('gls-analyze: no input given and GLS_DEFAULT_INPUT is not set', file=sys.stderr)
+        print('gls-analyze: no input given, and no bundled default scan (GLS_DEFAULT_INPUT unset): '
+              'gls-analyze <point cloud or mesh file>', file=sys.stderr)
         return 2
     if not args.plugin or not os.path.isfile(args.plugin):
         print('gls-analyze: plugin not found (%s); build the project first' % args.plugin, file=sys.stderr)
