@@ -10,15 +10,10 @@ Exit status: 0 on success, 1 when the input cannot be read or a filter fails, 2 
 import os
 import sys
 
+import gls_example_io  # this directory: the command line and the output, shared with gls_pipeline_vtk.py
 from paraview import servermanager, simple
-from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
-if not 2 <= len(sys.argv) <= 4:
-    print(__doc__.split('\n\n')[1], file=sys.stderr)
-    sys.exit(2)
-path = sys.argv[1]
-output = sys.argv[2] if len(sys.argv) > 2 else 'gls-example.vtp'
-query = int(sys.argv[3]) if len(sys.argv) > 3 else 0
+path, output, query = gls_example_io.arguments(__doc__.split('\n\n')[1])
 
 # Finds GrowingLeastSquares.so in the directories of PV_PLUGIN_PATH; adds the GLS proxies to this module's namespace
 # (ns=globals(): a fresh dict passed as ns stays empty in ParaView 5.11).
@@ -41,17 +36,4 @@ features = GLSContinuousFeatures(Input=variation)  # noqa: F821 (f in [0, 1])
 dissimilarity = GLSMultiScaleDissimilarity(Input=features, QueryPointId=query)  # noqa: F821
 
 result = servermanager.Fetch(dissimilarity)  # a vtkPolyData with every GLS array
-f = result.GetPointData().GetArray('GLSFeature')
-delta = result.GetPointData().GetArray('GLSDissimilarity')
-if f is None or delta is None:
-    sys.exit('error: the pipeline failed (see the messages above)')
-print('%d points; GLSFeature in [%g, %g]; GLSDissimilarity to point %d in [%g, %g]'
-      % ((result.GetNumberOfPoints(),) + f.GetRange() + (query,) + delta.GetRange()))
-
-writer = vtkXMLPolyDataWriter()
-writer.SetFileName(output)
-writer.SetInputData(result)
-writer.SetDataModeToBinary()  # inline binary: ParaView 5.11 misreads some appended files with many components
-if writer.Write() != 1:
-    sys.exit('error: cannot write %s' % output)
-print('wrote %s' % output)
+gls_example_io.report_and_write(result, output, query)

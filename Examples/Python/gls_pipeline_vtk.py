@@ -12,10 +12,12 @@ filter fails, 2 on bad arguments.
 import os
 import sys
 
+import gls_example_io  # this directory: the command line and the output, shared with gls_pipeline_paraview.py
+
 try:
     from vtkmodules.vtkIOGeometry import vtkOBJReader
     from vtkmodules.vtkIOPLY import vtkPLYReader
-    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
     from glsvtk import (vtkGLSContinuousFeatures, vtkGLSGeometricVariation, vtkGLSMultiScaleDissimilarity,
                         vtkGLSNormalEstimation, vtkGLSPointCloudReader, vtkGLSScaleSpace)
 except ImportError as error:
@@ -25,12 +27,7 @@ except ImportError as error:
 READERS = {'.obj': vtkOBJReader, '.ply': vtkPLYReader, '.vtp': vtkXMLPolyDataReader, '.xyz': vtkGLSPointCloudReader,
            '.pts': vtkGLSPointCloudReader, '.csv': vtkGLSPointCloudReader, '.txt': vtkGLSPointCloudReader}
 
-if not 2 <= len(sys.argv) <= 4:
-    print(__doc__.split('\n\n')[1], file=sys.stderr)
-    sys.exit(2)
-path = sys.argv[1]
-output = sys.argv[2] if len(sys.argv) > 2 else 'gls-example.vtp'
-query = int(sys.argv[3]) if len(sys.argv) > 3 else 0
+path, output, query = gls_example_io.arguments(__doc__.split('\n\n')[1])
 
 reader_class = READERS.get(os.path.splitext(path)[1].lower())
 if reader_class is None:
@@ -58,17 +55,4 @@ dissimilarity.SetQueryPointId(query)
 dissimilarity.Update()
 
 result = dissimilarity.GetOutput()
-f = result.GetPointData().GetArray('GLSFeature')
-delta = result.GetPointData().GetArray('GLSDissimilarity')
-if f is None or delta is None:
-    sys.exit('error: the pipeline failed (see the messages above)')
-print('%d points; GLSFeature in [%g, %g]; GLSDissimilarity to point %d in [%g, %g]'
-      % ((result.GetNumberOfPoints(),) + f.GetRange() + (query,) + delta.GetRange()))
-
-writer = vtkXMLPolyDataWriter()
-writer.SetFileName(output)
-writer.SetInputData(result)
-writer.SetDataModeToBinary()  # inline binary: ParaView 5.11 misreads some appended files with many components
-if writer.Write() != 1:
-    sys.exit('error: cannot write %s' % output)
-print('wrote %s' % output)
+gls_example_io.report_and_write(result, output, query)
