@@ -111,6 +111,7 @@ CloudCompareResult runCloudCompare(const std::vector<double>& xyz, const std::ve
   r.importSeconds = run.lines[loaded].seconds;
   r.computeSeconds = run.lines[saving].seconds - run.lines[loaded].seconds;
   r.computeCpuSeconds = run.lines[saving].cpuSeconds - run.lines[loaded].cpuSeconds;
+  r.computeThreads = run.busyThreads(loaded, saving);
   r.exportSeconds = run.lines[saved].seconds - run.lines[saving].seconds;
   r.columnCount = columnCount;
   if (!readColumns(result, xyz.size() / 3, columnCount, r.columns))
@@ -133,14 +134,24 @@ std::string lengthArgument(double r)
 } // namespace
 
 CloudCompareResult cloudCompareMeanCurvature(const std::vector<double>& xyz, const std::vector<double>& radii,
-  int threads)
+  int threads, double unitScale)
 {
   std::vector<std::string> commands;
   for (double r : radii)
   {
-    commands.insert(commands.end(), { "-CURV", "MEAN", lengthArgument(r) });
+    commands.insert(commands.end(), { "-CURV", "MEAN", lengthArgument(r * unitScale) });
   }
-  return runCloudCompare(xyz, commands, static_cast<int>(radii.size()), threads);
+  std::vector<double> scaled(xyz);
+  for (double& x : scaled)
+  {
+    x *= unitScale;
+  }
+  CloudCompareResult r = runCloudCompare(scaled, commands, static_cast<int>(radii.size()), threads);
+  for (double& h : r.columns)
+  {
+    h *= unitScale;
+  }
+  return r;
 }
 
 CloudCompareResult cloudCompareOctreeNormals(const std::vector<double>& xyz, double radius, int threads)

@@ -21,15 +21,20 @@ struct CloudCompareResult
   double importSeconds = 0.0;   ///< start-up and reading the .xyz file
   double computeSeconds = 0.0;  ///< the commands
   double computeCpuSeconds = 0.0;
+  int computeThreads = 0;       ///< threads that worked during the compute (each >= 10% of a core)
   double exportSeconds = 0.0;   ///< writing the ASCII result
   double writeInputSeconds = 0.0; ///< this process writing the .xyz file (not CloudCompare's)
   std::vector<double> columns;  ///< per point, the exported columns after x y z (row-major), float precision
   int columnCount = 0;
 };
 
-/// Mean curvature |H| (1/length) of every point at each radius: columns[i * radii.size() + k].
+/// Mean curvature |H| (1/length) of every point at each radius: columns[i * radii.size() + k]. CloudCompare gets
+/// the cloud and the radii multiplied by `unitScale` and its |H| is multiplied back: its quadric fit is not
+/// invariant to the unit (measured, 20,000 points on a sphere of radius 0.05, kernel 0.005: median |H| 4.7e-9
+/// instead of 20; the same sphere in units 1,000 times smaller, radius 50 and kernel 5: 0.01999 for 0.02), so a
+/// cloud 0.25 long like the bunny needs it.
 CloudCompareResult cloudCompareMeanCurvature(const std::vector<double>& xyz, const std::vector<double>& radii,
-  int threads);
+  int threads, double unitScale);
 
 /// Unit normals (up to sign) of every point from the plane through its neighbours within `radius`: columns 3n.
 CloudCompareResult cloudCompareOctreeNormals(const std::vector<double>& xyz, double radius, int threads);

@@ -61,7 +61,7 @@ Open3DResult open3dNormals(const std::vector<double>& xyz, double radius, int ma
   {
     std::istringstream fields(run.lines[report].text);
     std::string word;
-    fields >> word >> r.version >> word >> r.computeSeconds >> r.computeCpuSeconds;
+    fields >> word >> r.version >> word >> r.computeSeconds >> r.computeCpuSeconds >> word >> r.computeThreads;
     r.processSeconds = run.seconds;
     r.ok = true;
   }

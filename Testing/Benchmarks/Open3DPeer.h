@@ -14,6 +14,7 @@ struct Open3DResult
   std::string version;
   double computeSeconds = 0.0; ///< the estimate_normals call alone
   double computeCpuSeconds = 0.0;
+  int computeThreads = 0;      ///< threads that worked during the call (each >= 10% of a core)
   double processSeconds = 0.0; ///< the whole process: interpreter and open3d start-up, I/O, compute
   std::vector<double> normals; ///< 3n, unit, unoriented
 };

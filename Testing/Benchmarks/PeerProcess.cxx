@@ -1,5 +1,6 @@
 #include "PeerProcess.h"
 
+#include <dirent.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,10 +15,10 @@
 namespace
 {
 
-/// utime + stime of a running process from /proc/<pid>/stat (fields 14 and 15), in seconds; 0 if unreadable.
-double processCpuSeconds(pid_t pid)
+/// utime + stime from a /proc/.../stat file (fields 14 and 15), in seconds; 0 if unreadable.
+double statCpuSeconds(const std::string& path)
 {
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::ifstream stat(path);
   std::string all((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
   const auto close = all.rfind(')'); // the command name may hold spaces
   if (close == std::string::npos)
@@ -37,7 +38,46 @@ double processCpuSeconds(pid_t pid)
   return ticks / static_cast<double>(sysconf(_SC_CLK_TCK));
 }
 
+/// (thread id, CPU seconds) of every thread of a running process.
+std::vector<std::pair<int, double>> threadCpuSeconds(pid_t pid)
+{
+  std::vector<std::pair<int, double>> threads;
+  const std::string tasks = "/proc/" + std::to_string(pid) + "/task";
+  if (DIR* dir = opendir(tasks.c_str()))
+  {
+    while (dirent* entry = readdir(dir))
+    {
+      if (entry->d_name[0] != '.')
+      {
+        threads.emplace_back(std::atoi(entry->d_name), statCpuSeconds(tasks + "/" + entry->d_name + "/stat"));
+      }
+    }
+    closedir(dir);
+  }
+  return threads;
+}
+
 } // namespace
+
+int PeerRun::busyThreads(int from, int to) const
+{
+  if (from < 0 || to < 0 || to <= from)
+  {
+    return 0;
+  }
+  const double wall = this->lines[to].seconds - this->lines[from].seconds;
+  int busy = 0;
+  for (const auto& [tid, cpu] : this->lines[to].threadCpuSeconds)
+  {
+    double before = 0.0;
+    for (const auto& [tid0, cpu0] : this->lines[from].threadCpuSeconds)
+    {
+      before = tid0 == tid ? cpu0 : before;
+    }
+    busy += cpu - before >= 0.1 * wall ? 1 : 0;
+  }
+  return busy;
+}
 
 int PeerRun::find(const std::string& marker, int from) const
 {
@@ -166,7 +206,8 @@ PeerRun runPeer(const std::vector<std::string>& argv, const std::vector<std::str
     }
     PeerLine l;
     l.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    l.cpuSeconds = processCpuSeconds(pid);
+    l.cpuSeconds = statCpuSeconds("/proc/" + std::to_string(pid) + "/stat");
+    l.threadCpuSeconds = threadCpuSeconds(pid);
     l.text = line;
     run.lines.push_back(std::move(l));
   }

@@ -6,11 +6,13 @@
 #include <string>
 #include <vector>
 
-/// One line the peer printed: when (seconds since the start), its CPU time so far (user + system, all threads), text.
+/// One line the peer printed: when (seconds since the start), its CPU time so far (user + system, all threads) and
+/// each thread's (thread id, seconds), and the text.
 struct PeerLine
 {
   double seconds = 0.0;
   double cpuSeconds = 0.0;
+  std::vector<std::pair<int, double>> threadCpuSeconds;
   std::string text;
 };
 
@@ -26,6 +28,8 @@ struct PeerRun
   bool ok() const { return this->started && this->exitStatus == 0; }
   /// The first line containing `marker` at or after line `from`, or -1.
   int find(const std::string& marker, int from = 0) const;
+  /// How many threads worked between lines `from` and `to`: those that used at least 10% of a core then.
+  int busyThreads(int from, int to) const;
   /// The last `count` lines, for an error message.
   std::string tail(int count = 15) const;
 };
