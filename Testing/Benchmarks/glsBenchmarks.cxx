@@ -446,7 +446,7 @@ int main(int argc, char* argv[])
     // Who is right where they differ: a third computation in long double (brute-force 16 nearest, Eigen's
     // symmetric eigensolver) on 500 points.
     {
-      double worstOurs = 0.0, worstVtk = 0.0, worstCgal = 0.0, worstOpen3d = 0.0;
+      double worstOurs = 0.0, worstVtk = 0.0, worstCgal = 0.0, worstOpen3d = 0.0, worstOpen3dFull = 0.0;
       std::vector<std::pair<double, std::size_t>> all(c.size());
       for (std::size_t q = 0; q < c.size(); q += c.size() / 500)
       {
@@ -489,7 +489,12 @@ int main(int argc, char* argv[])
         }
         if (open3d.ok)
         {
-          worstOpen3d = std::max(worstOpen3d, gapToReference(&open3d.normals[3 * q], ref));
+          const double gap = gapToReference(&open3d.normals[3 * q], ref);
+          worstOpen3d = std::max(worstOpen3d, gap);
+          if (all[15].first <= radius * radius) // its search radius holds the 16 nearest: the same neighbours
+          {
+            worstOpen3dFull = std::max(worstOpen3dFull, gap);
+          }
         }
       }
       std::printf("P4: against a long-double reference on 500 points, max 1 - |n . n_ref|: GLS %.2e, VTK %.2e",
@@ -500,7 +505,7 @@ int main(int argc, char* argv[])
       }
       if (open3d.ok)
       {
-        std::printf(", Open3D %.2e", worstOpen3d);
+        std::printf(", Open3D %.2e (%.2e where its radius holds the 16 nearest)", worstOpen3d, worstOpen3dFull);
       }
       std::printf("\n");
     }
