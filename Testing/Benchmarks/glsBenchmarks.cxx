@@ -1,7 +1,7 @@
 // The performance benchmarks P1-P5 (issue "Performance"), on the bundled bunny sampled by area to 173,000 and
 // 1,000,000 points with normals interpolated from the mesh; scales are fractions of the bounding-box diagonal.
 //
-//   glsBenchmarks --case all|P1|P2|P3|P4|P5|P1-one-pass [--threads T]
+//   glsBenchmarks --case all|P1|P2|P3|P4|P5|P1-one-pass [--threads T] [--no-peers]
 //
 //   P1  scale space + nu, 20 quadratic scales 0.8%-8%, 173k points; against the per-scale evaluation (one ball
 //       query and one fit per scale) in the same run, and against a single-thread run (bitwise identical?).
@@ -13,7 +13,8 @@
 //   Peers run as processes of their own, when installed (a line says so when not): P1 CloudCompare's -CURV MEAN r
 //   at the 20 scales against GLS |kappa|; P4 Open3D's estimate_normals (16 nearest within the ~30-neighbour
 //   radius) against GLS k = 16, and CloudCompare's -OCTREE_NORMALS r against GLS over the same radius. Each peer
-//   gets GLS's thread count; its compute is timed apart from its start-up and file I/O.
+//   gets GLS's thread count; its compute is timed apart from its start-up and file I/O. --no-peers skips them
+//   (CloudCompare's P1 column alone takes minutes).
 //   P5  continuous features alone (fused: nothing stored per scale), 1M points, 100 quadratic scales from 0.08% to
 //       0.8% of the diagonal: peak memory. Run it in a process of its own (--case P5) so that the peak is its own.
 //   P1-one-pass  P1's one-pass row alone (for tuning the kernel).
@@ -291,11 +292,16 @@ int main(int argc, char* argv[])
 {
   std::string which = "all";
   int threads = 0;
+  bool peers = true;
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--case") && i + 1 < argc)
     {
       which = argv[++i];
+    }
+    else if (!std::strcmp(argv[i], "--no-peers"))
+    {
+      peers = false;
     }
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc)
     {
@@ -303,7 +309,8 @@ int main(int argc, char* argv[])
     }
     else
     {
-      std::fprintf(stderr, "usage: %s [--case all|P1|P2|P3|P4|P5|P1-one-pass] [--threads T]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--case all|P1|P2|P3|P4|P5|P1-one-pass] [--threads T] [--no-peers]\n",
+        argv[0]);
       return 2;
     }
   }
@@ -331,7 +338,10 @@ int main(int argc, char* argv[])
                   "1-thread run: %s\n",
         base.seconds / p1.seconds, single.seconds / p1.seconds,
         std::memcmp(nuMany.data(), nuOne.data(), nuOne.size() * sizeof(double)) == 0 ? "yes" : "NO");
-      cloudCompareCurvatureColumn(c, scales, kappa, p1, peerThreads);
+      if (peers)
+      {
+        cloudCompareCurvatureColumn(c, scales, kappa, p1, peerThreads);
+      }
     }
     if (all || which == "P2")
     {
@@ -404,7 +414,12 @@ int main(int argc, char* argv[])
       mv.seconds / m.seconds, withVtk.worst, withVtk.above, static_cast<long long>(glsNormals.size() / 3));
     // Open3D: the 16 nearest within the ~30-neighbour radius (the radius bounds the search; nearly every point has
     // 16 neighbours inside it, so this is k = 16 as GLS's).
-    const Open3DResult open3d = open3dNormals(c.xyz, radius, 16, peerThreads);
+    Open3DResult open3d;
+    open3d.message = "--no-peers";
+    if (peers)
+    {
+      open3d = open3dNormals(c.xyz, radius, 16, peerThreads);
+    }
     if (open3d.ok)
     {
       std::printf("P4: Open3D %s estimate_normals(KDTreeSearchParamHybrid(radius %.4g, max_nn 16)), %d OpenMP "
@@ -519,7 +534,12 @@ int main(int argc, char* argv[])
     byRadius->Update();
     Measure mr{ tr.seconds(), tr.utilisation(), 30e6 };
     row("P4 normals 1M, radius (~30 neighbours, GLS)", 1e6, 1, mr);
-    const CloudCompareResult cc = cloudCompareOctreeNormals(c.xyz, radius, peerThreads);
+    CloudCompareResult cc;
+    cc.message = "--no-peers";
+    if (peers)
+    {
+      cc = cloudCompareOctreeNormals(c.xyz, radius, peerThreads);
+    }
     if (cc.ok)
     {
       std::printf("P4: CloudCompare -OCTREE_NORMALS %.4g -MODEL LS, %d cores allowed (%d threads busy): compute %.2f s "
