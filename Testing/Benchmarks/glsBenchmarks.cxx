@@ -1,7 +1,7 @@
 // The performance benchmarks P1-P5 (issue "Performance"), on the bundled bunny sampled by area to 173,000 and
 // 1,000,000 points with normals interpolated from the mesh; scales are fractions of the bounding-box diagonal.
 //
-//   glsBenchmarks --case all|P1|P2|P3|P4|P5|P1-one-pass [--threads T]
+//   glsBenchmarks --case all|P1|P2|P3|P4|P5|P1-one-pass [--threads T] [--no-peers]
 //
 //   P1  scale space + nu, 20 quadratic scales 0.8%-8%, 173k points; against the per-scale evaluation (one ball
 //       query and one fit per scale) in the same run, and against a single-thread run (bitwise identical?).
@@ -10,11 +10,19 @@
 //   P4  normal estimation on 1M points: k = 16 against vtkPCANormalEstimation (SampleSize 16, vtkSMPTools STDThread),
 //       same normals up to sign; and a radius giving about 30 neighbours (VTK 9.2's filter has no radius mode).
 //       When CMake finds CGAL and TBB, also CGAL's pca_estimate_normals (k = 16, TBB) in the same run.
+//   Peers run as processes of their own, when installed (a line says so when not): P1 CloudCompare's -CURV MEAN r
+//   at the 20 scales against GLS |kappa|; P4 Open3D's estimate_normals (16 nearest within the ~30-neighbour
+//   radius) against GLS k = 16, and CloudCompare's -OCTREE_NORMALS r against GLS over the same radius. Each peer
+//   gets GLS's thread count; its compute is timed apart from its start-up and file I/O. --no-peers skips them
+//   (CloudCompare's P1 column alone takes minutes).
 //   P5  continuous features alone (fused: nothing stored per scale), 1M points, 100 quadratic scales from 0.08% to
 //       0.8% of the diagonal: peak memory. Run it in a process of its own (--case P5) so that the peak is its own.
 //   P1-one-pass  P1's one-pass row alone (for tuning the kernel).
 // Each prints wall time, points x scales per second, neighbour visits per second, CPU utilisation and peak memory.
+#include "CloudComparePeer.h"
 #include "MeshSampler.h"
+#include "Open3DPeer.h"
+#include "PeerAgreement.h"
 #ifdef GLS_BENCHMARK_WITH_CGAL
 #include "CgalNormals.h"
 #endif
@@ -100,13 +108,15 @@ Cloud bunny(long long count)
   return c;
 }
 
-/// Stores nu for every point and scale (the GeometricVariation output) and counts the neighbours visited.
+/// Stores nu for every point and scale (the GeometricVariation output), and kappa when asked (for the peers'
+/// curvature), and counts the neighbours visited.
 class VariationSink : public gls::ScaleSampleSink
 {
 public:
-  VariationSink(std::size_t n, const std::vector<double>& scales, int threads)
+  VariationSink(std::size_t n, const std::vector<double>& scales, int threads, bool storeKappa)
     : Scales(scales)
     , Nu(new double[n * scales.size()]) // not zeroed: the threads first-touch their own rows, as in the filters
+    , Kappa(storeKappa ? new double[n * scales.size()] : nullptr)
     , Size(n * scales.size())
     , Visits(static_cast<std::size_t>(threads), 0.0)
   {
@@ -117,6 +127,13 @@ public:
     for (std::size_t k = 0; k < S; ++k)
     {
       this->Nu[id * S + k] = gls::geometricVariation(s[k], this->Scales[k], {});
+    }
+    if (this->Kappa)
+    {
+      for (std::size_t k = 0; k < S; ++k)
+      {
+        this->Kappa[id * S + k] = s[k].kappa;
+      }
     }
     this->Visits[static_cast<std::size_t>(thread)] += s[S - 1].neighbors;
   }
@@ -130,7 +147,7 @@ public:
     return v;
   }
   const std::vector<double>& Scales;
-  std::unique_ptr<double[]> Nu;
+  std::unique_ptr<double[]> Nu, Kappa;
   std::size_t Size;
   std::vector<double> Visits;
 };
@@ -140,20 +157,30 @@ struct Measure
   double seconds = 0, utilisation = 0, visits = 0;
 };
 
+/// CPU time (all threads) of a measured run: a ratio of CPU times is less disturbed by other load than wall times.
+double cpuSecondsOf(const Measure& m)
+{
+  return std::max(m.seconds * m.utilisation, 1e-9);
+}
+
 Measure scaleSpaceAndNu(const Cloud& c, const std::vector<double>& scales, int threads, gls::EvaluationMethod method,
-  std::vector<double>* nu = nullptr)
+  std::vector<double>* nu = nullptr, std::vector<double>* kappa = nullptr)
 {
   gls::ScaleSpaceSettings settings;
   settings.scales = scales;
   settings.parallel.threads = threads;
   Timer t;
   gls::ScaleSpaceEngine engine(c.xyz.data(), c.normals.data(), c.size(), settings);
-  VariationSink sink(c.size(), scales, gls::resolveThreadCount(threads));
+  VariationSink sink(c.size(), scales, gls::resolveThreadCount(threads), kappa != nullptr);
   engine.run(sink, nullptr, method);
   Measure m{ t.seconds(), t.utilisation(), sink.visits() };
   if (nu)
   {
     nu->assign(sink.Nu.get(), sink.Nu.get() + sink.Size);
+  }
+  if (kappa)
+  {
+    kappa->assign(sink.Kappa.get(), sink.Kappa.get() + sink.Size);
   }
   return m;
 }
@@ -216,17 +243,65 @@ std::vector<double> relativeScales(const Cloud& c, int S, gls::ScaleSampling sam
   return gls::sampleScales(0.008 * c.diagonal, 0.08 * c.diagonal, S, sampling);
 }
 
+void printAngles(const char* what, const AngleAgreement& a)
+{
+  std::printf("%s: angle between the normals (up to sign) p50 %.2g, p90 %.2g, p99 %.2g, max %.3g degrees; "
+              "above 1 degree at %lld of %lld points\n",
+    what, a.p50, a.p90, a.p99, a.max, a.aboveOneDegree, a.compared);
+}
+
+/// P1's CloudCompare column: -CURV MEAN r at the 20 scales on the same cloud, timed against GLS's one pass (which
+/// computes the whole scale space and nu), and its |H| against GLS |kappa| scale by scale.
+void cloudCompareCurvatureColumn(const Cloud& c, const std::vector<double>& scales, const std::vector<double>& kappa,
+  const Measure& gls, int threads)
+{
+  const double unitScale = 1000.0; // see cloudCompareMeanCurvature: its fit fails at small kernels in small units
+  const CloudCompareResult cc = cloudCompareMeanCurvature(c.xyz, scales, threads, unitScale);
+  if (!cc.ok)
+  {
+    std::printf("P1: CloudCompare column skipped: %s\n", cc.message.c_str());
+    return;
+  }
+  std::printf("P1: CloudCompare -CURV MEAN r at the %zu scales, %d cores allowed (%d threads busy): compute %.2f s "
+              "(CPU %.0f%%), "
+              "start-up + import %.2f s, export %.2f s (the .xyz written by us in %.2f s); compute / GLS one pass "
+              "= %.1fx wall, %.1fx CPU time\n",
+    scales.size(), threads, cc.computeThreads, cc.computeSeconds,
+    100.0 * cc.computeCpuSeconds / std::max(cc.computeSeconds, 1e-9), cc.importSeconds, cc.exportSeconds,
+    cc.writeInputSeconds, cc.computeSeconds / gls.seconds,
+    cc.computeCpuSeconds / cpuSecondsOf(gls));
+  std::printf("P1: CloudCompare |H| (|k1 + k2| / 2 of its quadric, unsigned; given the cloud x %g and |H| "
+              "multiplied back) against GLS |kappa| (1 / the fitted sphere's radius) at the same radius, 1/length, "
+              "no other conversion:\n", unitScale);
+  std::printf("| %8s | %6s | %8s | %14s | %12s | %13s | %7s | %8s |\n", "t", "t/diag", "points", "median |kappa|",
+    "median |H|", "median |H|/|k|", "Pearson", "Spearman");
+  const std::size_t S = scales.size();
+  std::vector<double> absKappa(kappa.size());
+  std::transform(kappa.begin(), kappa.end(), absKappa.begin(), [](double k) { return std::abs(k); });
+  for (std::size_t k = 0; k < S; ++k)
+  {
+    const CurvatureAgreement a = curvatureAgreement(absKappa.data() + k, cc.columns.data() + k, c.size(), S);
+    std::printf("| %8.5f | %6.4f | %8lld | %14.4g | %12.4g | %13.3f | %7.3f | %8.3f |\n", scales[k],
+      scales[k] / c.diagonal, a.compared, a.medianGls, a.medianPeer, a.medianRatio, a.pearson, a.spearman);
+  }
+}
+
 } // namespace
 
 int main(int argc, char* argv[])
 {
   std::string which = "all";
   int threads = 0;
+  bool peers = true;
   for (int i = 1; i < argc; ++i)
   {
     if (!std::strcmp(argv[i], "--case") && i + 1 < argc)
     {
       which = argv[++i];
+    }
+    else if (!std::strcmp(argv[i], "--no-peers"))
+    {
+      peers = false;
     }
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc)
     {
@@ -234,13 +309,14 @@ int main(int argc, char* argv[])
     }
     else
     {
-      std::fprintf(stderr, "usage: %s [--case all|P1|P2|P3|P4|P5|P1-one-pass] [--threads T]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--case all|P1|P2|P3|P4|P5|P1-one-pass] [--threads T] [--no-peers]\n",
+        argv[0]);
       return 2;
     }
   }
   const bool all = which == "all";
-  std::printf("threads: %d; one-pass CPU kernel build: %s\n", gls::resolveThreadCount(threads),
-    gls::onePassKernelBuild());
+  const int peerThreads = gls::resolveThreadCount(threads); // the peers get GLS's thread count
+  std::printf("threads: %d; one-pass CPU kernel build: %s\n", peerThreads, gls::onePassKernelBuild());
   std::map<std::string, double> seconds;
 
   if (all || which == "P1" || which == "P2" || which == "P3" || which == "P1-one-pass")
@@ -248,8 +324,8 @@ int main(int argc, char* argv[])
     const Cloud c = bunny(173000);
     const auto scales = relativeScales(c, 20, gls::ScaleSampling::Quadratic);
     header();
-    std::vector<double> nuMany, nuOne;
-    const Measure p1 = scaleSpaceAndNu(c, scales, threads, gls::EvaluationMethod::OnePass, &nuMany);
+    std::vector<double> nuMany, nuOne, kappa;
+    const Measure p1 = scaleSpaceAndNu(c, scales, threads, gls::EvaluationMethod::OnePass, &nuMany, &kappa);
     row("P1 173k x 20 scales, one pass", 173000, 20, p1);
     seconds["P1"] = p1.seconds;
     if (all || which == "P1")
@@ -262,6 +338,10 @@ int main(int argc, char* argv[])
                   "1-thread run: %s\n",
         base.seconds / p1.seconds, single.seconds / p1.seconds,
         std::memcmp(nuMany.data(), nuOne.data(), nuOne.size() * sizeof(double)) == 0 ? "yes" : "NO");
+      if (peers)
+      {
+        cloudCompareCurvatureColumn(c, scales, kappa, p1, peerThreads);
+      }
     }
     if (all || which == "P2")
     {
@@ -289,6 +369,21 @@ int main(int argc, char* argv[])
       auto sampled = sampleMeshSurface(GLS_BENCHMARK_MODEL, 1000000, 1);
       pd->SetPoints(sampled->GetPoints());
     }
+    // A radius holding about 30 neighbours: 30 = density * pi r^2, density from the mean k = 16 radius.
+    double area = 0.0;
+    gls::NeighborGrid grid;
+    grid.build(c.xyz.data(), nullptr, c.size(), gls::NeighborGrid::suggestCellSizeForKNearest(c.xyz.data(), c.size(), 16));
+    {
+      // Mean squared distance to the 16th neighbour on a sample of points gives the local density.
+      std::vector<std::pair<double, std::uint64_t>> knn;
+      for (std::size_t i = 0; i < c.size(); i += 1000)
+      {
+        grid.kNearest({ c.xyz[3 * i], c.xyz[3 * i + 1], c.xyz[3 * i + 2] }, 16, knn);
+        area += knn.back().first;
+      }
+      area /= static_cast<double>((c.size() + 999) / 1000);
+    }
+    const double radius = std::sqrt(area * 30.0 / 16.0);
     header();
     Timer t;
     vtkNew<vtkGLSNormalEstimation> ours;
@@ -317,6 +412,40 @@ int main(int argc, char* argv[])
     std::printf("P4: vtkPCANormalEstimation / GLS = %.2fx (target >= 2); 1 - |n_gls . n_vtk|: max %.2e, above 1e-9 "
                 "at %lld of %lld points\n",
       mv.seconds / m.seconds, withVtk.worst, withVtk.above, static_cast<long long>(glsNormals.size() / 3));
+    // Open3D: the 16 nearest within the ~30-neighbour radius (the radius bounds the search; nearly every point has
+    // 16 neighbours inside it, so this is k = 16 as GLS's).
+    Open3DResult open3d;
+    open3d.message = "--no-peers";
+    if (peers)
+    {
+      open3d = open3dNormals(c.xyz, radius, 16, peerThreads);
+    }
+    if (open3d.ok)
+    {
+      std::printf("P4: Open3D %s estimate_normals(KDTreeSearchParamHybrid(radius %.4g, max_nn 16)), %d OpenMP "
+                  "threads (%d busy): compute %.2f s (CPU %.0f%%), whole process %.2f s (start-up, raw-double I/O); "
+                  "compute / GLS = %.2fx wall, %.2fx CPU time\n",
+        open3d.version.c_str(), radius, peerThreads, open3d.computeThreads, open3d.computeSeconds,
+        100.0 * open3d.computeCpuSeconds / std::max(open3d.computeSeconds, 1e-9), open3d.processSeconds,
+        open3d.computeSeconds / m.seconds, open3d.computeCpuSeconds / cpuSecondsOf(m));
+      printAngles("P4: Open3D against GLS k = 16", angleAgreement(open3d.normals, glsNormals));
+      // Where they differ: does the radius cut Open3D's search short of 16 neighbours there?
+      const std::vector<std::size_t> apart = pointsApartBy(open3d.normals, glsNormals, 1.0);
+      std::size_t cut = 0;
+      std::vector<std::pair<double, std::uint64_t>> knn;
+      for (std::size_t i : apart)
+      {
+        grid.kNearest({ c.xyz[3 * i], c.xyz[3 * i + 1], c.xyz[3 * i + 2] }, 16, knn);
+        cut += knn.back().first > radius * radius ? 1 : 0;
+      }
+      std::printf("P4: of the %zu points more than 1 degree apart, %zu have fewer than 16 neighbours within the "
+                  "radius (Open3D fits those, GLS the 16 nearest)\n",
+        apart.size(), cut);
+    }
+    else
+    {
+      std::printf("P4: Open3D column skipped: %s\n", open3d.message.c_str());
+    }
     std::vector<double> cgal; // CGAL's normals, when the optional column is built
 #ifdef GLS_BENCHMARK_WITH_CGAL
     {
@@ -332,7 +461,7 @@ int main(int argc, char* argv[])
     // Who is right where they differ: a third computation in long double (brute-force 16 nearest, Eigen's
     // symmetric eigensolver) on 500 points.
     {
-      double worstOurs = 0.0, worstVtk = 0.0, worstCgal = 0.0;
+      double worstOurs = 0.0, worstVtk = 0.0, worstCgal = 0.0, worstOpen3d = 0.0, worstOpen3dFull = 0.0;
       std::vector<std::pair<double, std::size_t>> all(c.size());
       for (std::size_t q = 0; q < c.size(); q += c.size() / 500)
       {
@@ -373,6 +502,15 @@ int main(int argc, char* argv[])
         {
           worstCgal = std::max(worstCgal, gapToReference(&cgal[3 * q], ref));
         }
+        if (open3d.ok)
+        {
+          const double gap = gapToReference(&open3d.normals[3 * q], ref);
+          worstOpen3d = std::max(worstOpen3d, gap);
+          if (all[15].first <= radius * radius) // its search radius holds the 16 nearest: the same neighbours
+          {
+            worstOpen3dFull = std::max(worstOpen3dFull, gap);
+          }
+        }
       }
       std::printf("P4: against a long-double reference on 500 points, max 1 - |n . n_ref|: GLS %.2e, VTK %.2e",
         worstOurs, worstVtk);
@@ -380,24 +518,12 @@ int main(int argc, char* argv[])
       {
         std::printf(", CGAL %.2e", worstCgal);
       }
+      if (open3d.ok)
+      {
+        std::printf(", Open3D %.2e (%.2e where its radius holds the 16 nearest)", worstOpen3d, worstOpen3dFull);
+      }
       std::printf("\n");
     }
-    // A radius holding about 30 neighbours: 30 = density * pi r^2, density from the mean k = 16 radius.
-    vtkNew<vtkGLSNormalEstimation> probe;
-    double area = 0.0;
-    {
-      // Mean squared distance to the 16th neighbour on a sample of points gives the local density.
-      gls::NeighborGrid grid;
-      grid.build(c.xyz.data(), nullptr, c.size(), gls::NeighborGrid::suggestCellSizeForKNearest(c.xyz.data(), c.size(), 16));
-      std::vector<std::pair<double, std::uint64_t>> knn;
-      for (std::size_t i = 0; i < c.size(); i += 1000)
-      {
-        grid.kNearest({ c.xyz[3 * i], c.xyz[3 * i + 1], c.xyz[3 * i + 2] }, 16, knn);
-        area += knn.back().first;
-      }
-      area /= static_cast<double>((c.size() + 999) / 1000);
-    }
-    const double radius = std::sqrt(area * 30.0 / 16.0);
     Timer tr;
     vtkNew<vtkGLSNormalEstimation> byRadius;
     byRadius->SetInputData(pd);
@@ -408,6 +534,29 @@ int main(int argc, char* argv[])
     byRadius->Update();
     Measure mr{ tr.seconds(), tr.utilisation(), 30e6 };
     row("P4 normals 1M, radius (~30 neighbours, GLS)", 1e6, 1, mr);
+    CloudCompareResult cc;
+    cc.message = "--no-peers";
+    if (peers)
+    {
+      cc = cloudCompareOctreeNormals(c.xyz, radius, peerThreads);
+    }
+    if (cc.ok)
+    {
+      std::printf("P4: CloudCompare -OCTREE_NORMALS %.4g -MODEL LS, %d cores allowed (%d threads busy): compute %.2f s "
+                  "(CPU %.0f%%), "
+                  "start-up + import %.2f s, export %.2f s (the .xyz written by us in %.2f s); compute / GLS radius "
+                  "= %.2fx wall, %.2fx CPU time\n",
+        radius, peerThreads, cc.computeThreads, cc.computeSeconds,
+        100.0 * cc.computeCpuSeconds / std::max(cc.computeSeconds, 1e-9),
+        cc.importSeconds, cc.exportSeconds, cc.writeInputSeconds, cc.computeSeconds / mr.seconds,
+        cc.computeCpuSeconds / cpuSecondsOf(mr));
+      printAngles("P4: CloudCompare against GLS over the same radius",
+        angleAgreement(cc.columns, tuples(byRadius->GetOutput()->GetPointData()->GetNormals())));
+    }
+    else
+    {
+      std::printf("P4: CloudCompare column skipped: %s\n", cc.message.c_str());
+    }
   }
 
   if (which == "P5")

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Runs the performance benchmarks P1-P5 (P5 in a process of its own, for its peak memory).
+# Runs the performance benchmarks P1-P5 (P5 in a process of its own, for its peak memory), with the peer columns
+# when the peers are installed (CloudCompare in P1 adds 5 to 6 minutes here; docs/performance-peers.md).
 #   Testing/Benchmarks/run-benchmarks.sh [build dir = build]
 set -euo pipefail
 bin="${1:-build}/bin/glsBenchmarks"

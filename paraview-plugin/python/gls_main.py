@@ -207,7 +207,8 @@ def main(argv):
     except UsageError as e:
         return fail('%s (gls-analyze --help lists the options)' % e)
     if not args.input:
-        return fail('no input given and GLS_DEFAULT_INPUT is not set')
+        return fail('no input given, and no bundled default scan (GLS_DEFAULT_INPUT unset): '
+                    'gls-analyze <point cloud or mesh file>')
     if not args.plugin or not os.path.isfile(args.plugin):
         return fail('plugin not found (%s); build the project first' % args.plugin)
     try:
