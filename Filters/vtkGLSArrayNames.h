@@ -7,6 +7,7 @@ namespace vtkGLSArrayNames
 {
 constexpr const char* Normals = "Normals";
 constexpr const char* Scales = "GLSScales";              // field data: the absolute scales (length)
+constexpr const char* KappaMedian = "GLSKappaMedian"; // scale space: median of kappa over the defined scales
 constexpr const char* Variation = "GLSGeometricVariation";
 constexpr const char* PertinentScaleCount = "GLSPertinentScaleCount";
 constexpr const char* PertinentScales = "GLSPertinentScales";

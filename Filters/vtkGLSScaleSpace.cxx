@@ -1,5 +1,6 @@
 #include "vtkGLSScaleSpace.h"
 
+#include "vtkGLSArrayNames.h"
 #include "vtkGLSDescriptors.h"
 #include "vtkGLSRun.h"
 
@@ -13,6 +14,8 @@
 
 #include "gls/ScaleSpaceEngine.h" // gls::ScaleSampleSink
 
+#include <algorithm>
+#include <limits>
 #include <vector>
 
 vtkStandardNewMacro(vtkGLSScaleSpace);
@@ -33,14 +36,29 @@ public:
     int* Integers; ///< integer descriptors
   };
 
-  ArraySink(std::size_t scales, std::vector<Column> columns)
+  ArraySink(std::size_t scales, std::vector<Column> columns, double* kappaMedian, int threads)
     : S(scales)
     , Columns(std::move(columns))
+    , KappaMedian(kappaMedian)
+    , Scratch(static_cast<std::size_t>(threads))
   {
   }
 
-  void consume(std::uint64_t id, const gls::ScaleSample* s, int) override
+  void consume(std::uint64_t id, const gls::ScaleSample* s, int thread) override
   {
+    if (this->KappaMedian)
+    {
+      std::vector<double>& defined = this->Scratch[static_cast<std::size_t>(thread)];
+      defined.clear();
+      for (std::size_t k = 0; k < this->S; ++k)
+      {
+        if (s[k].valid)
+        {
+          defined.push_back(s[k].kappa);
+        }
+      }
+      this->KappaMedian[id] = median(defined);
+    }
     for (const Column& c : this->Columns)
     {
       const int m = c.Descriptor->Components;
@@ -65,15 +83,35 @@ public:
   }
 
 private:
+  /// The median of the values (the mean of the two middle ones for an even count); NaN for none.
+  static double median(std::vector<double>& v)
+  {
+    if (v.empty())
+    {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    const std::size_t m = v.size() / 2;
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(m), v.end());
+    if (v.size() % 2 == 1)
+    {
+      return v[m];
+    }
+    const double upper = v[m];
+    return 0.5 * (*std::max_element(v.begin(), v.begin() + static_cast<long>(m)) + upper);
+  }
+
   std::size_t S;
   std::vector<Column> Columns;
+  double* KappaMedian;
+  std::vector<std::vector<double>> Scratch;
 };
 
 /// Allocates the stored descriptors' arrays in precision T (ArrayType holds T), fills them from the run's
 /// samples, and adds them to the output in the table's order. False if aborted (nothing added).
 template <typename T, typename ArrayType, typename Feed>
 bool FillArrays(const std::vector<int>& stored, const std::vector<double>& scales, vtkIdType n,
-  vtkPointData* out, Feed feed, void (*nameComponents)(vtkDataArray*, const std::vector<double>&, int))
+  vtkPointData* out, Feed feed, void (*nameComponents)(vtkDataArray*, const std::vector<double>&, int),
+  vtkDoubleArray* kappaMedian, int threads)
 {
   const int S = static_cast<int>(scales.size());
   std::vector<vtkSmartPointer<vtkDataArray>> arrays;
@@ -104,7 +142,8 @@ bool FillArrays(const std::vector<int>& stored, const std::vector<double>& scale
     arrays.push_back(a);
     columns.push_back(column);
   }
-  ArraySink<T> sink(scales.size(), std::move(columns));
+  ArraySink<T> sink(
+    scales.size(), std::move(columns), kappaMedian ? kappaMedian->GetPointer(0) : nullptr, threads);
   if (!feed(sink))
   {
     return false; // aborted: the output is the input, without partial arrays
@@ -186,9 +225,23 @@ int vtkGLSScaleSpace::ComputeOutputs(vtkGLSRun& run)
   const vtkIdType n = run.Input->GetNumberOfPoints();
   const auto feed = [&](gls::ScaleSampleSink& sink) { return this->FeedSamples(run, sink); };
   vtkPointData* out = run.Output->GetPointData();
+  // A per-point summary that colours well (a colour map of GLSKappa's magnitude is NaN wherever one scale is).
+  vtkSmartPointer<vtkDoubleArray> median;
+  if (this->StoreKappa)
+  {
+    median = vtkSmartPointer<vtkDoubleArray>::New();
+    median->SetName(vtkGLSArrayNames::KappaMedian);
+    median->SetNumberOfTuples(n);
+  }
+  const int threads = gls::resolveThreadCount(this->NumberOfThreads);
   const bool completed = this->OutputPrecision == FLOAT
-    ? FillArrays<float, vtkFloatArray>(stored, run.Scales, n, out, feed, &NameScaleComponents)
-    : FillArrays<double, vtkDoubleArray>(stored, run.Scales, n, out, feed, &NameScaleComponents);
+    ? FillArrays<float, vtkFloatArray>(stored, run.Scales, n, out, feed, &NameScaleComponents, median, threads)
+    : FillArrays<double, vtkDoubleArray>(stored, run.Scales, n, out, feed, &NameScaleComponents, median, threads);
+  if (completed && median)
+  {
+    out->AddArray(median);
+    out->SetActiveScalars(vtkGLSArrayNames::KappaMedian);
+  }
   return completed ? COMPLETED : ABORTED;
 }
 

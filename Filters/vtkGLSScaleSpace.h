@@ -16,6 +16,9 @@
  * - GLSFitness (dimensionless, [0, 1]): the paper's phi (Ponca's fitness() is 1 - phi).
  * - GLSdTau (dimensionless), GLSdEta (1/length, 3 per scale), GLSdKappa (1/length^2): derivatives in t.
  * - GLSNeighborCount (integer): neighbours strictly inside the ball of radius t.
+ * - GLSKappaMedian (1/length, one component, the active scalars; with StoreKappa): the median of kappa over the
+ *   scales where the fit is defined, NaN where none is: a summary that colours well (a colour map of GLSKappa's
+ *   magnitude is NaN wherever a single scale is undefined).
  * Field data: GLSScales, the absolute scales (length).
  * A fit that is undefined (fewer than MinimumNeighbors neighbours, all normals cancelling, non-finite point) is NaN
  * in every output for that point and scale.

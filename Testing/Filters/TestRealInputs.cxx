@@ -438,3 +438,23 @@ TEST(RealInputs, TheScaleSpaceImageRefusesASurface)
   EXPECT_EQ(errors->Count, 1);
   EXPECT_NE(errors->Message.find("is a surface"), std::string::npos) << errors->Message;
 }
+
+TEST(RealInputs, TheScaleSpaceHasAKappaSummaryThatColoursWhereSomeScalesAreUndefined)
+{
+  // A sparse sphere of radius 2: the finest scales hold too few neighbours (NaN there), the others give 1/2.
+  vtkNew<vtkGLSScaleSpace> f;
+  f->SetScaleUnitsToAbsolute();
+  f->SetMinScale(0.01);
+  f->SetMaxScale(1.0);
+  const auto out = runOn(f, makePolyData(sphere(4000, 2.0)));
+  const std::vector<double> kappa = pointArray(out, "GLSKappa");
+  ASSERT_TRUE(std::any_of(kappa.begin(), kappa.end(), [](double v) { return std::isnan(v); }));
+  const std::vector<double> median = pointArray(out, "GLSKappaMedian");
+  ASSERT_EQ(median.size(), 4000u);
+  for (double v : median)
+  {
+    ASSERT_NEAR(v, 0.5, 1e-12);
+  }
+  ASSERT_NE(out->GetPointData()->GetScalars(), nullptr);
+  EXPECT_STREQ(out->GetPointData()->GetScalars()->GetName(), "GLSKappaMedian");
+}
