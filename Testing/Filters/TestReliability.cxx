@@ -25,6 +25,22 @@ namespace
 
 using Clock = std::chrono::steady_clock;
 
+// The bound on the time from the abort to the return. Under AddressSanitizer (gcc defines __SANITIZE_ADDRESS__,
+// clang has __has_feature(address_sanitizer)) the scale space took 1.09 s in CI against 0.018 s in a Release
+// build: its return releases the gigabyte of unfinished per-scale arrays through the instrumented allocator. The
+// bound there is five seconds, which still catches a filter that runs on to the end.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr double kAbortBoundSeconds = 5.0;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr double kAbortBoundSeconds = 5.0;
+#else
+constexpr double kAbortBoundSeconds = 1.0;
+#endif
+#else
+constexpr double kAbortBoundSeconds = 1.0;
+#endif
+
 /// Aborts the observed filter at its first progress report past Threshold and remembers when.
 struct TimedAborter : vtkCommand
 {
@@ -59,7 +75,7 @@ void expectQuickAbort(vtkPolyData* input, const char* array, double threshold = 
   f->Update();
   const double seconds = std::chrono::duration<double>(Clock::now() - aborter->When).count();
   ASSERT_TRUE(aborter->Fired) << array;
-  EXPECT_LT(seconds, 1.0) << array;
+  EXPECT_LT(seconds, kAbortBoundSeconds) << array;
   EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray(array), nullptr) << array;
   std::printf("%-32s aborted past %2.0f%%: returned %.3f s later\n", f->GetClassName(), 100 * threshold, seconds);
 }
