@@ -6,6 +6,9 @@
 namespace vtkGLSArrayNames
 {
 constexpr const char* Normals = "Normals";
+constexpr const char* NormalQuality = "NormalQuality";     // normal estimation: spread of the neighbourhood
+constexpr const char* NormalNeighbors = "NormalNeighbors"; // normal estimation: neighbours used
+constexpr const char* NormalRadius = "GLSNormalRadius";    // field data: the radius of a RADIUS estimate (length)
 constexpr const char* Scales = "GLSScales";              // field data: the absolute scales (length)
 constexpr const char* KappaMedian = "GLSKappaMedian"; // scale space: median of kappa over the defined scales
 constexpr const char* Variation = "GLSGeometricVariation";

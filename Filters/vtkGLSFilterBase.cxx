@@ -344,6 +344,12 @@ bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
   return true;
 }
 
+bool vtkGLSFilterBase::Heartbeat()
+{
+  this->UpdateProgress(this->GetProgress());
+  return this->GetAbortExecute() != 0;
+}
+
 bool vtkGLSFilterBase::ReportProgress(double fraction, double begin, double end)
 {
   this->UpdateProgress(begin + fraction * (end - begin));
@@ -467,7 +473,9 @@ const char* vtkGLSFilterBase::SelectedArrayName(int index)
 
 void vtkGLSFilterBase::MergeCoincidentPoints(vtkGLSRun& run)
 {
+  this->Heartbeat();
   this->NoteCoincidentPoints(run, run.Cloud.MergeCoincident());
+  this->Heartbeat();
 }
 
 void vtkGLSFilterBase::NoteCoincidentPoints(vtkGLSRun& run, std::size_t merged)

@@ -6,11 +6,14 @@
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 
+#include "gls/CoincidentPoints.h"
 #include "gls/NormalEstimation.h"
 #include "gls/Planarity.h"
 
@@ -19,6 +22,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkGLSNormalEstimation);
@@ -30,6 +34,8 @@ vtkGLSNormalEstimation::vtkGLSNormalEstimation()
   , Orientation(MINIMUM_SPANNING_TREE)
   , OrientationPoint{ 0.0, 0.0, 0.0 }
   , GraphNeighbors(10)
+  , MinimumSpread(0.05)
+  , MaximumGrowth(8.0)
 {
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::NORMALS);
@@ -37,14 +43,27 @@ vtkGLSNormalEstimation::vtkGLSNormalEstimation()
 
 vtkGLSNormalEstimation::~vtkGLSNormalEstimation() = default;
 
+namespace
+{
+/// Points the automatic radius is measured on (a regular stride through the cloud).
+constexpr std::size_t kAutomaticRadiusSamples = 10000;
+}
+
 int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
 {
   vtkPointSet* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
   const vtkGLSDistributedCloud& dist = run.Distributed;
-  if (this->NeighborhoodType == RADIUS && !(this->Radius > 0.0 && std::isfinite(this->Radius)))
+  const bool byRadius = this->NeighborhoodType == RADIUS;
+  if (byRadius && !(this->Radius >= 0.0 && std::isfinite(this->Radius)))
   {
-    vtkErrorMacro("Radius must be a finite positive length in RADIUS mode (got " << this->Radius << ").");
+    vtkErrorMacro("Radius must be a finite length >= 0 in RADIUS mode (0: automatic; got " << this->Radius << ").");
+    return FAILED;
+  }
+  if (byRadius && this->Radius == 0.0 && dist.IsParallel())
+  {
+    vtkErrorMacro("The automatic Radius (0) is measured on the whole cloud and is not supported on several "
+                  "processes: set Radius to a length (a serial run records the automatic one in GLSNormalRadius).");
     return FAILED;
   }
   if (dist.IsParallel())
@@ -65,6 +84,8 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
   settings.orientation = static_cast<gls::NormalOrientation>(this->Orientation);
   settings.viewpoint = { this->OrientationPoint[0], this->OrientationPoint[1], this->OrientationPoint[2] };
   settings.graphNeighbors = this->GraphNeighbors;
+  settings.minimumSpread = this->MinimumSpread;
+  settings.maximumGrowth = this->MaximumGrowth;
   settings.parallel.threads = this->NumberOfThreads;
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 0.9); };
 
@@ -86,7 +107,6 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
     {
       existing->GetTuple(i, &reference[3 * i]);
     }
-    settings.reference = reference.data();
   }
 
   gls::NormalEstimationResult result;
@@ -97,66 +117,148 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
       return FAILED;
     }
   }
-  else if (!gls::estimateNormals(run.Cloud.Points.data(), static_cast<std::size_t>(n), settings, result))
+  else
   {
-    return ABORTED; // the output is the input, without partial normals
+    this->MergeCoincidentPoints(run);
+    if (run.Cloud.IsMerged() && !reference.empty())
+    {
+      reference = gls::mergedNormals(run.Cloud.Copies, reference.data());
+    }
+    settings.reference = reference.empty() ? nullptr : reference.data();
+    if (byRadius && settings.radius == 0.0)
+    {
+      settings.radius = gls::medianKNearestDistance(
+        run.Cloud.Points.data(), run.Cloud.Owned, this->NumberOfNeighbors, kAutomaticRadiusSamples);
+      if (!(settings.radius > 0.0))
+      {
+        vtkErrorMacro("The automatic Radius is 0: the input has fewer than 2 distinct finite points.");
+        return FAILED;
+      }
+    }
+    if (!gls::estimateNormals(run.Cloud.Points.data(), run.Cloud.Owned, settings, result))
+    {
+      return ABORTED; // the output is the input, without partial normals
+    }
   }
-  vtkNew<vtkDoubleArray> normals;
-  normals->SetName(vtkGLSArrayNames::Normals);
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(n);
-  std::copy(result.normals.begin(), result.normals.end(), normals->GetPointer(0));
-  run.Output->GetPointData()->SetNormals(normals);
+  this->WriteNormals(run, settings, result);
   this->UpdateProgress(1.0);
   return COMPLETED;
 }
 
+void vtkGLSNormalEstimation::WriteNormals(
+  vtkGLSRun& run, const gls::NormalEstimationSettings& settings, const gls::NormalEstimationResult& result)
+{
+  const vtkIdType n = run.Input->GetNumberOfPoints();
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  vtkNew<vtkDoubleArray> normals;
+  normals->SetName(vtkGLSArrayNames::Normals);
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(n);
+  run.Cloud.ScatterToInput(result.normals.data(), 3, normals->GetPointer(0));
+  vtkNew<vtkDoubleArray> quality;
+  quality->SetName(vtkGLSArrayNames::NormalQuality);
+  quality->SetNumberOfTuples(n);
+  run.Cloud.ScatterToInput(result.spread.data(), 1, quality->GetPointer(0));
+  std::vector<double> counts(result.neighborCounts.begin(), result.neighborCounts.end()), perInput(n);
+  run.Cloud.ScatterToInput(counts.data(), 1, perInput.data());
+  vtkNew<vtkIntArray> neighbors;
+  neighbors->SetName(vtkGLSArrayNames::NormalNeighbors);
+  neighbors->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    neighbors->SetValue(i, static_cast<int>(perInput[i]));
+  }
+  vtkPointData* out = run.Output->GetPointData();
+  out->SetNormals(normals);
+  out->AddArray(quality);
+  out->AddArray(neighbors);
+
+  // One line for the points with finite coordinates that no neighbourhood gives a normal (every copy counted).
+  double undefined = 0.0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double x[3];
+    run.Input->GetPoint(i, x);
+    const bool finite = std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
+    undefined += finite && !std::isfinite(normals->GetValue(3 * i)) ? 1.0 : 0.0;
+  }
+  undefined = dist.Sum(undefined);
+  const double total = dist.Sum(static_cast<double>(n));
+  if (undefined > 0.0 && dist.GetRank() == 0)
+  {
+    vtkWarningMacro(<< static_cast<long long>(undefined) << " of the " << static_cast<long long>(total)
+                    << " points have no normal (NaN): fewer than 3 neighbours, or neighbourhoods close to a line "
+                       "(spread below MinimumSpread) even grown "
+                    << this->MaximumGrowth << " times. See NormalQuality and NormalNeighbors.");
+  }
+  if (settings.neighborhood == gls::NeighborhoodType::Radius)
+  {
+    vtkNew<vtkDoubleArray> radius;
+    radius->SetName(vtkGLSArrayNames::NormalRadius);
+    radius->InsertNextValue(settings.radius);
+    run.Output->GetFieldData()->AddArray(radius);
+  }
+  this->WriteRunFieldData(run, run.Output->GetFieldData());
+}
+
 bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<double>& reference,
-  gls::NormalEstimationSettings settings, gls::NormalEstimationResult& result)
+  gls::NormalEstimationSettings& settings, gls::NormalEstimationResult& result)
 {
   const vtkGLSDistributedCloud& dist = run.Distributed;
-  std::vector<double>& xyz = run.Cloud.Points;
-  const std::size_t n = run.Cloud.Owned;
-  // Ghosts: every point within the reach of this piece's neighbourhoods.
+  vtkGLSCloud& cloud = run.Cloud;
+  const std::size_t n = cloud.Owned;
+  // Ghosts: every point within the reach of this piece's neighbourhoods, grown as far as they may grow.
   const double reach = settings.neighborhood == gls::NeighborhoodType::Radius
-    ? settings.radius
-    : gls::kNearestReach(xyz.data(), n, settings.k, settings.parallel);
+    ? gls::reachableRadius(settings)
+    : gls::kNearestReach(cloud.Points.data(), n, gls::reachableNeighbors(settings), settings.parallel);
   std::size_t ghostCount = 0;
-  if (!dist.AllTrue(dist.AppendGhosts(xyz, n, {}, reach, ghostCount)))
+  if (!dist.AllTrue(dist.AppendGhosts(cloud.Points, n, {}, reach, ghostCount)))
   {
     vtkErrorMacro("The exchange of ghost points between the processes failed.");
     return false;
   }
+  run.GhostPoints = static_cast<long long>(ghostCount);
+  this->MergeCoincidentPoints(run);
   if (!reference.empty())
   {
-    reference.resize(xyz.size(), std::numeric_limits<double>::quiet_NaN()); // ghosts: keep the solver's sign
+    reference.resize(3 * (n + ghostCount), std::numeric_limits<double>::quiet_NaN()); // ghosts: the solver's sign
+    if (cloud.IsMerged())
+    {
+      reference = gls::mergedNormals(cloud.Copies, reference.data());
+    }
     settings.reference = reference.data();
   }
   const bool mst = settings.orientation == gls::NormalOrientation::MinimumSpanningTree;
+  gls::NormalEstimationSettings local = settings;
   if (mst)
   {
-    settings.orientation = gls::NormalOrientation::None; // oriented below, over the whole cloud
+    local.orientation = gls::NormalOrientation::None; // oriented below, over the whole cloud
   }
-  settings.parallel.progress = nullptr; // no abort half-way through a collective run
-  gls::NormalEstimationResult local;
-  gls::estimateNormals(xyz.data(), n + ghostCount, settings, local);
-  result.normals.assign(local.normals.begin(), local.normals.begin() + 3 * static_cast<std::ptrdiff_t>(n));
-  result.neighborCounts.assign(
-    local.neighborCounts.begin(), local.neighborCounts.begin() + static_cast<std::ptrdiff_t>(n));
-  xyz.resize(3 * n);
+  local.parallel.progress = nullptr; // no abort half-way through a collective run
+  gls::NormalEstimationResult estimate;
+  gls::estimateNormals(cloud.Points.data(), cloud.Size(), local, estimate);
+  const std::size_t owned = cloud.Owned; // distinct positions of this piece
+  const auto ownedPart = [owned](const auto& v, std::size_t width) {
+    return std::vector<typename std::decay_t<decltype(v)>::value_type>(
+      v.begin(), v.begin() + static_cast<std::ptrdiff_t>(width * owned));
+  };
+  result.normals = ownedPart(estimate.normals, 3);
+  result.neighborCounts = ownedPart(estimate.neighborCounts, 1);
+  result.spread = ownedPart(estimate.spread, 1);
   if (!mst)
   {
     return true;
   }
 
-  // Minimum spanning tree over the whole cloud, on rank 0, in global-id order (the serial order).
+  // Minimum spanning tree over the whole cloud, on rank 0, in global-id order (the serial order): each distinct
+  // position of this piece goes with the global id of its first copy.
   const std::vector<long long> ids = dist.GlobalIds(run.Input);
-  std::vector<double> rows(7 * n);
-  for (std::size_t i = 0; i < n; ++i)
+  std::vector<double> rows(7 * owned);
+  for (std::size_t u = 0; u < owned; ++u)
   {
-    rows[7 * i] = static_cast<double>(ids[i]);
-    std::copy(&xyz[3 * i], &xyz[3 * i] + 3, &rows[7 * i + 1]);
-    std::copy(&result.normals[3 * i], &result.normals[3 * i] + 3, &rows[7 * i + 4]);
+    rows[7 * u] = static_cast<double>(ids[cloud.IsMerged() ? cloud.Copies.distinct[u] : u]);
+    std::copy(&cloud.Points[3 * u], &cloud.Points[3 * u] + 3, &rows[7 * u + 1]);
+    std::copy(&result.normals[3 * u], &result.normals[3 * u] + 3, &rows[7 * u + 4]);
   }
   std::vector<double> all;
   std::vector<long long> counts;
@@ -179,8 +281,13 @@ bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<dou
       std::copy(&all[7 * order[j] + 1], &all[7 * order[j] + 4], &sortedXyz[3 * j]);
       std::copy(&all[7 * order[j] + 4], &all[7 * order[j] + 7], &sortedNormals[3 * j]);
     }
-    gls::orientByMinimumSpanningTree(sortedXyz.data(), total, settings.graphNeighbors, sortedNormals.data(),
-      settings.parallel, result.components);
+    // A position held by several pieces is one node of the tree, as in a serial run.
+    const gls::CoincidentPoints shared = gls::findCoincidentPoints(sortedXyz.data(), total);
+    std::vector<double> xyz = gls::distinctValues(shared, sortedXyz.data(), 3);
+    std::vector<double> normals = gls::distinctValues(shared, sortedNormals.data(), 3);
+    gls::orientByMinimumSpanningTree(
+      xyz.data(), xyz.size() / 3, settings.graphNeighbors, normals.data(), settings.parallel, result.components);
+    gls::scatterToCopies(shared, normals.data(), 3, sortedNormals.data());
     oriented.resize(3 * total);
     for (std::size_t j = 0; j < total; ++j)
     {
@@ -207,4 +314,6 @@ void vtkGLSNormalEstimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OrientationPoint: " << this->OrientationPoint[0] << ", " << this->OrientationPoint[1] << ", "
      << this->OrientationPoint[2] << "\n";
   os << indent << "GraphNeighbors: " << this->GraphNeighbors << "\n";
+  os << indent << "MinimumSpread: " << this->MinimumSpread << "\n";
+  os << indent << "MaximumGrowth: " << this->MaximumGrowth << "\n";
 }

@@ -17,11 +17,24 @@
  *   active normals), e.g. a scanner's normals whose length or accuracy is poor; points whose existing normal is not
  *   finite keep the solver's sign.
  *
- * Output: the input with point-data array `Normals` (3 components, unit, dimensionless), set as the active normals
- * (replacing any previous active normals).
- * Degenerate input: a point with fewer than 3 neighbours, whose neighbours lie on a line, or with non-finite
- * coordinates gets a NaN normal (later GLS filters leave it out of every neighbourhood). An empty input, a Radius <= 0
- * in RADIUS mode, or AGREE_WITH_EXISTING without a valid normals array is an error.
+ * Degenerate neighbourhoods (gls/NormalEstimation.h): the spread of a neighbourhood is its middle covariance
+ * eigenvalue over the largest, 0 on a line, 1 when isotropic in the tangent plane. Scanner sampling (dense along scan
+ * lines, sparse across) and the rings of a UV sphere near its poles give k-nearest neighbourhoods that are nearly
+ * lines, and a small radius can hold three points on an arc; their PCA "normal" is wrong by up to 90 degrees. A
+ * neighbourhood with a spread below MinimumSpread grows (twice the neighbours, or sqrt(2) times the radius, per
+ * step) up to MaximumGrowth times the neighbours; where none spans two dimensions the normal is NaN, with one
+ * warning giving the count. Points with fewer than 3 neighbours or non-finite coordinates get NaN too (later GLS
+ * filters leave them out of every neighbourhood). A planar 2D curve is not grown (its normals are in its plane).
+ *
+ * Coincident points (bitwise-equal coordinates, e.g. an OBJ reader's per-corner vertices) are merged before the
+ * neighbourhoods are formed (each position counted once; a warning gives the count and field data
+ * GLSCoincidentPoints records it); every copy receives its position's normal.
+ *
+ * Output: the input with point-data arrays `Normals` (3 components, unit, dimensionless), set as the active normals
+ * (replacing any previous active normals), `NormalQuality` (the spread of the neighbourhood used, dimensionless in
+ * [0, 1]; threshold it to see where the normals are weak; NaN with fewer than 3 neighbours) and `NormalNeighbors`
+ * (the neighbours used, after any growth). In RADIUS mode the field data `GLSNormalRadius` records the radius used.
+ * An empty input, a negative or non-finite Radius, or AGREE_WITH_EXISTING without a valid normals array is an error.
  *
  * Distributed runs (pvbatch / pvserver on N MPI ranks; the Controller has several processes): each rank fetches the
  * other ranks' points within the reach of its neighbourhoods (Radius, or the largest distance from one of its points
@@ -83,9 +96,27 @@ public:
   ///@}
 
   ///@{
-  /// Radius of the RADIUS neighbourhood (length, input units; must be > 0 in that mode). Default 0.
+  /// Radius of the RADIUS neighbourhood (length, input units). Default 0: automatic, the median distance from a
+  /// point to its NumberOfNeighbors-th nearest point (over up to 10,000 points at a regular stride), so that the
+  /// ball holds about NumberOfNeighbors points. Negative or non-finite: an error in RADIUS mode.
   vtkSetMacro(Radius, double);
   vtkGetMacro(Radius, double);
+  ///@}
+
+  ///@{
+  /// The spread (middle over largest covariance eigenvalue) below which a neighbourhood is degenerate and grows;
+  /// dimensionless in [0, 1], default 0.05. 0 treats only exact lines as degenerate.
+  vtkSetClampMacro(MinimumSpread, double, 0.0, 1.0);
+  vtkGetMacro(MinimumSpread, double);
+  ///@}
+
+  ///@{
+  /// The largest factor on the neighbour count when a degenerate neighbourhood grows (the k of K_NEAREST is doubled,
+  /// the Radius multiplied by sqrt(2), per step), default 8 (three steps: 128 neighbours for the default 16);
+  /// 1 = no growth (degenerate neighbourhoods give NaN at once). A distributed run's ghost band covers the grown
+  /// neighbourhoods.
+  vtkSetClampMacro(MaximumGrowth, double, 1.0, 64.0);
+  vtkGetMacro(MaximumGrowth, double);
   ///@}
 
   ///@{
@@ -120,8 +151,13 @@ protected:
   /// The distributed estimate (see the class documentation): ghosts, normals of the owned points, and the
   /// minimum-spanning-tree orientation on rank 0. The run's cloud and `reference` are scratch. False (with an
   /// error) on a communication failure.
-  bool EstimateDistributed(vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings settings,
+  bool EstimateDistributed(vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings& settings,
     gls::NormalEstimationResult& result);
+
+  /// Writes Normals, NormalQuality and NormalNeighbors to every input point (copies of a merged position included),
+  /// the one-line warning for the points without a normal, and the field data (GLSNormalRadius, the run's).
+  void WriteNormals(
+    vtkGLSRun& run, const gls::NormalEstimationSettings& settings, const gls::NormalEstimationResult& result);
 
   int NeighborhoodType;
   int NumberOfNeighbors;
@@ -129,6 +165,8 @@ protected:
   int Orientation;
   double OrientationPoint[3];
   int GraphNeighbors;
+  double MinimumSpread;
+  double MaximumGrowth;
 
 private:
   vtkGLSNormalEstimation(const vtkGLSNormalEstimation&) = delete;

@@ -189,6 +189,7 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   settings.minNeighbors = run.MinimumNeighbors;
   settings.parallel.threads = this->NumberOfThreads;
   run.Samples = vtkGLSSampleSource::Fit(run.Cloud, settings);
+  this->Heartbeat();
   return true;
 }
 

@@ -103,7 +103,7 @@ TEST(NormalEstimationFilter, BadInputGivesClearErrors)
   const Cloud c = sphere(100, 1.0);
   f->SetInputData(makePolyData(c.points, {}));
   f->SetNeighborhoodTypeToRadius();
-  f->SetRadius(0.0);
+  f->SetRadius(-0.1); // 0 is the automatic radius (TestAdaptiveNormals)
   f->Update();
   EXPECT_EQ(errors->Count, 2);
   EXPECT_NE(errors->Message.find("Radius"), std::string::npos) << errors->Message;

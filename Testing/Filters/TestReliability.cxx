@@ -96,6 +96,64 @@ TEST(Reliability, AbortOnAMillionPointsReturnsWithinASecond)
   expectQuickAbort<vtkGLSMultiScaleDissimilarity>(withNormals, "GLSDissimilarity");
 }
 
+/// Records the time of every progress report of the observed filter.
+struct ProgressClock : vtkCommand
+{
+  static ProgressClock* New() { return new ProgressClock; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    this->Times.push_back(Clock::now());
+    this->Fractions.push_back(*static_cast<double*>(data));
+  }
+  std::vector<Clock::time_point> Times;
+  std::vector<double> Fractions;
+};
+
+/// Runs the filter to the end and checks that no two progress reports (from the start of the run to its end) are
+/// further apart than a fifth of the run, whatever the machine's speed. The steps without progress of their own
+/// (merging coincident points, a sort; building the neighbour grid) take about half a second each on a million
+/// points: a fifth of these short runs, a far smaller part of a run at the default scales (minutes).
+template <typename Filter>
+void expectSteadyProgress(vtkPolyData* input, const char* what)
+{
+  vtkNew<Filter> f;
+  if constexpr (std::is_base_of<vtkGLSScaleFilterBase, Filter>::value)
+  {
+    f->SetMaxScale(0.01);
+    f->SetMinScale(0.002);
+  }
+  vtkNew<ProgressClock> clock;
+  f->AddObserver(vtkCommand::ProgressEvent, clock);
+  f->SetInputData(input);
+  const Clock::time_point start = Clock::now();
+  f->Update();
+  const Clock::time_point end = Clock::now();
+  ASSERT_GE(clock->Times.size(), 2u) << what;
+  std::vector<Clock::time_point> times = clock->Times;
+  times.insert(times.begin(), start);
+  times.push_back(end);
+  double gap = 0.0, at = 0.0;
+  for (std::size_t i = 1; i < times.size(); ++i)
+  {
+    const double g = std::chrono::duration<double>(times[i] - times[i - 1]).count();
+    if (g > gap)
+    {
+      gap = g;
+      at = i >= 2 ? clock->Fractions[i - 2] : 0.0;
+    }
+  }
+  const double total = std::chrono::duration<double>(end - start).count();
+  EXPECT_LT(gap, 0.2 * total) << what << ": silent for " << gap << " s after " << at;
+  std::printf("%-24s %.2f s in all, longest silence %.3f s (after %.2f)\n", what, total, gap, at);
+}
+
+TEST(Reliability, ProgressOnAMillionPointsIsNeverSilentForAFifthOfTheRun)
+{
+  const Cloud c = sphere(1000000, 1.0);
+  expectSteadyProgress<vtkGLSNormalEstimation>(makePolyData(c.points, {}), "normals (tree orientation)");
+  expectSteadyProgress<vtkGLSContinuousFeatures>(makePolyData(c), "continuous features");
+}
+
 TEST(Reliability, TwoInstancesInTwoThreadsGiveTheResultsTheyGiveAlone)
 {
   const Cloud a = sphere(20000, 1.0);

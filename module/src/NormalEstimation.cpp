@@ -60,10 +60,13 @@ bool pcaNormal2D(
   return finite3(&normal.x);
 }
 
-/// Smallest-eigenvalue eigenvector of the covariance of the neighbours (local coordinates around p); false when
-/// fewer than 3 neighbours or when the neighbours are (numerically) on a line or at one place.
-bool pcaNormal(const GridView& g, const Vec3& p, const std::vector<std::uint64_t>& neighbors, Vec3& normal)
+/// Smallest-eigenvalue eigenvector of the covariance of the neighbours (local coordinates around p) and the spread
+/// of the neighbourhood in its tangent plane (middle over largest eigenvalue: 0 on a line, 1 when isotropic); false
+/// when fewer than 3 neighbours or when the neighbours are (numerically) on a line or at one place.
+bool pcaNormal(
+  const GridView& g, const Vec3& p, const std::vector<std::uint64_t>& neighbors, Vec3& normal, double& spread)
 {
+  spread = kNaN;
   if (neighbors.size() < 3)
   {
     return false;
@@ -88,13 +91,35 @@ bool pcaNormal(const GridView& g, const Vec3& p, const std::vector<std::uint64_t
     return false;
   }
   const Eigen::Vector3d lambda = solver.eigenvalues(); // ascending
-  if (!(lambda(1) > 1e-12 * lambda(2)) || !(lambda(2) > 0.0))
+  if (!(lambda(2) > 0.0))
+  {
+    return false;
+  }
+  spread = std::max(lambda(1), 0.0) / lambda(2);
+  if (!(lambda(1) > 1e-12 * lambda(2)))
   {
     return false;
   }
   const Eigen::Vector3d v = solver.eigenvectors().col(0).normalized();
   normal = { v(0), v(1), v(2) };
   return finite3(&normal.x);
+}
+
+/// The neighbours of p: its k nearest points, or every point closer than radius (scratch reused).
+void gatherNeighbors(const NeighborGrid& grid, const Vec3& p, bool byRadius, int k, double radius,
+  std::vector<std::pair<double, std::uint64_t>>& knn, std::vector<std::uint64_t>& nb)
+{
+  nb.clear();
+  if (byRadius)
+  {
+    forEachInBall(grid.view(), p, radius, [&](std::uint64_t i, const Vec3&, double) { nb.push_back(i); });
+    return;
+  }
+  grid.kNearest(p, k, knn);
+  for (const auto& c : knn)
+  {
+    nb.push_back(c.second);
+  }
 }
 
 void flipIfNegative(double* n, double s)
@@ -107,14 +132,39 @@ void flipIfNegative(double* n, double s)
   }
 }
 
+/// Growth steps (each doubles the neighbour count) allowed by maximumGrowth.
+int adaptiveGrowthSteps(double maximumGrowth)
+{
+  int steps = 0;
+  while (steps < 30 && std::ldexp(1.0, steps + 1) <= maximumGrowth * (1.0 + 1e-12))
+  {
+    ++steps;
+  }
+  return steps;
+}
+
 } // namespace
+
+double reachableRadius(const NormalEstimationSettings& settings)
+{
+  return settings.radius * std::sqrt(std::ldexp(1.0, adaptiveGrowthSteps(settings.maximumGrowth)));
+}
+
+int reachableNeighbors(const NormalEstimationSettings& settings)
+{
+  const double k = std::ldexp(static_cast<double>(settings.k), adaptiveGrowthSteps(settings.maximumGrowth));
+  return static_cast<int>(std::min(k, 1e9));
+}
 
 bool estimateNormals(
   const double* xyz, std::size_t n, const NormalEstimationSettings& settings, NormalEstimationResult& result)
 {
   result.normals.assign(3 * n, kNaN);
   result.neighborCounts.assign(n, 0);
+  result.spread.assign(n, kNaN);
   result.components = 0;
+  result.grown = 0;
+  result.undefined = 0;
 
   const bool byRadius = settings.neighborhood == NeighborhoodType::Radius;
   // 2D input: every finite point in one plane z = const (a curve); its normals are in that plane.
@@ -132,52 +182,48 @@ bool estimateNormals(
   std::vector<std::vector<std::uint64_t>> scratch(static_cast<std::size_t>(threads));
   std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
 
-  ParallelOptions pcaOptions = settings.parallel;
-  if (settings.parallel.progress && settings.orientation == NormalOrientation::MinimumSpanningTree)
-  {
-    pcaOptions.progress = [&settings](double f) { return settings.parallel.progress(0.6 * f); };
-  }
-  const bool completed = parallelFor(g.count, pcaOptions, [&](std::size_t begin, std::size_t end, int t) {
-    std::vector<std::uint64_t>& nb = scratch[t];
-    for (std::size_t s = begin; s < end; ++s)
+  // Progress: the first neighbourhoods [0, 0.5], the grown ones [0.5, 0.6], the orientation [0.6, 1] (when it is
+  // the minimum spanning tree; else the estimate is the whole range).
+  const double estimateEnd = settings.orientation == NormalOrientation::MinimumSpanningTree ? 0.6 : 1.0;
+  auto stage = [&settings](double begin, double end) {
+    ParallelOptions o = settings.parallel;
+    if (settings.parallel.progress)
     {
-      const Vec3 p = g.points[s];
-      nb.clear();
-      if (byRadius)
+      o.progress = [&settings, begin, end](double f) { return settings.parallel.progress(begin + f * (end - begin)); };
+    }
+    return o;
+  };
+  const bool completed =
+    parallelFor(g.count, stage(0.0, 5.0 / 6.0 * estimateEnd), [&](std::size_t begin, std::size_t end, int t) {
+      std::vector<std::uint64_t>& nb = scratch[t];
+      for (std::size_t s = begin; s < end; ++s)
       {
-        forEachInBall(g, p, settings.radius, [&](std::uint64_t i, const Vec3&, double) { nb.push_back(i); });
-      }
-      else
-      {
-        grid.kNearest(p, settings.k, knn[t]);
-        for (const auto& c : knn[t])
+        const Vec3 p = g.points[s];
+        gatherNeighbors(grid, p, byRadius, settings.k, settings.radius, knn[t], nb);
+        const std::uint64_t id = g.ids[s];
+        result.neighborCounts[id] = static_cast<int>(nb.size());
+        Vec3 normal;
+        if (pcaNormal(g, p, nb, normal, result.spread[id]))
         {
-          nb.push_back(c.second);
+          result.normals[3 * id] = normal.x;
+          result.normals[3 * id + 1] = normal.y;
+          result.normals[3 * id + 2] = normal.z;
+        }
+        if (planar && pcaNormal2D(g, p, nb, normal, curveRatio[id]))
+        {
+          inPlane[3 * id] = normal.x;
+          inPlane[3 * id + 1] = normal.y;
+          inPlane[3 * id + 2] = normal.z;
         }
       }
-      const std::uint64_t id = g.ids[s];
-      result.neighborCounts[id] = static_cast<int>(nb.size());
-      Vec3 normal;
-      if (pcaNormal(g, p, nb, normal))
-      {
-        result.normals[3 * id] = normal.x;
-        result.normals[3 * id + 1] = normal.y;
-        result.normals[3 * id + 2] = normal.z;
-      }
-      if (planar && pcaNormal2D(g, p, nb, normal, curveRatio[id]))
-      {
-        inPlane[3 * id] = normal.x;
-        inPlane[3 * id + 1] = normal.y;
-        inPlane[3 * id + 2] = normal.z;
-      }
-    }
-  });
+    });
   if (!completed)
   {
     return false;
   }
   // Planar input whose neighbourhoods are mostly lines (median eigenvalue ratio below 0.05) is a 2D curve: its
   // normals lie in the plane.
+  bool curve = false;
   if (planar)
   {
     std::vector<double> finiteRatios;
@@ -194,8 +240,65 @@ bool estimateNormals(
       if (finiteRatios[finiteRatios.size() / 2] < 0.05)
       {
         result.normals = inPlane;
+        curve = true;
       }
     }
+  }
+
+  // Surfaces: a neighbourhood whose spread in its tangent plane is below minimumSpread (close to a line: a scan
+  // line, a latitude ring near a pole, three points on a meridian) does not define a normal. It grows (twice the
+  // neighbours, or sqrt(2) times the radius, each step) up to maximumGrowth; where none spans two dimensions the
+  // normal is NaN. Each point's outcome depends on its own neighbourhoods only (deterministic for any thread count).
+  std::vector<std::uint64_t> degenerate;
+  for (std::size_t s = 0; !curve && s < g.count; ++s)
+  {
+    const std::uint64_t id = g.ids[s];
+    if (!finite3(&result.normals[3 * id]) || !(result.spread[id] >= settings.minimumSpread))
+    {
+      degenerate.push_back(s);
+    }
+  }
+  const int steps = adaptiveGrowthSteps(settings.maximumGrowth);
+  std::vector<unsigned char> grew(degenerate.size(), 0);
+  const bool grown =
+    parallelFor(degenerate.size(), stage(5.0 / 6.0 * estimateEnd, estimateEnd), [&](std::size_t begin, std::size_t end, int t) {
+      std::vector<std::uint64_t>& nb = scratch[t];
+      for (std::size_t d = begin; d < end; ++d)
+      {
+        const std::size_t s = degenerate[d];
+        const Vec3 p = g.points[s];
+        const std::uint64_t id = g.ids[s];
+        Vec3 normal{ kNaN, kNaN, kNaN };
+        bool found = false;
+        for (int step = 1; step <= steps && !found; ++step)
+        {
+          const int k = static_cast<int>(std::min<double>(std::ldexp(static_cast<double>(settings.k), step), 1e9));
+          const double radius = settings.radius * std::sqrt(std::ldexp(1.0, step));
+          gatherNeighbors(grid, p, byRadius, k, radius, knn[t], nb);
+          result.neighborCounts[id] = static_cast<int>(nb.size());
+          found = pcaNormal(g, p, nb, normal, result.spread[id]) && result.spread[id] >= settings.minimumSpread;
+          if (!byRadius && nb.size() < static_cast<std::size_t>(k))
+          {
+            break; // every point is already in the neighbourhood
+          }
+        }
+        grew[d] = found ? 1 : 0;
+        result.normals[3 * id] = found ? normal.x : kNaN;
+        result.normals[3 * id + 1] = found ? normal.y : kNaN;
+        result.normals[3 * id + 2] = found ? normal.z : kNaN;
+      }
+    });
+  if (!grown)
+  {
+    return false;
+  }
+  for (unsigned char f : grew)
+  {
+    result.grown += f;
+  }
+  for (std::size_t s = 0; s < g.count; ++s)
+  {
+    result.undefined += finite3(&result.normals[3 * g.ids[s]]) ? 0 : 1;
   }
 
   double* normals = result.normals.data();
@@ -230,12 +333,7 @@ bool estimateNormals(
       break;
     case NormalOrientation::MinimumSpanningTree:
     {
-      ParallelOptions graph = settings.parallel;
-      if (settings.parallel.progress)
-      {
-        graph.progress = [&settings](double f) { return settings.parallel.progress(0.6 + 0.4 * f); };
-      }
-      if (!orientByMinimumSpanningTree(xyz, n, settings.graphNeighbors, normals, graph, result.components))
+      if (!orientByMinimumSpanningTree(xyz, n, settings.graphNeighbors, normals, stage(0.6, 1.0), result.components))
       {
         return false;
       }
@@ -243,6 +341,39 @@ bool estimateNormals(
     }
   }
   return true;
+}
+
+double medianKNearestDistance(const double* xyz, std::size_t n, int k, std::size_t samples)
+{
+  std::size_t finite = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    finite += finite3(xyz + 3 * i) ? 1 : 0;
+  }
+  if (finite < 2 || samples == 0)
+  {
+    return 0.0;
+  }
+  NeighborGrid grid;
+  grid.build(xyz, nullptr, n, NeighborGrid::suggestCellSizeForKNearest(xyz, n, k));
+  const std::size_t stride = std::max<std::size_t>(1, (n + samples - 1) / samples);
+  std::vector<std::pair<double, std::uint64_t>> knn;
+  std::vector<double> distances;
+  for (std::size_t i = 0; i < n; i += stride)
+  {
+    const double* p = xyz + 3 * i;
+    if (finite3(p))
+    {
+      grid.kNearest({ p[0], p[1], p[2] }, k, knn);
+      distances.push_back(std::sqrt(knn.back().first));
+    }
+  }
+  if (distances.empty())
+  {
+    return 0.0;
+  }
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+  return distances[distances.size() / 2];
 }
 
 double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOptions& parallel)
@@ -295,18 +426,22 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
   grid.build(xyz, nullptr, n, NeighborGrid::suggestCellSizeForKNearest(xyz, n, graphNeighbors + 1), usable.data());
   const GridView& g = grid.view();
 
-  // Symmetric k-NN adjacency in CSR form (original ids); the queries run on all threads, each writing its own slots.
+  // Symmetric k-NN adjacency in CSR form (original ids, each list sorted and without repeats); the queries and the
+  // sorting run on all threads, each writing its own slots, with progress (no step of the graph is silent for long).
   const std::uint64_t none = ~std::uint64_t(0);
   const std::size_t k = static_cast<std::size_t>(std::max(graphNeighbors, 1));
-  std::vector<std::pair<std::uint64_t, std::uint64_t>> edges(2 * g.count * k, { none, none });
+  std::vector<std::uint64_t> nearest(g.count * k, none); // by grid index: the k nearest others' original ids
   const int threads = resolveThreadCount(parallel.threads);
   std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
-  ParallelOptions graphOptions = parallel;
-  if (parallel.progress)
-  {
-    graphOptions.progress = [&parallel](double f) { return parallel.progress(0.5 * f); };
-  }
-  const bool built = parallelFor(g.count, graphOptions, [&](std::size_t begin, std::size_t end, int t) {
+  auto stage = [&parallel](double begin, double end) {
+    ParallelOptions o = parallel;
+    if (parallel.progress)
+    {
+      o.progress = [&parallel, begin, end](double f) { return parallel.progress(begin + f * (end - begin)); };
+    }
+    return o;
+  };
+  const bool queried = parallelFor(g.count, stage(0.0, 0.4), [&](std::size_t begin, std::size_t end, int t) {
     for (std::size_t s = begin; s < end; ++s)
     {
       grid.kNearest(g.points[s], graphNeighbors + 1, knn[t]);
@@ -315,29 +450,75 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
       {
         if (c.second != s && j < k)
         {
-          edges[2 * (s * k + j)] = { g.ids[s], g.ids[c.second] };
-          edges[2 * (s * k + j) + 1] = { g.ids[c.second], g.ids[s] };
-          ++j;
+          nearest[s * k + j++] = g.ids[c.second];
         }
       }
     }
   });
-  if (!built)
+  if (!queried)
   {
     return false;
   }
-  edges.erase(std::remove(edges.begin(), edges.end(), std::make_pair(none, none)), edges.end());
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   std::vector<std::size_t> start(n + 1, 0);
-  for (const auto& e : edges)
+  for (std::size_t s = 0; s < g.count; ++s)
   {
-    ++start[e.first + 1];
+    for (std::size_t j = 0; j < k && nearest[s * k + j] != none; ++j)
+    {
+      ++start[g.ids[s] + 1];
+      ++start[nearest[s * k + j] + 1];
+    }
   }
   for (std::size_t i = 0; i < n; ++i)
   {
     start[i + 1] += start[i];
   }
+  if (parallel.progress && parallel.progress(0.4))
+  {
+    return false;
+  }
+  std::vector<std::uint64_t> adjacency(start[n]);
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t s = 0; s < g.count; ++s)
+    {
+      const std::uint64_t u = g.ids[s];
+      for (std::size_t j = 0; j < k && nearest[s * k + j] != none; ++j)
+      {
+        const std::uint64_t v = nearest[s * k + j];
+        adjacency[fill[u]++] = v;
+        adjacency[fill[v]++] = u;
+      }
+    }
+  }
+  std::vector<std::uint64_t>().swap(nearest);
+  std::vector<std::size_t> kept(n, 0);
+  ParallelOptions sortOptions = stage(0.4, 0.5);
+  sortOptions.chunk = 4096;
+  const bool sorted = parallelFor(n, sortOptions, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t u = begin; u < end; ++u)
+    {
+      auto first = adjacency.begin() + static_cast<std::ptrdiff_t>(start[u]);
+      auto last = adjacency.begin() + static_cast<std::ptrdiff_t>(start[u + 1]);
+      std::sort(first, last);
+      kept[u] = static_cast<std::size_t>(std::unique(first, last) - first);
+    }
+  });
+  if (!sorted)
+  {
+    return false;
+  }
+  std::size_t write = 0;
+  for (std::size_t u = 0; u < n; ++u)
+  {
+    const std::size_t from = start[u];
+    start[u] = write;
+    std::copy(adjacency.begin() + static_cast<std::ptrdiff_t>(from),
+      adjacency.begin() + static_cast<std::ptrdiff_t>(from + kept[u]),
+      adjacency.begin() + static_cast<std::ptrdiff_t>(write));
+    write += kept[u];
+  }
+  start[n] = write;
+  adjacency.resize(write);
 
   auto normalOf = [normals](std::uint64_t i) { return normals + 3 * i; };
   auto cost = [&](std::uint64_t a, std::uint64_t b) {
@@ -348,7 +529,7 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
 
   std::vector<unsigned char> visited(n, 0);
   std::vector<std::uint64_t> component;
-  std::size_t oriented = 0;
+  std::size_t oriented = 0, popped = 0;
   for (std::size_t seed = 0; seed < n; ++seed)
   {
     if (!usable[seed] || visited[seed])
@@ -363,7 +544,7 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
       const std::uint64_t u = component[head];
       for (std::size_t e = start[u]; e < start[u + 1]; ++e)
       {
-        const std::uint64_t v = edges[e].second;
+        const std::uint64_t v = adjacency[e];
         if (!visited[v])
         {
           visited[v] = 1;
@@ -414,16 +595,18 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
     {
       const auto [c, u, parent] = frontier.top();
       frontier.pop();
+      // Progress per 65536 entries taken from the queue (the stale ones after the last node included).
+      if (++popped % 65536 == 0 && parallel.progress &&
+        parallel.progress(0.5 + 0.5 * static_cast<double>(oriented) / static_cast<double>(g.count)))
+      {
+        return false;
+      }
       if (visited[u])
       {
         continue;
       }
       visited[u] = 1;
-      if (++oriented % 65536 == 0 && parallel.progress &&
-        parallel.progress(0.5 + 0.5 * static_cast<double>(oriented) / static_cast<double>(g.count)))
-      {
-        return false;
-      }
+      ++oriented;
       if (u != parent)
       {
         const double* np = normalOf(parent);
@@ -432,7 +615,7 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
       }
       for (std::size_t e = start[u]; e < start[u + 1]; ++e)
       {
-        const std::uint64_t v = edges[e].second;
+        const std::uint64_t v = adjacency[e];
         if (!visited[v])
         {
           frontier.emplace(cost(u, v), v, u);

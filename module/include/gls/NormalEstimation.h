@@ -1,8 +1,11 @@
 // PCA normal estimation with orientation (the first step of every GLS pipeline).
 // The normal of a point is the eigenvector of the smallest eigenvalue of the covariance of its neighbourhood
 // (k nearest points including itself, or every point strictly inside a radius), computed in local coordinates.
-// Degenerate input: with fewer than 3 neighbours, or neighbours on a line (two vanishing eigenvalues), or a
-// non-finite position, the normal is NaN (documented, never a silent value). 2D input (every finite point in one
+// Degenerate neighbourhoods: the spread of a neighbourhood is its middle covariance eigenvalue over the largest (0 on a
+// line, 1 when isotropic in the tangent plane). Below minimumSpread (a scan line, a latitude ring near a pole, three
+// points along a meridian) it does not define a normal: the neighbourhood grows (twice the neighbours, or sqrt(2)
+// times the radius, per step) up to maximumGrowth times the neighbours; where none reaches the spread, and where a
+// point has fewer than 3 neighbours or a non-finite position, the normal is NaN (documented, never a silent value). 2D input (every finite point in one
 // plane z = const) whose neighbourhoods are mostly lines (median ratio of the 2D covariance eigenvalues below
 // 0.05) is a 2D curve: its normals are the in-plane perpendiculars (z component 0); a planar patch keeps the plane's
 // normal.
@@ -43,20 +46,35 @@ struct NormalEstimationSettings
   Vec3 viewpoint{ 0.0, 0.0, 0.0 };  ///< for TowardsPoint / AwayFromPoint
   const double* reference = nullptr; ///< 3 n reference normals for AgreeWithReference
   int graphNeighbors = 10;          ///< k of the k-NN graph used by MinimumSpanningTree
+  double minimumSpread = 0.05;      ///< a neighbourhood with a smaller spread is degenerate (0: only lines)
+  double maximumGrowth = 8.0;       ///< largest factor on the neighbour count when growing (1: no growth)
   ParallelOptions parallel;
 };
 
 struct NormalEstimationResult
 {
   std::vector<double> normals;      ///< 3 n components; NaN where undefined
-  std::vector<int> neighborCounts;  ///< neighbours used per point
+  std::vector<int> neighborCounts;  ///< neighbours used per point (those of the last neighbourhood tried)
+  std::vector<double> spread;       ///< per point: the spread of that neighbourhood (NaN with < 3 neighbours)
   std::size_t components = 0;       ///< MinimumSpanningTree: connected components oriented
+  std::size_t grown = 0;            ///< points whose normal came from a grown neighbourhood
+  std::size_t undefined = 0;        ///< points with finite coordinates and a NaN normal
 };
 
 /// Estimates (and orients) the normals of n interleaved points. Returns false if aborted through the progress
 /// callback (the result is then incomplete and must not be used).
 bool estimateNormals(const double* xyz, std::size_t n, const NormalEstimationSettings& settings,
   NormalEstimationResult& result);
+
+/// How far the neighbourhoods of these settings can reach after growing: the k of the largest k-nearest
+/// neighbourhood, and the largest radius (for the ghost band of a distributed run).
+int reachableNeighbors(const NormalEstimationSettings& settings);
+double reachableRadius(const NormalEstimationSettings& settings);
+
+/// The median, over up to `samples` points taken at a regular stride (deterministic), of the distance from a point
+/// to its k-th nearest point (itself included): a radius that holds about k points (the automatic Radius).
+/// 0 when there are fewer than 2 finite points.
+double medianKNearestDistance(const double* xyz, std::size_t n, int k, std::size_t samples);
 
 /// The largest distance from a point with finite coordinates to its k-th nearest point (itself included): how far
 /// the k-nearest neighbourhoods of these points reach. Infinity when there are fewer than k finite points, 0 when
