@@ -111,6 +111,24 @@ class PluginProxies(unittest.TestCase):
         for p in (s, d, n):
             simple.Delete(p)
 
+    def test_an_unstructured_grid_and_a_multiblock_are_in_every_filters_input_domain(self):
+        # The GUI greys out a filter whose input domain refuses the selected source (once vtkPolyData only).
+        grid = simple.AppendDatasets(Input=simple.Sphere())  # a vtkUnstructuredGrid
+        group = simple.GroupDatasets(Input=[simple.Sphere(), simple.Sphere(Center=[2, 0, 0])])
+        for source, kind in ((grid, 'vtkUnstructuredGrid'), (group, 'vtkMultiBlockDataSet')):
+            source.UpdatePipeline()
+            self.assertEqual(source.GetDataInformation().GetDataSetTypeAsString(), kind)
+            for name in ('GLSNormalEstimation', 'GLSScaleSpace', 'GLSGeometricVariation', 'GLSContinuousFeatures',
+                         'GLSMultiScaleDissimilarity', 'GLSAdaptiveBandwidth', 'GLSProjection'):
+                f = NS[name](Input=source)
+                domain = f.SMProxy.GetProperty('Input').FindDomain('vtkSMDataTypeDomain')
+                self.assertTrue(domain.IsInDomain(source.SMProxy, 0), (name, kind))
+                simple.Delete(f)
+        normals = NS['GLSNormalEstimation'](Input=grid)
+        normals.UpdatePipeline()
+        self.assertEqual(normals.GetDataInformation().GetDataSetTypeAsString(), 'vtkUnstructuredGrid')
+        simple.Delete(normals)
+
     def test_scale_space_on_a_sphere(self):
         src = producer(polydata(self.points, self.normals))
         s = NS['GLSScaleSpace'](Input=src, ScaleUnits='Absolute', MinScale=0.4, MaxScale=2.0, NumberOfScales=5,
