@@ -36,6 +36,8 @@ vtkGLSNormalEstimation::vtkGLSNormalEstimation()
   , GraphNeighbors(10)
   , MinimumSpread(0.05)
   , MaximumGrowth(8.0)
+  , Refinement(NO_REFINEMENT)
+  , RefinementScale(1.5)
 {
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::NORMALS);
@@ -66,6 +68,12 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
                   "processes: set Radius to a length (a serial run records the automatic one in GLSNormalRadius).");
     return FAILED;
   }
+  if (this->Refinement == GLS_REFINEMENT && dist.IsParallel())
+  {
+    vtkErrorMacro("Refinement GLS is not supported on several processes: run the normal estimation on one "
+                  "process, or without refinement.");
+    return FAILED;
+  }
   if (dist.IsParallel())
   {
     const gls::PlaneZ plane = gls::commonZ(run.Cloud.Points.data(), run.Cloud.Owned);
@@ -89,24 +97,53 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
   settings.parallel.threads = this->NumberOfThreads;
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 0.9); };
 
+  // AGREE_WITH_EXISTING follows the selected normals; TOWARDS_VIEWPOINT_ARRAY follows the directions from each point
+  // to its viewpoint (the same rule: n . reference >= 0).
   std::vector<double> reference;
-  if (this->Orientation == AGREE_WITH_EXISTING)
+  if (this->Orientation == AGREE_WITH_EXISTING || this->Orientation == TOWARDS_VIEWPOINT_ARRAY)
   {
+    const bool viewpoints = this->Orientation == TOWARDS_VIEWPOINT_ARRAY;
     std::string problem;
     bool absent = false;
-    vtkDataArray* existing = n > 0 ? this->SelectNormals(0, input, problem, absent) : nullptr;
+    vtkDataArray* existing = nullptr;
+    if (n > 0 && viewpoints)
+    {
+      existing = this->SelectedArrayName(1) ? this->SelectNormals(1, input, problem, absent) : nullptr;
+      if (!this->SelectedArrayName(1))
+      {
+        problem = "no viewpoint array is selected";
+      }
+    }
+    else if (n > 0)
+    {
+      existing = this->SelectNormals(0, input, problem, absent);
+    }
     if (!dist.AllTrue(existing || (dist.IsParallel() && n == 0)))
     {
-      vtkErrorMacro("AGREE_WITH_EXISTING needs existing normals (a floating-point 3-component point array with one "
-                    "tuple per point; select it with SetInputArrayToProcess, or set active normals): "
-                    << (problem.empty() ? "another process has none" : problem) << ".");
+      if (viewpoints)
+      {
+        vtkErrorMacro("TOWARDS_VIEWPOINT_ARRAY needs the scanner position of every point (a floating-point "
+                      "3-component point array; select it with SetInputArrayToProcess(1, ...)): "
+                      << (problem.empty() ? "another process has none" : problem) << ".");
+      }
+      else
+      {
+        vtkErrorMacro("AGREE_WITH_EXISTING needs existing normals (a floating-point 3-component point array with "
+                      "one tuple per point; select it with SetInputArrayToProcess, or set active normals): "
+                      << (problem.empty() ? "another process has none" : problem) << ".");
+      }
       return FAILED;
     }
     reference.resize(3 * static_cast<std::size_t>(n));
     for (vtkIdType i = 0; i < n; ++i)
     {
       existing->GetTuple(i, &reference[3 * i]);
+      for (int a = 0; viewpoints && a < 3; ++a)
+      {
+        reference[3 * i + a] -= run.Cloud.Points[3 * i + a]; // towards the viewpoint
+      }
     }
+    settings.orientation = gls::NormalOrientation::AgreeWithReference;
   }
 
   gls::NormalEstimationResult result;
@@ -138,6 +175,15 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
     if (!gls::estimateNormals(run.Cloud.Points.data(), run.Cloud.Owned, settings, result))
     {
       return ABORTED; // the output is the input, without partial normals
+    }
+    std::size_t refined = 0;
+    gls::ParallelOptions refinement = settings.parallel;
+    refinement.progress = [this](double f) { return this->ReportProgress(f, 0.9, 0.99); };
+    if (this->Refinement == GLS_REFINEMENT &&
+      !gls::refineNormalsByGls(run.Cloud.Points.data(), run.Cloud.Owned, result.reach, this->RefinementScale,
+        result.normals.data(), refinement, refined))
+    {
+      return ABORTED;
     }
   }
   this->WriteNormals(run, settings, result);
@@ -316,4 +362,6 @@ void vtkGLSNormalEstimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "GraphNeighbors: " << this->GraphNeighbors << "\n";
   os << indent << "MinimumSpread: " << this->MinimumSpread << "\n";
   os << indent << "MaximumGrowth: " << this->MaximumGrowth << "\n";
+  os << indent << "Refinement: " << (this->Refinement == GLS_REFINEMENT ? "GLS" : "None") << "\n";
+  os << indent << "RefinementScale: " << this->RefinementScale << "\n";
 }

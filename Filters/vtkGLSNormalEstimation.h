@@ -15,7 +15,10 @@
  *   its point farthest from its centroid, oriented away from the centroid (outward on closed shapes).
  * - AGREE_WITH_EXISTING: flipped to agree with the normals selected by SetInputArrayToProcess(0, ...) (default: the
  *   active normals), e.g. a scanner's normals whose length or accuracy is poor; points whose existing normal is not
- *   finite keep the solver's sign.
+ *   finite keep the solver's sign. A per-point view direction (from the point towards its scanner) is such an array.
+ * - TOWARDS_VIEWPOINT_ARRAY: facing each point's own viewpoint, the position of the scanner that saw it, read from
+ *   the point array selected by SetInputArrayToProcess(1, ...) (3 components, floating point, input coordinates;
+ *   merged scans carry it). Points whose viewpoint is not finite keep the solver's sign.
  *
  * Degenerate neighbourhoods (gls/NormalEstimation.h): the spread of a neighbourhood is its middle covariance
  * eigenvalue over the largest, 0 on a line, 1 when isotropic in the tangent plane. Scanner sampling (dense along scan
@@ -72,13 +75,19 @@ public:
     K_NEAREST = 0,
     RADIUS = 1
   };
+  enum RefinementModes
+  {
+    NO_REFINEMENT = 0,
+    GLS_REFINEMENT = 1
+  };
   enum OrientationModes
   {
     NONE = 0,
     TOWARDS_POINT = 1,
     AWAY_FROM_POINT = 2,
     MINIMUM_SPANNING_TREE = 3,
-    AGREE_WITH_EXISTING = 4
+    AGREE_WITH_EXISTING = 4,
+    TOWARDS_VIEWPOINT_ARRAY = 5
   };
 
   ///@{
@@ -104,6 +113,25 @@ public:
   ///@}
 
   ///@{
+  /// Refinement of the oriented normals: NO_REFINEMENT (default, the PCA normals) or GLS_REFINEMENT, where each
+  /// normal becomes eta of the GLS oriented-sphere fit of its neighbours' points and (PCA, oriented) normals at the
+  /// scale RefinementScale times the distance to the farthest neighbour its PCA used: the sphere follows the
+  /// curvature that the PCA plane ignores. A point whose fit is undefined keeps its PCA normal. Serial runs only (a
+  /// distributed run with GLS_REFINEMENT is an error).
+  vtkSetClampMacro(Refinement, int, NO_REFINEMENT, GLS_REFINEMENT);
+  vtkGetMacro(Refinement, int);
+  void SetRefinementToNone() { this->SetRefinement(NO_REFINEMENT); }
+  void SetRefinementToGLS() { this->SetRefinement(GLS_REFINEMENT); }
+  ///@}
+
+  ///@{
+  /// The scale of the GLS refinement, as a factor on each point's PCA neighbourhood radius (dimensionless, default
+  /// 1.5, from 0.5 to 10).
+  vtkSetClampMacro(RefinementScale, double, 0.5, 10.0);
+  vtkGetMacro(RefinementScale, double);
+  ///@}
+
+  ///@{
   /// The spread (middle over largest covariance eigenvalue) below which a neighbourhood is degenerate and grows;
   /// dimensionless in [0, 1], default 0.05. 0 treats only exact lines as degenerate.
   vtkSetClampMacro(MinimumSpread, double, 0.0, 1.0);
@@ -121,13 +149,14 @@ public:
 
   ///@{
   /// Orientation mode (default MINIMUM_SPANNING_TREE).
-  vtkSetClampMacro(Orientation, int, NONE, AGREE_WITH_EXISTING);
+  vtkSetClampMacro(Orientation, int, NONE, TOWARDS_VIEWPOINT_ARRAY);
   vtkGetMacro(Orientation, int);
   void SetOrientationToNone() { this->SetOrientation(NONE); }
   void SetOrientationToTowardsPoint() { this->SetOrientation(TOWARDS_POINT); }
   void SetOrientationToAwayFromPoint() { this->SetOrientation(AWAY_FROM_POINT); }
   void SetOrientationToMinimumSpanningTree() { this->SetOrientation(MINIMUM_SPANNING_TREE); }
   void SetOrientationToAgreeWithExisting() { this->SetOrientation(AGREE_WITH_EXISTING); }
+  void SetOrientationToTowardsViewpointArray() { this->SetOrientation(TOWARDS_VIEWPOINT_ARRAY); }
   ///@}
 
   ///@{
@@ -167,6 +196,8 @@ protected:
   int GraphNeighbors;
   double MinimumSpread;
   double MaximumGrowth;
+  int Refinement;
+  double RefinementScale;
 
 private:
   vtkGLSNormalEstimation(const vtkGLSNormalEstimation&) = delete;

@@ -128,6 +128,14 @@ ScannerScan simulateScanner(vtkPolyData* mesh, const ScannerSettings& settings)
         }
         double n[3];
         cellNormals->GetTuple(cell, n);
+        // The side the ray sees: outward on a closed surface scanned from outside, whatever the file's winding.
+        if (n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0.0)
+        {
+          n[0] = -n[0];
+          n[1] = -n[1];
+          n[2] = -n[2];
+          ++scan.FlippedTriangles;
+        }
         scan.Points.insert(scan.Points.end(), x, x + 3);
         scan.Normals.insert(scan.Normals.end(), n, n + 3);
         scan.Viewpoints.insert(scan.Viewpoints.end(), p.begin(), p.end());

@@ -1,7 +1,8 @@
 // A simulated terrestrial scanner: rays from one or more positions on a regular angular grid, denser along the scan
 // lines than across them, each keeping its first hit on a triangle mesh. What scanners give and what the normal
 // estimation must survive: anisotropic sampling (the Anisotropy option), occlusion, one-sided views. The hit
-// triangle's normal is the ground truth; the scanner position of every point is kept (merged scans carry it).
+// triangle's normal, turned to the side the scanner sees, is the ground truth; the scanner position of every point is
+// kept (merged scans carry it).
 #pragma once
 
 #include "vtkSmartPointer.h"
@@ -26,9 +27,11 @@ struct ScannerSettings
 struct ScannerScan
 {
   std::vector<double> Points;      ///< 3 per hit
-  std::vector<double> Normals;     ///< 3 per hit: the unit normal of the hit triangle (the mesh's orientation)
+  std::vector<double> Normals;     ///< 3 per hit: the unit normal of the hit triangle, turned towards the ray's
+                                   ///< origin (the side a first hit sees: outward on a closed surface)
   std::vector<double> Viewpoints;  ///< 3 per hit: the position of the scanner that saw it
   std::vector<long long> Cells;    ///< the hit triangle
+  std::size_t FlippedTriangles = 0; ///< hits whose triangle the file winds facing away from the scanner
   std::size_t Size() const { return this->Points.size() / 3; }
 };
 

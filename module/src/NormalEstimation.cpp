@@ -3,6 +3,7 @@
 #include "gls/NeighborGrid.h"
 #include "gls/Numeric.h"
 #include "gls/Planarity.h"
+#include "gls/PointScaleSpace.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -105,6 +106,18 @@ bool pcaNormal(
   return finite3(&normal.x);
 }
 
+/// The distance from p to the farthest of its neighbours (0 without any).
+double farthest(const GridView& g, const Vec3& p, const std::vector<std::uint64_t>& neighbors)
+{
+  double d2 = 0.0;
+  for (std::uint64_t i : neighbors)
+  {
+    const Vec3 x = g.points[i] - p;
+    d2 = std::max(d2, x.x * x.x + x.y * x.y + x.z * x.z);
+  }
+  return std::sqrt(d2);
+}
+
 /// The neighbours of p: its k nearest points, or every point closer than radius (scratch reused).
 void gatherNeighbors(const NeighborGrid& grid, const Vec3& p, bool byRadius, int k, double radius,
   std::vector<std::pair<double, std::uint64_t>>& knn, std::vector<std::uint64_t>& nb)
@@ -162,6 +175,7 @@ bool estimateNormals(
   result.normals.assign(3 * n, kNaN);
   result.neighborCounts.assign(n, 0);
   result.spread.assign(n, kNaN);
+  result.reach.assign(n, kNaN);
   result.components = 0;
   result.grown = 0;
   result.undefined = 0;
@@ -202,6 +216,7 @@ bool estimateNormals(
         gatherNeighbors(grid, p, byRadius, settings.k, settings.radius, knn[t], nb);
         const std::uint64_t id = g.ids[s];
         result.neighborCounts[id] = static_cast<int>(nb.size());
+        result.reach[id] = farthest(g, p, nb);
         Vec3 normal;
         if (pcaNormal(g, p, nb, normal, result.spread[id]))
         {
@@ -276,6 +291,7 @@ bool estimateNormals(
           const double radius = settings.radius * std::sqrt(std::ldexp(1.0, step));
           gatherNeighbors(grid, p, byRadius, k, radius, knn[t], nb);
           result.neighborCounts[id] = static_cast<int>(nb.size());
+          result.reach[id] = farthest(g, p, nb);
           found = pcaNormal(g, p, nb, normal, result.spread[id]) && result.spread[id] >= settings.minimumSpread;
           if (!byRadius && nb.size() < static_cast<std::size_t>(k))
           {
@@ -339,6 +355,61 @@ bool estimateNormals(
       }
       break;
     }
+  }
+  return true;
+}
+
+bool refineNormalsByGls(const double* xyz, std::size_t n, const std::vector<double>& reach, double factor,
+  double* normals, const ParallelOptions& parallel, std::size_t& refined)
+{
+  refined = 0;
+  std::vector<double> scales;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (std::isfinite(reach[i]) && reach[i] > 0.0)
+    {
+      scales.push_back(factor * reach[i]);
+    }
+  }
+  if (scales.empty())
+  {
+    return true;
+  }
+  std::nth_element(scales.begin(), scales.begin() + scales.size() / 2, scales.end());
+  std::vector<double> unit;
+  std::vector<unsigned char> admit;
+  normalizeAndAdmit(xyz, normals, n, unit, admit);
+  NeighborGrid grid;
+  grid.build(xyz, unit.data(), n, scales[scales.size() / 2], admit.data());
+  const GridView& g = grid.view();
+  std::vector<double> out(normals, normals + 3 * n);
+  std::vector<unsigned char> changed(n, 0);
+  const bool completed = parallelFor(n, parallel, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const double t = factor * reach[i];
+      if (!admit[i] || !(t > 0.0) || !std::isfinite(t))
+      {
+        continue;
+      }
+      const ScaleSample s = evaluateOneScale(g, { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] }, t, 4.0);
+      if (s.valid && finite3(&s.eta.x))
+      {
+        out[3 * i] = s.eta.x;
+        out[3 * i + 1] = s.eta.y;
+        out[3 * i + 2] = s.eta.z;
+        changed[i] = 1;
+      }
+    }
+  });
+  if (!completed)
+  {
+    return false;
+  }
+  std::copy(out.begin(), out.end(), normals);
+  for (unsigned char c : changed)
+  {
+    refined += c;
   }
   return true;
 }

@@ -56,6 +56,7 @@ struct NormalEstimationResult
   std::vector<double> normals;      ///< 3 n components; NaN where undefined
   std::vector<int> neighborCounts;  ///< neighbours used per point (those of the last neighbourhood tried)
   std::vector<double> spread;       ///< per point: the spread of that neighbourhood (NaN with < 3 neighbours)
+  std::vector<double> reach;        ///< per point: the distance to its farthest neighbour used (length)
   std::size_t components = 0;       ///< MinimumSpanningTree: connected components oriented
   std::size_t grown = 0;            ///< points whose normal came from a grown neighbourhood
   std::size_t undefined = 0;        ///< points with finite coordinates and a NaN normal
@@ -65,6 +66,14 @@ struct NormalEstimationResult
 /// callback (the result is then incomplete and must not be used).
 bool estimateNormals(const double* xyz, std::size_t n, const NormalEstimationSettings& settings,
   NormalEstimationResult& result);
+
+/// GLS refinement of oriented normals (3 n, in place): each point's normal becomes eta of the oriented-sphere fit of
+/// its neighbours' points and normals at the scale `factor` times reach[i] (the neighbourhood the PCA used), which
+/// follows the curvature that a plane fit ignores. A point whose fit is undefined (fewer than 4 neighbours with
+/// normals, non-finite reach) keeps its normal; `refined` receives the count of refined normals. Deterministic;
+/// false if aborted through the progress callback.
+bool refineNormalsByGls(const double* xyz, std::size_t n, const std::vector<double>& reach, double factor,
+  double* normals, const ParallelOptions& parallel, std::size_t& refined);
 
 /// How far the neighbourhoods of these settings can reach after growing: the k of the largest k-nearest
 /// neighbourhood, and the largest radius (for the ghost band of a distributed run).
