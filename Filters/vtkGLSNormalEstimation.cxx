@@ -299,16 +299,19 @@ bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<dou
   // Minimum spanning tree over the whole cloud, on rank 0, in global-id order (the serial order): each distinct
   // position of this piece goes with the global id of its first copy.
   const std::vector<long long> ids = dist.GlobalIds(run.Input);
-  std::vector<double> rows(7 * owned);
+  // Columns: global id, position, unoriented normal, the node's degree in the tree's graph.
+  constexpr int W = 8;
+  std::vector<double> rows(W * owned);
   for (std::size_t u = 0; u < owned; ++u)
   {
-    rows[7 * u] = static_cast<double>(ids[cloud.IsMerged() ? cloud.Copies.distinct[u] : u]);
-    std::copy(&cloud.Points[3 * u], &cloud.Points[3 * u] + 3, &rows[7 * u + 1]);
-    std::copy(&result.normals[3 * u], &result.normals[3 * u] + 3, &rows[7 * u + 4]);
+    rows[W * u] = static_cast<double>(ids[cloud.IsMerged() ? cloud.Copies.distinct[u] : u]);
+    std::copy(&cloud.Points[3 * u], &cloud.Points[3 * u] + 3, &rows[W * u + 1]);
+    std::copy(&result.normals[3 * u], &result.normals[3 * u] + 3, &rows[W * u + 4]);
+    rows[W * u + 7] = static_cast<double>(estimate.graphDegree[u]);
   }
   std::vector<double> all;
   std::vector<long long> counts;
-  if (!dist.GatherRows(rows, 7, 0, all, counts))
+  if (!dist.GatherRows(rows, W, 0, all, counts))
   {
     vtkErrorMacro("Gathering the points on rank 0 for the minimum-spanning-tree orientation failed.");
     return false;
@@ -316,23 +319,26 @@ bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<dou
   std::vector<double> oriented;
   if (dist.GetRank() == 0)
   {
-    const std::size_t total = all.size() / 7;
+    const std::size_t total = all.size() / W;
     std::vector<std::size_t> order(total);
     std::iota(order.begin(), order.end(), std::size_t(0));
     std::stable_sort(order.begin(), order.end(),
-      [&all](std::size_t a, std::size_t b) { return all[7 * a] < all[7 * b]; });
-    std::vector<double> sortedXyz(3 * total), sortedNormals(3 * total);
+      [&all](std::size_t a, std::size_t b) { return all[W * a] < all[W * b]; });
+    std::vector<double> sortedXyz(3 * total), sortedNormals(3 * total), sortedDegrees(total);
     for (std::size_t j = 0; j < total; ++j)
     {
-      std::copy(&all[7 * order[j] + 1], &all[7 * order[j] + 4], &sortedXyz[3 * j]);
-      std::copy(&all[7 * order[j] + 4], &all[7 * order[j] + 7], &sortedNormals[3 * j]);
+      std::copy(&all[W * order[j] + 1], &all[W * order[j] + 4], &sortedXyz[3 * j]);
+      std::copy(&all[W * order[j] + 4], &all[W * order[j] + 7], &sortedNormals[3 * j]);
+      sortedDegrees[j] = all[W * order[j] + 7];
     }
     // A position held by several pieces is one node of the tree, as in a serial run.
     const gls::CoincidentPoints shared = gls::findCoincidentPoints(sortedXyz.data(), total);
     std::vector<double> xyz = gls::distinctValues(shared, sortedXyz.data(), 3);
     std::vector<double> normals = gls::distinctValues(shared, sortedNormals.data(), 3);
-    gls::orientByMinimumSpanningTree(
-      xyz.data(), xyz.size() / 3, settings.graphNeighbors, normals.data(), settings.parallel, result.components);
+    const std::vector<double> degreeValues = gls::distinctValues(shared, sortedDegrees.data(), 1);
+    const std::vector<int> degrees(degreeValues.begin(), degreeValues.end());
+    gls::orientByMinimumSpanningTree(xyz.data(), xyz.size() / 3, settings.graphNeighbors, normals.data(),
+      settings.parallel, result.components, degrees.data());
     gls::scatterToCopies(shared, normals.data(), 3, sortedNormals.data());
     oriented.resize(3 * total);
     for (std::size_t j = 0; j < total; ++j)

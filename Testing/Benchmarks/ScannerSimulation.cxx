@@ -128,6 +128,7 @@ ScannerScan simulateScanner(vtkPolyData* mesh, const ScannerSettings& settings)
         }
         double n[3];
         cellNormals->GetTuple(cell, n);
+        scan.WoundNormals.insert(scan.WoundNormals.end(), n, n + 3);
         // The side the ray sees: outward on a closed surface scanned from outside, whatever the file's winding.
         if (n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0.0)
         {

@@ -29,6 +29,8 @@ struct ScannerScan
   std::vector<double> Points;      ///< 3 per hit
   std::vector<double> Normals;     ///< 3 per hit: the unit normal of the hit triangle, turned towards the ray's
                                    ///< origin (the side a first hit sees: outward on a closed surface)
+  std::vector<double> WoundNormals; ///< 3 per hit: the hit triangle's normal as the file winds it (outward on a
+                                    ///< consistently wound closed mesh, whichever side the scanner sees)
   std::vector<double> Viewpoints;  ///< 3 per hit: the position of the scanner that saw it
   std::vector<long long> Cells;    ///< the hit triangle
   std::size_t FlippedTriangles = 0; ///< hits whose triangle the file winds facing away from the scanner

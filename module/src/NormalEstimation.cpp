@@ -176,6 +176,7 @@ bool estimateNormals(
   result.neighborCounts.assign(n, 0);
   result.spread.assign(n, kNaN);
   result.reach.assign(n, kNaN);
+  result.graphDegree.assign(n, settings.graphNeighbors);
   result.components = 0;
   result.grown = 0;
   result.undefined = 0;
@@ -275,6 +276,7 @@ bool estimateNormals(
   }
   const int steps = adaptiveGrowthSteps(settings.maximumGrowth);
   std::vector<unsigned char> grew(degenerate.size(), 0);
+  std::vector<int> graphDegree(n, settings.graphNeighbors); // the tree's graph grows with the neighbourhood
   const bool grown =
     parallelFor(degenerate.size(), stage(5.0 / 6.0 * estimateEnd, estimateEnd), [&](std::size_t begin, std::size_t end, int t) {
       std::vector<std::uint64_t>& nb = scratch[t];
@@ -287,6 +289,7 @@ bool estimateNormals(
         bool found = false;
         for (int step = 1; step <= steps && !found; ++step)
         {
+          graphDegree[id] = static_cast<int>(std::min<double>(std::ldexp(settings.graphNeighbors, step), 1e6));
           const int k = static_cast<int>(std::min<double>(std::ldexp(static_cast<double>(settings.k), step), 1e9));
           const double radius = settings.radius * std::sqrt(std::ldexp(1.0, step));
           gatherNeighbors(grid, p, byRadius, k, radius, knn[t], nb);
@@ -312,6 +315,7 @@ bool estimateNormals(
   {
     result.grown += f;
   }
+  result.graphDegree = graphDegree;
   for (std::size_t s = 0; s < g.count; ++s)
   {
     result.undefined += finite3(&result.normals[3 * g.ids[s]]) ? 0 : 1;
@@ -349,7 +353,8 @@ bool estimateNormals(
       break;
     case NormalOrientation::MinimumSpanningTree:
     {
-      if (!orientByMinimumSpanningTree(xyz, n, settings.graphNeighbors, normals, stage(0.6, 1.0), result.components))
+      if (!orientByMinimumSpanningTree(
+            xyz, n, settings.graphNeighbors, normals, stage(0.6, 1.0), result.components, graphDegree.data()))
       {
         return false;
       }
@@ -484,7 +489,7 @@ double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOpti
 }
 
 bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,
-  const ParallelOptions& parallel, std::size_t& components)
+  const ParallelOptions& parallel, std::size_t& components, const int* degrees)
 {
   components = 0;
   // Graph nodes: points with a finite position and a finite normal.
@@ -500,8 +505,14 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
   // Symmetric k-NN adjacency in CSR form (original ids, each list sorted and without repeats); the queries and the
   // sorting run on all threads, each writing its own slots, with progress (no step of the graph is silent for long).
   const std::uint64_t none = ~std::uint64_t(0);
-  const std::size_t k = static_cast<std::size_t>(std::max(graphNeighbors, 1));
-  std::vector<std::uint64_t> nearest(g.count * k, none); // by grid index: the k nearest others' original ids
+  // Each node's out-degree (graphNeighbors, or its own larger count) and its slots in `nearest`.
+  std::vector<std::size_t> slot(g.count + 1, 0);
+  for (std::size_t s = 0; s < g.count; ++s)
+  {
+    const int d = degrees ? std::max(graphNeighbors, degrees[g.ids[s]]) : graphNeighbors;
+    slot[s + 1] = slot[s] + static_cast<std::size_t>(std::max(d, 1));
+  }
+  std::vector<std::uint64_t> nearest(slot[g.count], none); // by grid index: the nearest others' original ids
   const int threads = resolveThreadCount(parallel.threads);
   std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
   auto stage = [&parallel](double begin, double end) {
@@ -515,13 +526,14 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
   const bool queried = parallelFor(g.count, stage(0.0, 0.4), [&](std::size_t begin, std::size_t end, int t) {
     for (std::size_t s = begin; s < end; ++s)
     {
-      grid.kNearest(g.points[s], graphNeighbors + 1, knn[t]);
+      const std::size_t k = slot[s + 1] - slot[s];
+      grid.kNearest(g.points[s], static_cast<int>(k) + 1, knn[t]);
       std::size_t j = 0;
       for (const auto& c : knn[t])
       {
         if (c.second != s && j < k)
         {
-          nearest[s * k + j++] = g.ids[c.second];
+          nearest[slot[s] + j++] = g.ids[c.second];
         }
       }
     }
@@ -533,10 +545,10 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
   std::vector<std::size_t> start(n + 1, 0);
   for (std::size_t s = 0; s < g.count; ++s)
   {
-    for (std::size_t j = 0; j < k && nearest[s * k + j] != none; ++j)
+    for (std::size_t j = slot[s]; j < slot[s + 1] && nearest[j] != none; ++j)
     {
       ++start[g.ids[s] + 1];
-      ++start[nearest[s * k + j] + 1];
+      ++start[nearest[j] + 1];
     }
   }
   for (std::size_t i = 0; i < n; ++i)
@@ -553,9 +565,9 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
     for (std::size_t s = 0; s < g.count; ++s)
     {
       const std::uint64_t u = g.ids[s];
-      for (std::size_t j = 0; j < k && nearest[s * k + j] != none; ++j)
+      for (std::size_t j = slot[s]; j < slot[s + 1] && nearest[j] != none; ++j)
       {
-        const std::uint64_t v = nearest[s * k + j];
+        const std::uint64_t v = nearest[j];
         adjacency[fill[u]++] = v;
         adjacency[fill[v]++] = u;
       }
@@ -592,11 +604,15 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
   adjacency.resize(write);
 
   auto normalOf = [normals](std::uint64_t i) { return normals + 3 * i; };
-  auto cost = [&](std::uint64_t a, std::uint64_t b) {
+  // Comparing a node's normal with its parent's. (Carrying the parent's normal along the edge, reflected in the
+  // plane bisecting it, keeps the two faces of a thin sheet apart, but noise along the normals of the order of the
+  // spacing turns it around: measured, a noisy sphere came out inward. Not used.)
+  auto agreement = [&](std::uint64_t a, std::uint64_t b) {
     const double* na = normalOf(a);
     const double* nb = normalOf(b);
-    return 1.0 - std::abs(na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2]);
+    return na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2];
   };
+  auto cost = [&](std::uint64_t a, std::uint64_t b) { return 1.0 - std::abs(agreement(a, b)); };
 
   std::vector<unsigned char> visited(n, 0);
   std::vector<std::uint64_t> component;
@@ -680,9 +696,7 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
       ++oriented;
       if (u != parent)
       {
-        const double* np = normalOf(parent);
-        double* nu = normalOf(u);
-        flipIfNegative(nu, nu[0] * np[0] + nu[1] * np[1] + nu[2] * np[2]);
+        flipIfNegative(normalOf(u), agreement(parent, u));
       }
       for (std::size_t e = start[u]; e < start[u + 1]; ++e)
       {

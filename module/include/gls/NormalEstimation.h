@@ -57,6 +57,7 @@ struct NormalEstimationResult
   std::vector<int> neighborCounts;  ///< neighbours used per point (those of the last neighbourhood tried)
   std::vector<double> spread;       ///< per point: the spread of that neighbourhood (NaN with < 3 neighbours)
   std::vector<double> reach;        ///< per point: the distance to its farthest neighbour used (length)
+  std::vector<int> graphDegree;     ///< per point: k of its node in the tree's graph (graphNeighbors x growth)
   std::size_t components = 0;       ///< MinimumSpanningTree: connected components oriented
   std::size_t grown = 0;            ///< points whose normal came from a grown neighbourhood
   std::size_t undefined = 0;        ///< points with finite coordinates and a NaN normal
@@ -92,9 +93,11 @@ double medianKNearestDistance(const double* xyz, std::size_t n, int k, std::size
 double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOptions& parallel);
 
 /// Orients unit normals (3 n, NaN allowed) in place by MST propagation over the k-NN graph of the points (graph
-/// queries on parallel.threads threads). `components` receives the number of connected components. Returns false
+/// queries on parallel.threads threads). `degrees` (n, or null) raises a point's k above graphNeighbors: the
+/// estimate passes graphNeighbors times the growth of the point's neighbourhood, so that the graph of a scan reaches
+/// across the lines where the neighbourhoods had to. `components` receives the number of connected components. Returns false
 /// if the progress callback asked to abort (the normals are then partly oriented and must not be used).
 bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,
-  const ParallelOptions& parallel, std::size_t& components);
+  const ParallelOptions& parallel, std::size_t& components, const int* degrees = nullptr);
 
 } // namespace gls
