@@ -45,7 +45,7 @@ vtkSmartPointer<vtkPolyData> trianglesWithCellNormals(vtkPolyData* mesh)
   vtkNew<vtkPolyDataNormals> normals;
   normals->SetInputConnection(triangles->GetOutputPort());
   normals->ComputeCellNormalsOn();
-  normals->ComputePointNormalsOff();
+  normals->ComputePointNormalsOn();
   normals->SplittingOff();
   normals->ConsistencyOff(); // the file's own orientation
   normals->AutoOrientNormalsOff();
@@ -62,6 +62,8 @@ ScannerScan simulateScanner(vtkPolyData* mesh, const ScannerSettings& settings)
   ScannerScan scan;
   vtkSmartPointer<vtkPolyData> tri = trianglesWithCellNormals(mesh);
   vtkDataArray* cellNormals = tri->GetCellData()->GetNormals();
+  vtkDataArray* pointNormals = tri->GetPointData()->GetNormals();
+  vtkNew<vtkIdList> corners;
   if (tri->GetNumberOfCells() == 0 || !cellNormals)
   {
     return scan;
@@ -129,6 +131,26 @@ ScannerScan simulateScanner(vtkPolyData* mesh, const ScannerSettings& settings)
         double n[3];
         cellNormals->GetTuple(cell, n);
         scan.WoundNormals.insert(scan.WoundNormals.end(), n, n + 3);
+        // The smooth normal: the corners' vertex normals, barycentric weights (1 - r - s, r, s).
+        tri->GetCellPoints(cell, corners);
+        double smooth[3] = { 0, 0, 0 };
+        const double weights[3] = { 1.0 - pcoords[0] - pcoords[1], pcoords[0], pcoords[1] };
+        for (int c = 0; c < 3 && corners->GetNumberOfIds() == 3; ++c)
+        {
+          double v[3];
+          pointNormals->GetTuple(corners->GetId(c), v);
+          for (int a = 0; a < 3; ++a)
+          {
+            smooth[a] += weights[c] * v[a];
+          }
+        }
+        const double length = std::sqrt(smooth[0] * smooth[0] + smooth[1] * smooth[1] + smooth[2] * smooth[2]);
+        const double turn = smooth[0] * d[0] + smooth[1] * d[1] + smooth[2] * d[2] > 0.0 ? -1.0 : 1.0;
+        for (int a = 0; a < 3; ++a)
+        {
+          smooth[a] = length > 0.0 ? turn * smooth[a] / length : std::nan("");
+        }
+        scan.SmoothNormals.insert(scan.SmoothNormals.end(), smooth, smooth + 3);
         // The side the ray sees: outward on a closed surface scanned from outside, whatever the file's winding.
         if (n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0.0)
         {

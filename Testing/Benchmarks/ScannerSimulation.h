@@ -31,6 +31,8 @@ struct ScannerScan
                                    ///< origin (the side a first hit sees: outward on a closed surface)
   std::vector<double> WoundNormals; ///< 3 per hit: the hit triangle's normal as the file winds it (outward on a
                                     ///< consistently wound closed mesh, whichever side the scanner sees)
+  std::vector<double> SmoothNormals; ///< 3 per hit: the mesh's vertex normals (area-weighted) interpolated at the
+                                     ///< hit, turned like Normals: the smooth surface the facets approximate
   std::vector<double> Viewpoints;  ///< 3 per hit: the position of the scanner that saw it
   std::vector<long long> Cells;    ///< the hit triangle
   std::size_t FlippedTriangles = 0; ///< hits whose triangle the file winds facing away from the scanner
