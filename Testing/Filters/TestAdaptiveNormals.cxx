@@ -60,6 +60,26 @@ double radialAngle(vtkPolyData* pd, vtkDataArray* normals, vtkIdType i)
   return std::acos(std::max(-1.0, std::min(1.0, c))) / kDegree;
 }
 
+/// A bundled mesh (Testing/Data) and its scan by the default simulated scanner with samplesAlong rays per line.
+struct ScannedMesh
+{
+  vtkSmartPointer<vtkPolyData> Mesh;
+  ScannerScan Scan;
+};
+
+ScannedMesh scanMesh(const std::string& file, int samplesAlong)
+{
+  vtkNew<vtkOBJReader> reader;
+  reader->SetFileName(dataFile(file).c_str());
+  reader->Update();
+  ScannedMesh out;
+  out.Mesh = reader->GetOutput();
+  ScannerSettings settings;
+  settings.SamplesAlong = samplesAlong;
+  out.Scan = simulateScanner(out.Mesh, settings);
+  return out;
+}
+
 /// Counts the warning events of an object.
 vtkSmartPointer<ErrorCatcher> catchWarnings(vtkObject* o)
 {
@@ -388,15 +408,11 @@ TEST(AdaptiveNormals, ScannerSamplingOfACADPartAwayFromCreases)
   // fandisk scanned from two positions, 10:1 denser along the scan lines: away from the creases the default normals
   // are within 5 degrees of the hit triangles' (turned to the scanner) far more often than the plain 16 nearest, and
   // facing each point's scanner orients all of them.
-  vtkNew<vtkOBJReader> reader;
-  reader->SetFileName(dataFile("fandisk.obj").c_str());
-  reader->Update();
-  ScannerSettings settings;
-  settings.SamplesAlong = 600;
-  const ScannerScan scan = simulateScanner(reader->GetOutput(), settings);
+  const ScannedMesh fandisk = scanMesh("fandisk.obj", 600);
+  const ScannerScan& scan = fandisk.Scan;
   ASSERT_GT(scan.Size(), 20000u);
-  const std::vector<double> creases = distanceToCreases(reader->GetOutput(), scan, 30.0);
-  const double margin = 0.01 * reader->GetOutput()->GetLength();
+  const std::vector<double> creases = distanceToCreases(fandisk.Mesh, scan, 30.0);
+  const double margin = 0.01 * fandisk.Mesh->GetLength();
   auto input = scanAsPolyData(scan);
   auto score = [&](const std::function<void(vtkGLSNormalEstimation*)>& set, double& wrong) {
     vtkNew<vtkGLSNormalEstimation> normals;
@@ -450,12 +466,7 @@ TEST(AdaptiveNormals, ScannedBunnyIsOrientedLikeTheFileByTheTree)
   // The bunny scanned from two positions: the tree's graph grows with the neighbourhoods (ten neighbours along a
   // scan line never reach the next line), so one consistent orientation covers the scan: the file's outward
   // winding at (almost) every point.
-  vtkNew<vtkOBJReader> reader;
-  reader->SetFileName(dataFile("stanford-bunny.obj").c_str());
-  reader->Update();
-  ScannerSettings settings;
-  settings.SamplesAlong = 1200;
-  const ScannerScan scan = simulateScanner(reader->GetOutput(), settings);
+  const ScannerScan scan = scanMesh("stanford-bunny.obj", 1200).Scan;
   ASSERT_GT(scan.Size(), 30000u);
   vtkNew<vtkGLSNormalEstimation> normals;
   normals->SetInputData(scanAsPolyData(scan));
