@@ -148,13 +148,13 @@ protected:
   /// the field data) and, when some do anywhere, says so in one warning (on rank 0). Collective.
   void NoteCoincidentPoints(vtkGLSRun& run, std::size_t merged);
 
-  /// Writes what the run reports in the output's field data: GLSGhostPoints (the ghosts this rank used, in a
-  /// distributed run that exchanged them), GLSCoincidentPoints (points merged into another, when some were) and
-  /// GLSBackend (where the fits ran, when a fit ran).
   /// A progress report at the current fraction between two silent steps of a long run (so that the GUI stays
   /// responsive and an abort is seen); true when the run is to be aborted.
   bool Heartbeat();
 
+  /// Writes what the run reports in the output's field data: GLSGhostPoints (the ghosts this rank used, in a
+  /// distributed run that exchanged them), GLSCoincidentPoints (points merged into another, when some were) and
+  /// GLSBackend (where the fits ran, when a fit ran).
   static void WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd);
 
   int NumberOfThreads;

@@ -106,17 +106,13 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
     std::string problem;
     bool absent = false;
     vtkDataArray* existing = nullptr;
-    if (n > 0 && viewpoints)
+    if (n > 0 && viewpoints && !this->SelectedArrayName(1))
     {
-      existing = this->SelectedArrayName(1) ? this->SelectNormals(1, input, problem, absent) : nullptr;
-      if (!this->SelectedArrayName(1))
-      {
-        problem = "no viewpoint array is selected";
-      }
+      problem = "no viewpoint array is selected"; // no automatic choice: any 3-vector array could be taken
     }
     else if (n > 0)
     {
-      existing = this->SelectNormals(0, input, problem, absent);
+      existing = this->SelectNormals(viewpoints ? 1 : 0, input, problem, absent);
     }
     if (!dist.AllTrue(existing || (dist.IsParallel() && n == 0)))
     {
@@ -176,12 +172,11 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
     {
       return ABORTED; // the output is the input, without partial normals
     }
-    std::size_t refined = 0;
     gls::ParallelOptions refinement = settings.parallel;
     refinement.progress = [this](double f) { return this->ReportProgress(f, 0.9, 0.99); };
     if (this->Refinement == GLS_REFINEMENT &&
       !gls::refineNormalsByGls(run.Cloud.Points.data(), run.Cloud.Owned, result.reach, this->RefinementScale,
-        result.normals.data(), refinement, refined))
+        result.normals.data(), refinement))
     {
       return ABORTED;
     }

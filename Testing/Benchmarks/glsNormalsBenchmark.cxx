@@ -297,19 +297,9 @@ int main(int argc, char* argv[])
     trueScanNormals->DeepCopy(scanned->GetPointData()->GetArray("TrueNormals"));
     trueScanNormals->SetName("Normals");
     auto features = [threads](vtkPolyData* in, bool estimate) {
-      vtkNew<vtkGLSNormalEstimation> normals;
-      normals->SetInputData(in);
-      normals->SetNumberOfThreads(threads);
       vtkNew<vtkGLSContinuousFeatures> f;
       f->SetNumberOfThreads(threads);
-      if (estimate)
-      {
-        f->SetInputConnection(normals->GetOutputPort());
-      }
-      else
-      {
-        f->SetInputData(in);
-      }
+      f->SetInputData(estimate ? glsNormals(in, threads, [](vtkGLSNormalEstimation*) {}).GetPointer() : in);
       f->Update();
       vtkDataArray* a = f->GetOutput()->GetPointData()->GetArray("GLSFeature");
       std::vector<double> v(static_cast<std::size_t>(a->GetNumberOfTuples()));

@@ -156,17 +156,39 @@ int adaptiveGrowthSteps(double maximumGrowth)
   return steps;
 }
 
+/// A neighbour count (the k of the neighbourhood, or of the tree's graph) after `step` growth steps: doubled each.
+int grownCount(int count, int step)
+{
+  return static_cast<int>(std::min(std::ldexp(static_cast<double>(count), step), 1e9));
+}
+
+/// The radius after `step` growth steps: sqrt(2) times per step (twice the neighbours on a surface).
+double grownRadius(double radius, int step)
+{
+  return radius * std::sqrt(std::ldexp(1.0, step));
+}
+
+/// The options of one stage of a run: the same threads, progress mapped to [begin, end] of the caller's.
+ParallelOptions progressStage(const ParallelOptions& parallel, double begin, double end)
+{
+  ParallelOptions o = parallel;
+  if (parallel.progress)
+  {
+    o.progress = [&parallel, begin, end](double f) { return parallel.progress(begin + f * (end - begin)); };
+  }
+  return o;
+}
+
 } // namespace
 
 double reachableRadius(const NormalEstimationSettings& settings)
 {
-  return settings.radius * std::sqrt(std::ldexp(1.0, adaptiveGrowthSteps(settings.maximumGrowth)));
+  return grownRadius(settings.radius, adaptiveGrowthSteps(settings.maximumGrowth));
 }
 
 int reachableNeighbors(const NormalEstimationSettings& settings)
 {
-  const double k = std::ldexp(static_cast<double>(settings.k), adaptiveGrowthSteps(settings.maximumGrowth));
-  return static_cast<int>(std::min(k, 1e9));
+  return grownCount(settings.k, adaptiveGrowthSteps(settings.maximumGrowth));
 }
 
 bool estimateNormals(
@@ -176,10 +198,8 @@ bool estimateNormals(
   result.neighborCounts.assign(n, 0);
   result.spread.assign(n, kNaN);
   result.reach.assign(n, kNaN);
-  result.graphDegree.assign(n, settings.graphNeighbors);
+  result.graphDegree.assign(n, settings.graphNeighbors); // the tree's graph grows with the neighbourhood
   result.components = 0;
-  result.grown = 0;
-  result.undefined = 0;
 
   const bool byRadius = settings.neighborhood == NeighborhoodType::Radius;
   // 2D input: every finite point in one plane z = const (a curve); its normals are in that plane.
@@ -200,16 +220,8 @@ bool estimateNormals(
   // Progress: the first neighbourhoods [0, 0.5], the grown ones [0.5, 0.6], the orientation [0.6, 1] (when it is
   // the minimum spanning tree; else the estimate is the whole range).
   const double estimateEnd = settings.orientation == NormalOrientation::MinimumSpanningTree ? 0.6 : 1.0;
-  auto stage = [&settings](double begin, double end) {
-    ParallelOptions o = settings.parallel;
-    if (settings.parallel.progress)
-    {
-      o.progress = [&settings, begin, end](double f) { return settings.parallel.progress(begin + f * (end - begin)); };
-    }
-    return o;
-  };
   const bool completed =
-    parallelFor(g.count, stage(0.0, 5.0 / 6.0 * estimateEnd), [&](std::size_t begin, std::size_t end, int t) {
+    parallelFor(g.count, progressStage(settings.parallel, 0.0, 5.0 / 6.0 * estimateEnd), [&](std::size_t begin, std::size_t end, int t) {
       std::vector<std::uint64_t>& nb = scratch[t];
       for (std::size_t s = begin; s < end; ++s)
       {
@@ -275,10 +287,8 @@ bool estimateNormals(
     }
   }
   const int steps = adaptiveGrowthSteps(settings.maximumGrowth);
-  std::vector<unsigned char> grew(degenerate.size(), 0);
-  std::vector<int> graphDegree(n, settings.graphNeighbors); // the tree's graph grows with the neighbourhood
-  const bool grown =
-    parallelFor(degenerate.size(), stage(5.0 / 6.0 * estimateEnd, estimateEnd), [&](std::size_t begin, std::size_t end, int t) {
+  const ParallelOptions growthStage = progressStage(settings.parallel, 5.0 / 6.0 * estimateEnd, estimateEnd);
+  const bool grown = parallelFor(degenerate.size(), growthStage, [&](std::size_t begin, std::size_t end, int t) {
       std::vector<std::uint64_t>& nb = scratch[t];
       for (std::size_t d = begin; d < end; ++d)
       {
@@ -289,10 +299,9 @@ bool estimateNormals(
         bool found = false;
         for (int step = 1; step <= steps && !found; ++step)
         {
-          graphDegree[id] = static_cast<int>(std::min<double>(std::ldexp(settings.graphNeighbors, step), 1e6));
-          const int k = static_cast<int>(std::min<double>(std::ldexp(static_cast<double>(settings.k), step), 1e9));
-          const double radius = settings.radius * std::sqrt(std::ldexp(1.0, step));
-          gatherNeighbors(grid, p, byRadius, k, radius, knn[t], nb);
+          result.graphDegree[id] = grownCount(settings.graphNeighbors, step);
+          const int k = grownCount(settings.k, step);
+          gatherNeighbors(grid, p, byRadius, k, grownRadius(settings.radius, step), knn[t], nb);
           result.neighborCounts[id] = static_cast<int>(nb.size());
           result.reach[id] = farthest(g, p, nb);
           found = pcaNormal(g, p, nb, normal, result.spread[id]) && result.spread[id] >= settings.minimumSpread;
@@ -301,7 +310,6 @@ bool estimateNormals(
             break; // every point is already in the neighbourhood
           }
         }
-        grew[d] = found ? 1 : 0;
         result.normals[3 * id] = found ? normal.x : kNaN;
         result.normals[3 * id + 1] = found ? normal.y : kNaN;
         result.normals[3 * id + 2] = found ? normal.z : kNaN;
@@ -310,15 +318,6 @@ bool estimateNormals(
   if (!grown)
   {
     return false;
-  }
-  for (unsigned char f : grew)
-  {
-    result.grown += f;
-  }
-  result.graphDegree = graphDegree;
-  for (std::size_t s = 0; s < g.count; ++s)
-  {
-    result.undefined += finite3(&result.normals[3 * g.ids[s]]) ? 0 : 1;
   }
 
   double* normals = result.normals.data();
@@ -353,8 +352,8 @@ bool estimateNormals(
       break;
     case NormalOrientation::MinimumSpanningTree:
     {
-      if (!orientByMinimumSpanningTree(
-            xyz, n, settings.graphNeighbors, normals, stage(0.6, 1.0), result.components, graphDegree.data()))
+      if (!orientByMinimumSpanningTree(xyz, n, settings.graphNeighbors, normals,
+            progressStage(settings.parallel, 0.6, 1.0), result.components, result.graphDegree.data()))
       {
         return false;
       }
@@ -365,9 +364,8 @@ bool estimateNormals(
 }
 
 bool refineNormalsByGls(const double* xyz, std::size_t n, const std::vector<double>& reach, double factor,
-  double* normals, const ParallelOptions& parallel, std::size_t& refined)
+  double* normals, const ParallelOptions& parallel)
 {
-  refined = 0;
   std::vector<double> scales;
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -388,7 +386,6 @@ bool refineNormalsByGls(const double* xyz, std::size_t n, const std::vector<doub
   grid.build(xyz, unit.data(), n, scales[scales.size() / 2], admit.data());
   const GridView& g = grid.view();
   std::vector<double> out(normals, normals + 3 * n);
-  std::vector<unsigned char> changed(n, 0);
   const bool completed = parallelFor(n, parallel, [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t i = begin; i < end; ++i)
     {
@@ -403,7 +400,6 @@ bool refineNormalsByGls(const double* xyz, std::size_t n, const std::vector<doub
         out[3 * i] = s.eta.x;
         out[3 * i + 1] = s.eta.y;
         out[3 * i + 2] = s.eta.z;
-        changed[i] = 1;
       }
     }
   });
@@ -412,10 +408,6 @@ bool refineNormalsByGls(const double* xyz, std::size_t n, const std::vector<doub
     return false;
   }
   std::copy(out.begin(), out.end(), normals);
-  for (unsigned char c : changed)
-  {
-    refined += c;
-  }
   return true;
 }
 
@@ -515,15 +507,7 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
   std::vector<std::uint64_t> nearest(slot[g.count], none); // by grid index: the nearest others' original ids
   const int threads = resolveThreadCount(parallel.threads);
   std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
-  auto stage = [&parallel](double begin, double end) {
-    ParallelOptions o = parallel;
-    if (parallel.progress)
-    {
-      o.progress = [&parallel, begin, end](double f) { return parallel.progress(begin + f * (end - begin)); };
-    }
-    return o;
-  };
-  const bool queried = parallelFor(g.count, stage(0.0, 0.4), [&](std::size_t begin, std::size_t end, int t) {
+  const bool queried = parallelFor(g.count, progressStage(parallel, 0.0, 0.4), [&](std::size_t begin, std::size_t end, int t) {
     for (std::size_t s = begin; s < end; ++s)
     {
       const std::size_t k = slot[s + 1] - slot[s];
@@ -575,7 +559,7 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
   }
   std::vector<std::uint64_t>().swap(nearest);
   std::vector<std::size_t> kept(n, 0);
-  ParallelOptions sortOptions = stage(0.4, 0.5);
+  ParallelOptions sortOptions = progressStage(parallel, 0.4, 0.5);
   sortOptions.chunk = 4096;
   const bool sorted = parallelFor(n, sortOptions, [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t u = begin; u < end; ++u)

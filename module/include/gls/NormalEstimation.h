@@ -5,10 +5,10 @@
 // line, 1 when isotropic in the tangent plane). Below minimumSpread (a scan line, a latitude ring near a pole, three
 // points along a meridian) it does not define a normal: the neighbourhood grows (twice the neighbours, or sqrt(2)
 // times the radius, per step) up to maximumGrowth times the neighbours; where none reaches the spread, and where a
-// point has fewer than 3 neighbours or a non-finite position, the normal is NaN (documented, never a silent value). 2D input (every finite point in one
-// plane z = const) whose neighbourhoods are mostly lines (median ratio of the 2D covariance eigenvalues below
-// 0.05) is a 2D curve: its normals are the in-plane perpendiculars (z component 0); a planar patch keeps the plane's
-// normal.
+// point has fewer than 3 neighbours or a non-finite position, the normal is NaN (documented, never a silent value).
+// 2D input (every finite point in one plane z = const) whose neighbourhoods are mostly lines (median ratio of the
+// 2D covariance eigenvalues below 0.05) is a 2D curve: its normals are the in-plane perpendiculars (z component 0),
+// not grown; a planar patch keeps the plane's normal.
 #pragma once
 
 #include "gls/ParallelFor.h"
@@ -59,8 +59,6 @@ struct NormalEstimationResult
   std::vector<double> reach;        ///< per point: the distance to its farthest neighbour used (length)
   std::vector<int> graphDegree;     ///< per point: k of its node in the tree's graph (graphNeighbors x growth)
   std::size_t components = 0;       ///< MinimumSpanningTree: connected components oriented
-  std::size_t grown = 0;            ///< points whose normal came from a grown neighbourhood
-  std::size_t undefined = 0;        ///< points with finite coordinates and a NaN normal
 };
 
 /// Estimates (and orients) the normals of n interleaved points. Returns false if aborted through the progress
@@ -71,10 +69,9 @@ bool estimateNormals(const double* xyz, std::size_t n, const NormalEstimationSet
 /// GLS refinement of oriented normals (3 n, in place): each point's normal becomes eta of the oriented-sphere fit of
 /// its neighbours' points and normals at the scale `factor` times reach[i] (the neighbourhood the PCA used), which
 /// follows the curvature that a plane fit ignores. A point whose fit is undefined (fewer than 4 neighbours with
-/// normals, non-finite reach) keeps its normal; `refined` receives the count of refined normals. Deterministic;
-/// false if aborted through the progress callback.
+/// normals, non-finite reach) keeps its normal. Deterministic; false if aborted through the progress callback.
 bool refineNormalsByGls(const double* xyz, std::size_t n, const std::vector<double>& reach, double factor,
-  double* normals, const ParallelOptions& parallel, std::size_t& refined);
+  double* normals, const ParallelOptions& parallel);
 
 /// How far the neighbourhoods of these settings can reach after growing: the k of the largest k-nearest
 /// neighbourhood, and the largest radius (for the ghost band of a distributed run).
@@ -95,8 +92,8 @@ double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOpti
 /// Orients unit normals (3 n, NaN allowed) in place by MST propagation over the k-NN graph of the points (graph
 /// queries on parallel.threads threads). `degrees` (n, or null) raises a point's k above graphNeighbors: the
 /// estimate passes graphNeighbors times the growth of the point's neighbourhood, so that the graph of a scan reaches
-/// across the lines where the neighbourhoods had to. `components` receives the number of connected components. Returns false
-/// if the progress callback asked to abort (the normals are then partly oriented and must not be used).
+/// across the lines where the neighbourhoods had to. `components` receives the number of connected components.
+/// Returns false if the progress callback asked to abort (the normals are then partly oriented and must not be used).
 bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,
   const ParallelOptions& parallel, std::size_t& components, const int* degrees = nullptr);
 
