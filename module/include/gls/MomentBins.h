@@ -58,25 +58,23 @@ GLS_INLINE double neighborCount(const Moments& a)
   return a.m[0];
 }
 
-/// Weighted sums at scale t (s) and their t-derivatives (ds) from the moments of the ball of radius t.
-GLS_INLINE void weightedSumsFromMoments(const Moments& a, double t, WeightedSums& s, WeightedSums& ds)
+/// The weight as a polynomial in d^2 at scale t: w = 1 + c1 d^2 + c2 d^4 and dw/dt = e1 d^2 + e2 d^4 (inside the
+/// ball). Shared by every moment layout, so that the exact and the multi-resolution sums use the same coefficients.
+struct WeightPolynomial
+{
+  double c1, c2, e1, e2;
+};
+
+GLS_INLINE WeightPolynomial weightPolynomial(double t)
 {
   const double it2 = 1.0 / (t * t);
   const double it4 = it2 * it2;
-  const double c0 = 1.0, c1 = -2.0 * it2, c2 = it4;          // w    = c0 + c1 d^2 + c2 d^4
-  const double e1 = 4.0 * it2 / t, e2 = -4.0 * it4 / t;      // dw/dt =      e1 d^2 + e2 d^4
-  double v[kMomentValues + 1];
-  double dv[kMomentValues + 1];
-  for (int j = 0; j < kMomentValues; ++j)
-  {
-    const double a0 = a.m[j], a1 = a.m[kMomentValues + j], a2 = a.m[2 * kMomentValues + j];
-    v[j] = c0 * a0 + c1 * a1 + c2 * a2;
-    dv[j] = e1 * a1 + e2 * a2;
-  }
-  // |x|^2 = d^2: its moments are sum d^2, sum d^4 and sum d^6.
-  const double p0 = a.m[kMomentValues], p1 = a.m[2 * kMomentValues], p2 = a.m[3 * kMomentValues];
-  v[kMomentValues] = c0 * p0 + c1 * p1 + c2 * p2;
-  dv[kMomentValues] = e1 * p1 + e2 * p2;
+  return { -2.0 * it2, it4, 4.0 * it2 / t, -4.0 * it4 / t };
+}
+
+/// Writes the nine values (1, x, n, x.n, |x|^2) weighted by w (v) and by dw/dt (dv) into s and ds.
+GLS_INLINE void assignWeightedSums(const double* v, const double* dv, WeightedSums& s, WeightedSums& ds)
+{
   s.W = v[0];
   s.P = { v[1], v[2], v[3] };
   s.N = { v[4], v[5], v[6] };
@@ -87,6 +85,26 @@ GLS_INLINE void weightedSumsFromMoments(const Moments& a, double t, WeightedSums
   ds.N = { dv[4], dv[5], dv[6] };
   ds.PN = dv[7];
   ds.PP = dv[8];
+}
+
+/// Weighted sums at scale t (s) and their t-derivatives (ds) from the moments of the ball of radius t.
+GLS_INLINE void weightedSumsFromMoments(const Moments& a, double t, WeightedSums& s, WeightedSums& ds)
+{
+  const WeightPolynomial w = weightPolynomial(t);
+  const double c0 = 1.0;
+  double v[kMomentValues + 1];
+  double dv[kMomentValues + 1];
+  for (int j = 0; j < kMomentValues; ++j)
+  {
+    const double a0 = a.m[j], a1 = a.m[kMomentValues + j], a2 = a.m[2 * kMomentValues + j];
+    v[j] = c0 * a0 + w.c1 * a1 + w.c2 * a2;
+    dv[j] = w.e1 * a1 + w.e2 * a2;
+  }
+  // |x|^2 = d^2: its moments are sum d^2, sum d^4 and sum d^6.
+  const double p0 = a.m[kMomentValues], p1 = a.m[2 * kMomentValues], p2 = a.m[3 * kMomentValues];
+  v[kMomentValues] = c0 * p0 + w.c1 * p1 + w.c2 * p2;
+  dv[kMomentValues] = w.e1 * p1 + w.e2 * p2;
+  assignWeightedSums(v, dv, s, ds);
 }
 
 } // namespace gls

@@ -72,10 +72,14 @@ GLS_INLINE int firstScaleHolding(const ScaleBinning& b, double d2)
 }
 
 /// Turns the S bins of one evaluation point into its S samples: a running sum over the bins gives the moments of
-/// the ball of each scales[k] (the bins are left as they are), and one fit per scale.
-GLS_INLINE void fitAllScalesFromBins(const ScaleBinning& b, double minNeighbors, const Moments* bins, ScaleSample* out)
+/// the ball of each scales[k] (the bins are left as they are), and one fit per scale. MomentSet is Moments (the
+/// exact pass) or AggregateMoments (the multi-resolution pass): both give clearMoments, addMoments,
+/// weightedSumsFromMoments and neighborCount.
+template <typename MomentSet>
+GLS_INLINE void fitAllScalesFromBins(
+  const ScaleBinning& b, double minNeighbors, const MomentSet* bins, ScaleSample* out)
 {
-  Moments ball;
+  MomentSet ball;
   clearMoments(ball);
   for (int k = 0; k < b.count; ++k)
   {

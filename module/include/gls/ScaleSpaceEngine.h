@@ -5,6 +5,8 @@
 #pragma once
 
 #include "gls/Backend.h"
+#include "gls/Evaluation.h"
+#include "gls/MultiresolutionCloud.h"
 #include "gls/NeighborGrid.h"
 #include "gls/ParallelFor.h"
 #include "gls/PointScaleSpace.h"
@@ -28,12 +30,25 @@ public:
   virtual void consume(std::uint64_t pointId, const ScaleSample* samples, int threadIndex) = 0;
 };
 
+/// The multi-resolution evaluation's parameters (used when ScaleSpaceSettings::evaluation is Multiresolution).
+/// A distributed run passes the global box and spacing, so that every piece lays its pyramid out like a serial run.
+struct MultiresolutionSettings
+{
+  double accuracy = kDefaultAccuracy; ///< epsilon: a cell is one sample where edge <= epsilon * distance
+  double spacing = 0.0;               ///< typical neighbour distance (length unit); 0: estimated from the points
+  bool haveBounds = false;            ///< low/high given (else the admitted points' box)
+  double low[3] = { 0.0, 0.0, 0.0 };
+  double high[3] = { 0.0, 0.0, 0.0 };
+};
+
 struct ScaleSpaceSettings
 {
   std::vector<double> scales;   ///< strictly increasing absolute scales (see checkScaleList)
   double minNeighbors = 6.0;    ///< fits with fewer neighbours in the ball are invalid (3 suits 2D curves)
   ParallelOptions parallel;
   std::size_t deviceChunkLimit = 0; ///< CUDA: at most this many points per device pass (0 = as memory allows)
+  Evaluation evaluation = Evaluation::Exact; ///< how each ball's moments are evaluated
+  MultiresolutionSettings multiresolution;
 };
 
 /// What a run did: the backend that computed the samples and, when a CUDA run fell back to the CPU, why.
@@ -52,18 +67,25 @@ enum class EvaluationMethod
 class ScaleSpaceEngine
 {
 public:
-  /// points, normals: count interleaved xyz triples (copied into the grid; the caller's buffers need not outlive
-  /// the constructor).
+  /// points, normals: count interleaved xyz triples (copied into the grid or pyramid; the caller's buffers need not
+  /// outlive the constructor). A multi-resolution engine builds its pyramid here on settings.parallel's threads,
+  /// reporting settings.parallel.progress; when that asks to abort, the engine is left empty (buildAborted()).
   ScaleSpaceEngine(const double* points, const double* normals, std::size_t count, ScaleSpaceSettings settings);
 
   std::size_t pointCount() const { return this->Positions.size(); }
   const std::vector<double>& scales() const { return this->Settings.scales; }
+  Evaluation evaluation() const { return this->Settings.evaluation; }
+  /// True when the progress callback stopped the pyramid's build (run() then returns false at once).
+  bool buildAborted() const { return this->BuildAborted; }
+  /// The multi-resolution pyramid (empty for an exact engine).
+  const MultiresolutionCloud& pyramid() const { return this->Pyramid; }
   /// The order a run without ids evaluates the points in (grid order first, for locality; then the points left out
   /// of the grid). A caller that evaluates a subset (e.g. the owned points of a distributed piece, not its ghosts)
   /// keeps locality by filtering this order.
   const std::vector<std::uint64_t>& evaluationOrder() const { return this->Order; }
 
-  /// Evaluates the given points (all when ids is null) and feeds the sink. `parallel` overrides the settings'
+  /// Evaluates the given points (all when ids is null) and feeds the sink. A multi-resolution engine runs its pass
+  /// whatever `method` says (the per-scale reference is of the exact evaluation). `parallel` overrides the settings'
   /// threads and progress callback for this run. `backend` Auto or CUDA runs the one-pass method on the CUDA
   /// device when one is usable and falls back to the CPU otherwise (or on any CUDA error), saying why in `report`.
   /// Returns false if aborted.
@@ -76,6 +98,7 @@ public:
 
 private:
   ScaleBinning binning() const;
+  void buildPyramid(const double* points, const double* unitNormals, std::size_t count, const unsigned char* admit);
   /// The CUDA run: false with `reason` on a CUDA failure (nothing was fed to the sink), false with `aborted` set
   /// when the progress callback asked to stop.
   bool runOnDevice(ScaleSampleSink& sink, const std::vector<std::uint64_t>& order, const ParallelOptions& options,
@@ -86,7 +109,9 @@ private:
   BinningTable BinTable;
   std::vector<Vec3> Positions;          ///< all input positions (NaN allowed)
   std::vector<std::uint64_t> Order;     ///< evaluation order: grid order first (locality), then the rest
-  NeighborGrid Grid;
+  NeighborGrid Grid;                    ///< exact evaluation
+  MultiresolutionCloud Pyramid;         ///< multi-resolution evaluation
+  bool BuildAborted = false;
 };
 
 } // namespace gls

@@ -1,0 +1,262 @@
+// The multi-resolution evaluation: exact on spheres, planes and circles (the oriented sphere fit is exact for any
+// positive weights, and a cell keeps the exact sums of its points), equal to the exact pass when no cell is small
+// enough to be taken whole, within the accuracy targets on a noisy surface, bitwise deterministic across thread
+// counts, and abortable while its pyramid is built.
+#include "CollectingSink.h"
+#include "TestClouds.h"
+
+#include "gls/MultiresolutionView.h"
+#include "gls/ScaleSampling.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace glstest;
+
+namespace
+{
+
+CollectingSink runMultiresolution(const Cloud& c, const std::vector<double>& scales, double accuracy,
+  int threads = 0, double minNeighbors = 6.0)
+{
+  gls::ScaleSpaceSettings settings;
+  settings.scales = scales;
+  settings.minNeighbors = minNeighbors;
+  settings.parallel.threads = threads;
+  settings.evaluation = gls::Evaluation::Multiresolution;
+  settings.multiresolution.accuracy = accuracy;
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  EXPECT_EQ(engine.evaluation(), gls::Evaluation::Multiresolution);
+  CollectingSink sink(c.size(), scales.size());
+  EXPECT_TRUE(engine.run(sink));
+  return sink;
+}
+
+/// Samples of p's largest ball: how many cells were taken whole, how many points one by one, and how many of the
+/// cells taken whole straddle one of the scales (their cube holds points on both sides of the sphere of radius t).
+struct SampleCounts
+{
+  long cells = 0, points = 0, straddling = 0;
+};
+
+SampleCounts countSamples(const gls::MultiresolutionView& v, const gls::Vec3& p, const std::vector<double>& scales)
+{
+  SampleCounts n;
+  gls::forEachMultiresolutionSample(
+    v, p, scales.back(),
+    [&](const gls::PyramidCell& c) {
+      ++n.cells;
+      const gls::Vec3 x = c.centroid - p;
+      const double d = std::sqrt(gls::squaredNorm(x));
+      const double reach = std::sqrt(c.spread / c.count) * 2.0; // a cell's points lie about this far from its centroid
+      for (double t : scales)
+      {
+        if (d - reach < t && t < d + reach)
+        {
+          ++n.straddling;
+          break;
+        }
+      }
+    },
+    [&](std::uint32_t) { ++n.points; });
+  return n;
+}
+
+/// Checks the analytic descriptors of an exact shape at every point and scale: kappa (times t) and tau / t to 1e-12
+/// of their expected values, phi = 1, and the derivatives 0.
+void expectAnalytic(const CollectingSink& s, const std::vector<double>& scales, double kappa, double tolerance)
+{
+  long valid = 0;
+  for (std::size_t i = 0; i < s.Samples.size() / scales.size(); ++i)
+  {
+    for (std::size_t k = 0; k < scales.size(); ++k)
+    {
+      const gls::ScaleSample& q = s.at(i, k);
+      if (!q.valid)
+      {
+        continue;
+      }
+      ++valid;
+      const double t = scales[k];
+      ASSERT_NEAR(q.kappa * t, kappa * t, tolerance) << "point " << i << " scale " << t;
+      ASSERT_NEAR(q.tau / t, 0.0, tolerance) << "point " << i << " scale " << t;
+      ASSERT_NEAR(q.phi, 1.0, tolerance);
+      ASSERT_NEAR(q.dtau, 0.0, tolerance);
+      ASSERT_NEAR(q.dkappa * t * t, 0.0, tolerance);
+    }
+  }
+  EXPECT_GT(valid, static_cast<long>(s.Samples.size() * 9 / 10));
+}
+
+} // namespace
+
+TEST(Multiresolution, SphereIsExactForEveryAccuracy)
+{
+  const double r = 2.0;
+  const Cloud c = sphere(30000, r);
+  const std::vector<double> scales = gls::sampleScales(0.3, 1.6, 20, gls::ScaleSampling::Quadratic);
+  for (double eps : { 0.05, 0.1, 0.3 })
+  {
+    SCOPED_TRACE(eps);
+    expectAnalytic(runMultiresolution(c, scales, eps), scales, 1.0 / r, 1e-12);
+  }
+  // Inward normals: kappa = -1/r.
+  expectAnalytic(runMultiresolution(sphere(30000, r, true), scales, 0.1), scales, -1.0 / r, 1e-12);
+}
+
+TEST(Multiresolution, CellsAreTakenWholeAndStraddleTheScales)
+{
+  const Cloud c = sphere(60000, 2.0);
+  const std::vector<double> scales = gls::sampleScales(0.3, 1.6, 20, gls::ScaleSampling::Quadratic);
+  gls::ScaleSpaceSettings settings;
+  settings.scales = scales;
+  settings.evaluation = gls::Evaluation::Multiresolution;
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  const gls::Vec3 p = { c.points[0], c.points[1], c.points[2] };
+  const SampleCounts n = countSamples(engine.pyramid().view(), p, scales);
+  // Far fewer samples than the points of the largest ball, many cells across the scale shells' boundaries.
+  EXPECT_GT(n.cells, 100);
+  EXPECT_GT(n.straddling, 50);
+  EXPECT_LT(n.cells + n.points, 60000 / 4);
+}
+
+TEST(Multiresolution, PlaneIsExactAndOffsetPointsGetTheirDistance)
+{
+  const Cloud c = plane(300, 2.0);
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.5, 20, gls::ScaleSampling::Quadratic);
+  expectAnalytic(runMultiresolution(c, scales, 0.2), scales, 0.0, 1e-12);
+  // A position off the plane (not a data point): tau is its signed distance, at every scale.
+  gls::ScaleSpaceSettings settings;
+  settings.scales = scales;
+  settings.evaluation = gls::Evaluation::Multiresolution;
+  settings.multiresolution.accuracy = 0.2;
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  std::vector<gls::ScaleSample> out;
+  engine.evaluatePosition({ 0.013, -0.021, 0.01 }, out);
+  ASSERT_EQ(out.size(), scales.size());
+  for (std::size_t k = 0; k < scales.size(); ++k)
+  {
+    ASSERT_TRUE(out[k].valid);
+    EXPECT_NEAR(std::abs(out[k].tau), 0.01, 1e-12 * scales[k]);
+    EXPECT_NEAR(out[k].kappa * scales[k], 0.0, 1e-12);
+  }
+}
+
+TEST(Multiresolution, CircleIsExactIn2D)
+{
+  const double r = 1.5;
+  const Cloud c = circle2D(50000, r);
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.8, 20, gls::ScaleSampling::Quadratic);
+  for (double eps : { 0.05, 0.2 })
+  {
+    SCOPED_TRACE(eps);
+    expectAnalytic(runMultiresolution(c, scales, eps, 0, 3.0), scales, 1.0 / r, 1e-12);
+  }
+}
+
+TEST(Multiresolution, EqualsTheExactPassWhenNoCellIsTakenWhole)
+{
+  // An accuracy so small that every cell is read point by point: the same points and weights as the exact pass,
+  // summed in another order.
+  const Cloud c = paraboloid(60, 1.0, 0.7, 0.3, 0.02, 0.1, 5);
+  const std::vector<double> scales = gls::sampleScales(0.08, 0.9, 12, gls::ScaleSampling::Quadratic);
+  const CollectingSink exact = runScaleSpace(c.points, c.normals, scales);
+  const CollectingSink multi = runMultiresolution(c, scales, 1e-9);
+  for (std::size_t i = 0; i < c.size(); ++i)
+  {
+    for (std::size_t k = 0; k < scales.size(); ++k)
+    {
+      const gls::ScaleSample& a = exact.at(i, k);
+      const gls::ScaleSample& b = multi.at(i, k);
+      ASSERT_EQ(a.valid, b.valid);
+      ASSERT_EQ(a.neighbors, b.neighbors);
+      if (a.valid)
+      {
+        const double t = scales[k];
+        ASSERT_NEAR(a.kappa * t, b.kappa * t, 1e-10);
+        ASSERT_NEAR(a.tau / t, b.tau / t, 1e-10);
+        ASSERT_NEAR(a.dkappa * t * t, b.dkappa * t * t, 1e-9);
+      }
+    }
+  }
+}
+
+TEST(Multiresolution, NoisySurfaceStaysWithinTheAccuracyTargets)
+{
+  // 250,000 points of a noisy paraboloid: the default accuracy against the exact pass, at every point and scale.
+  const Cloud c = paraboloid(500, 1.0, 0.7, -0.4, 0.002, 0.02, 11);
+  const std::vector<double> scales = gls::sampleScales(0.02, 0.2, 10, gls::ScaleSampling::Quadratic);
+  const CollectingSink exact = runScaleSpace(c.points, c.normals, scales);
+  const CollectingSink multi = runMultiresolution(c, scales, gls::kDefaultAccuracy);
+  std::vector<double> kappa, tau, phi, eta;
+  for (std::size_t i = 0; i < c.size(); i += 7)
+  {
+    for (std::size_t k = 0; k < scales.size(); ++k)
+    {
+      const gls::ScaleSample& a = exact.at(i, k);
+      const gls::ScaleSample& b = multi.at(i, k);
+      if (!a.valid || !b.valid)
+      {
+        continue;
+      }
+      const double t = scales[k];
+      kappa.push_back(std::abs(a.kappa - b.kappa) * t);
+      tau.push_back(std::abs(a.tau - b.tau) / t);
+      phi.push_back(std::abs(a.phi - b.phi));
+      eta.push_back(std::acos(std::min(1.0, gls::dot(a.eta, b.eta))) * 180.0 / M_PI);
+    }
+  }
+  const auto p99 = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() * 99 / 100), v.end());
+    return v[v.size() * 99 / 100];
+  };
+  ASSERT_GT(kappa.size(), 300000u);
+  EXPECT_LT(p99(kappa), 0.01);
+  EXPECT_LT(p99(tau), 0.005);
+  EXPECT_LT(p99(phi), 0.01);
+  EXPECT_LT(p99(eta), 0.5);
+  // And not trivially: the accuracy changes something.
+  EXPECT_GT(*std::max_element(kappa.begin(), kappa.end()), 1e-9);
+}
+
+TEST(Multiresolution, ResultsAreBitwiseIdenticalForAnyThreadCount)
+{
+  const Cloud c = paraboloid(200, 1.0, 0.7, 0.3, 0.02, 0.1, 3);
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.5, 8, gls::ScaleSampling::Quadratic);
+  const CollectingSink one = runMultiresolution(c, scales, 0.1, 1);
+  for (int threads : { 2, 3, 5 })
+  {
+    const CollectingSink many = runMultiresolution(c, scales, 0.1, threads);
+    for (std::size_t i = 0; i < one.Samples.size(); ++i)
+    {
+      const gls::ScaleSample& a = one.Samples[i];
+      const gls::ScaleSample& b = many.Samples[i];
+      const double va[] = { a.tau, a.kappa, a.phi, a.dtau, a.dkappa, a.eta.x, a.eta.y, a.eta.z, a.deta.x,
+        a.deta.y, a.deta.z, a.neighbors };
+      const double vb[] = { b.tau, b.kappa, b.phi, b.dtau, b.dkappa, b.eta.x, b.eta.y, b.eta.z, b.deta.x,
+        b.deta.y, b.deta.z, b.neighbors };
+      ASSERT_EQ(0, std::memcmp(va, vb, sizeof(va))) << "sample " << i << " with " << threads << " threads";
+    }
+  }
+}
+
+TEST(Multiresolution, AbortDuringThePyramidBuildLeavesAnEmptyEngine)
+{
+  const Cloud c = paraboloid(300, 1.0, 0.7, 0.3, 0.0, 0.0, 3);
+  gls::ScaleSpaceSettings settings;
+  settings.scales = gls::sampleScales(0.05, 0.5, 8, gls::ScaleSampling::Quadratic);
+  settings.evaluation = gls::Evaluation::Multiresolution;
+  int calls = 0;
+  settings.parallel.progress = [&](double f) {
+    ++calls;
+    return f > 0.55; // after the sort, during the levels
+  };
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  EXPECT_TRUE(engine.buildAborted());
+  EXPECT_GT(calls, 1);
+  CollectingSink sink(c.size(), settings.scales.size());
+  EXPECT_FALSE(engine.run(sink));
+}

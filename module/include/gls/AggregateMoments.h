@@ -1,0 +1,90 @@
+// The moments of the multi-resolution pass (docs/math.md, "Multi-resolution evaluation"): the exact pass's
+// A_k = sum d^(2k) f for k = 0, 1, 2, where a sample is either one point or a whole cell of points that all take
+// the weight of the cell's centroid. A cell keeps the exact sums of its points (count, centroid, sum n,
+// sum (q - c).n, sum |q - c|^2), so sum f over its points is exact about any evaluation point; only the distance d
+// of its points is the centroid's. Because |x|^2 of a cell's points is no longer m d^2, the nine values
+// f = (1, x, n, x.n, |x|^2) are all stored (27 sums).
+#pragma once
+
+#include "gls/MomentBins.h"
+
+namespace gls
+{
+
+constexpr int kAggregateValues = 9; ///< f = 1, x (3), n (3), x.n, |x|^2
+
+/// m[k * 9 + j] = sum over the samples of d^(2k) f_j (k = 0, 1, 2). Padded to whole 64-byte lines.
+struct alignas(64) AggregateMoments
+{
+  double m[3 * kAggregateValues + 5];
+};
+
+GLS_INLINE void clearMoments(AggregateMoments& a)
+{
+  for (int i = 0; i < 3 * kAggregateValues; ++i)
+  {
+    a.m[i] = 0.0;
+  }
+}
+
+GLS_INLINE void addMoments(AggregateMoments& a, const AggregateMoments& b)
+{
+  for (int i = 0; i < 3 * kAggregateValues; ++i)
+  {
+    a.m[i] += b.m[i];
+  }
+}
+
+/// Number of points in the ball the moments describe (cells count all their points).
+GLS_INLINE double neighborCount(const AggregateMoments& a)
+{
+  return a.m[0];
+}
+
+/// Adds the sums f = (1, x, n, x.n, |x|^2) of a sample whose points all sit at squared distance d2.
+GLS_INLINE void addSampleSums(AggregateMoments& a, const double* f, double d2)
+{
+  const double d4 = d2 * d2;
+  for (int j = 0; j < kAggregateValues; ++j)
+  {
+    a.m[j] += f[j];
+    a.m[kAggregateValues + j] += d2 * f[j];
+    a.m[2 * kAggregateValues + j] += d4 * f[j];
+  }
+}
+
+/// Adds one point with local position x (d2 = |x|^2) and normal n: exactly what the exact pass adds.
+GLS_INLINE void addPoint(AggregateMoments& a, const Vec3& x, double d2, const Vec3& n)
+{
+  const double f[kAggregateValues] = { 1.0, x.x, x.y, x.z, n.x, n.y, n.z, dot(x, n), d2 };
+  addSampleSums(a, f, d2);
+}
+
+/// Adds a cell of `count` points whose centroid is at local position x (d2 = |x|^2), with normal sum `normals`,
+/// sum (q - c).n = `offsetDotNormal` and sum |q - c|^2 = `spread`: the exact sums of its points about the
+/// evaluation point (sum x = m x, sum x.n = offsetDotNormal + x.normals, sum |x|^2 = spread + m d2), all weighted
+/// at the centroid's distance.
+GLS_INLINE void addCell(AggregateMoments& a, const Vec3& x, double d2, double count, const Vec3& normals,
+  double offsetDotNormal, double spread)
+{
+  const double f[kAggregateValues] = { count, count * x.x, count * x.y, count * x.z, normals.x, normals.y, normals.z,
+    offsetDotNormal + dot(x, normals), spread + count * d2 };
+  addSampleSums(a, f, d2);
+}
+
+/// Weighted sums at scale t (s) and their t-derivatives (ds) from the moments of the ball of radius t.
+GLS_INLINE void weightedSumsFromMoments(const AggregateMoments& a, double t, WeightedSums& s, WeightedSums& ds)
+{
+  const WeightPolynomial w = weightPolynomial(t);
+  double v[kAggregateValues];
+  double dv[kAggregateValues];
+  for (int j = 0; j < kAggregateValues; ++j)
+  {
+    const double a0 = a.m[j], a1 = a.m[kAggregateValues + j], a2 = a.m[2 * kAggregateValues + j];
+    v[j] = a0 + w.c1 * a1 + w.c2 * a2;
+    dv[j] = w.e1 * a1 + w.e2 * a2;
+  }
+  assignWeightedSums(v, dv, s, ds);
+}
+
+} // namespace gls

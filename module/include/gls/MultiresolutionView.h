@@ -1,0 +1,225 @@
+// The multi-resolution evaluation of one point (docs/math.md, "Multi-resolution evaluation"), host/device: a walk
+// down an octree of cubic cells (a pyramid of levels, cells of level l of edge h0 2^l, each keeping the exact sums
+// of its points) that takes a whole cell as one sample where the cell is small against its distance from the
+// evaluation point (edge <= Accuracy * distance to the cell's box), and the points themselves elsewhere. The
+// evaluation point's own cell and the cells near it are therefore always read point by point. Built by
+// MultiresolutionCloud; the moments and fits are the exact pass's (AggregateMoments.h, fitAllScalesFromBins).
+#pragma once
+
+#include "gls/AggregateMoments.h"
+#include "gls/PointScaleSpace.h"
+
+#include <cstdint>
+
+namespace gls
+{
+
+constexpr int kMortonBits = 21;   ///< bits of a cell coordinate per axis in a 63-bit Morton key
+constexpr int kMaxPyramidLevels = 21;
+
+/// One cell of the pyramid: its cube, the exact sums of its points, and its children.
+struct PyramidCell
+{
+  Vec3 corner;              ///< lower corner of the cube (length unit)
+  Vec3 centroid;            ///< mean position of its points
+  Vec3 normalSum;           ///< sum of its points' unit normals
+  double count;             ///< number of points
+  double offsetDotNormal;   ///< sum (q - centroid) . n over its points
+  double spread;            ///< sum |q - centroid|^2 over its points (length^2)
+  std::uint32_t first, last; ///< level > 0: its children, cells [first, last); level 0: its points [first, last)
+};
+
+/// The pyramid as plain arrays (the same on the host and the device).
+struct MultiresolutionView
+{
+  const PyramidCell* cells = nullptr;  ///< all levels; the top level's cells are [topBegin, topEnd)
+  const std::uint64_t* topKeys = nullptr; ///< Morton keys of the top level's cells, increasing
+  std::uint64_t topBegin = 0, topEnd = 0;
+  int topLevel = 0;                    ///< levels are 0 (finest) .. topLevel
+  double levelSize[kMaxPyramidLevels + 1] = {}; ///< edge of a cell of each level
+  Vec3 origin{};                       ///< lower corner of every level's cell (0, 0, 0)
+  double accuracy = 0.1;               ///< a cell is one sample where edge <= accuracy * distance to its box
+  const Vec3* points = nullptr;        ///< the points in pyramid order (the cells' points are contiguous)
+  const Vec3* normals = nullptr;       ///< their unit normals
+  std::uint64_t count = 0;
+};
+
+/// Spreads the low 21 bits of v to every third bit (the Morton interleave of one axis).
+GLS_INLINE std::uint64_t spreadMortonBits(std::uint64_t v)
+{
+  v &= 0x1fffffULL;
+  v = (v | (v << 32)) & 0x1f00000000ffffULL;
+  v = (v | (v << 16)) & 0x1f0000ff0000ffULL;
+  v = (v | (v << 8)) & 0x100f00f00f00f00fULL;
+  v = (v | (v << 4)) & 0x10c30c30c30c30c3ULL;
+  v = (v | (v << 2)) & 0x1249249249249249ULL;
+  return v;
+}
+
+/// The Morton key of cell coordinates (i, j, k), each in [0, 2^21).
+GLS_INLINE std::uint64_t mortonKey(std::uint64_t i, std::uint64_t j, std::uint64_t k)
+{
+  return spreadMortonBits(i) | (spreadMortonBits(j) << 1) | (spreadMortonBits(k) << 2);
+}
+
+/// Squared distance from p to the cube [corner, corner + edge]^3 (0 inside).
+GLS_INLINE double squaredDistanceToCube(const Vec3& p, const Vec3& corner, double edge)
+{
+  const double dx = distanceToInterval(p.x, corner.x, corner.x + edge);
+  const double dy = distanceToInterval(p.y, corner.y, corner.y + edge);
+  const double dz = distanceToInterval(p.z, corner.z, corner.z + edge);
+  return dx * dx + dy * dy + dz * dz;
+}
+
+/// Cell coordinate of v along one axis at a level of edge `edge`, clamped to [0, cells - 1].
+GLS_INLINE std::int64_t pyramidCoordinate(double v, double origin, double edge, std::int64_t cells)
+{
+  const double c = (v - origin) / edge;
+  if (!(c >= 0.0))
+  {
+    return 0;
+  }
+  if (c >= static_cast<double>(cells - 1))
+  {
+    return cells - 1;
+  }
+  return static_cast<std::int64_t>(c);
+}
+
+/// Index of the top-level cell with Morton key `key` (binary search), or -1.
+GLS_INLINE std::int64_t findTopCell(const MultiresolutionView& v, std::uint64_t key)
+{
+  std::uint64_t lo = 0, hi = v.topEnd - v.topBegin;
+  while (lo < hi)
+  {
+    const std::uint64_t mid = (lo + hi) / 2;
+    if (v.topKeys[mid] < key)
+    {
+      lo = mid + 1;
+    }
+    else
+    {
+      hi = mid;
+    }
+  }
+  return lo < v.topEnd - v.topBegin && v.topKeys[lo] == key ? static_cast<std::int64_t>(v.topBegin + lo) : -1;
+}
+
+constexpr int kPyramidStack = 8 * (kMaxPyramidLevels + 4);
+
+/// Calls sample(cell) for every cell taken whole and point(i) for every point read one by one, for the ball of
+/// radius r around p: every point of the ball is in exactly one of them (points of a cell taken whole may lie
+/// outside the ball; the caller weights them at the cell's centroid). The order is fixed by the pyramid alone.
+template <typename CellVisit, typename PointVisit>
+GLS_INLINE void forEachMultiresolutionSample(
+  const MultiresolutionView& v, const Vec3& p, double r, CellVisit&& sample, PointVisit&& point)
+{
+  if (v.topEnd <= v.topBegin || !(r > 0.0))
+  {
+    return;
+  }
+  const double r2 = r * r;
+  const double eps2 = v.accuracy * v.accuracy;
+  std::uint32_t stack[kPyramidStack];
+  int stackLevel[kPyramidStack];
+  int top = 0;
+  // The top-level cells the ball overlaps (their edge is at least the ball's diameter: at most 2 per axis).
+  const double H = v.levelSize[v.topLevel];
+  const std::int64_t cells = std::int64_t(1) << (kMortonBits - v.topLevel);
+  const std::int64_t x0 = pyramidCoordinate(p.x - r, v.origin.x, H, cells);
+  const std::int64_t x1 = pyramidCoordinate(p.x + r, v.origin.x, H, cells);
+  const std::int64_t y0 = pyramidCoordinate(p.y - r, v.origin.y, H, cells);
+  const std::int64_t y1 = pyramidCoordinate(p.y + r, v.origin.y, H, cells);
+  const std::int64_t z0 = pyramidCoordinate(p.z - r, v.origin.z, H, cells);
+  const std::int64_t z1 = pyramidCoordinate(p.z + r, v.origin.z, H, cells);
+  for (std::int64_t z = z1; z >= z0; --z)
+  {
+    for (std::int64_t y = y1; y >= y0; --y)
+    {
+      for (std::int64_t x = x1; x >= x0; --x)
+      {
+        const std::int64_t c = findTopCell(v,
+          mortonKey(static_cast<std::uint64_t>(x), static_cast<std::uint64_t>(y), static_cast<std::uint64_t>(z)));
+        if (c >= 0 && top < kPyramidStack)
+        {
+          stack[top] = static_cast<std::uint32_t>(c);
+          stackLevel[top] = v.topLevel;
+          ++top;
+        }
+      }
+    }
+  }
+  while (top > 0)
+  {
+    --top;
+    const PyramidCell& cell = v.cells[stack[top]];
+    const int level = stackLevel[top];
+    const double edge = v.levelSize[level];
+    const double box2 = squaredDistanceToCube(p, cell.corner, edge);
+    if (!(box2 < r2))
+    {
+      continue;
+    }
+    if (edge * edge <= eps2 * box2)
+    {
+      sample(cell);
+    }
+    else if (level == 0)
+    {
+      for (std::uint32_t i = cell.first; i < cell.last; ++i)
+      {
+        point(i);
+      }
+    }
+    else
+    {
+      // Children pushed last to first, so that they are visited in pyramid order.
+      for (std::uint32_t c = cell.last; c > cell.first && top < kPyramidStack; --c)
+      {
+        stack[top] = c - 1;
+        stackLevel[top] = level - 1;
+        ++top;
+      }
+    }
+  }
+}
+
+/// Fits every scale of the evaluation point p from the multi-resolution samples of the ball of the largest scale:
+/// points inside the ball enter exactly, as in evaluateAllScales; a cell taken whole enters with all its points at
+/// its centroid's distance (binned by it, and left out when the centroid is outside the ball).
+/// b: the S increasing scales and their binning table; bins: S scratch moment sets; out: S samples.
+GLS_INLINE void evaluateAllScalesMultiresolution(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
+  double minNeighbors, AggregateMoments* bins, ScaleSample* out)
+{
+  if (b.count <= 0)
+  {
+    return;
+  }
+  for (int k = 0; k < b.count; ++k)
+  {
+    clearMoments(bins[k]);
+  }
+  const double r = b.scales[b.count - 1];
+  const double r2 = r * r;
+  forEachMultiresolutionSample(
+    v, p, r,
+    [&](const PyramidCell& c) {
+      const Vec3 x = c.centroid - p;
+      const double d2 = squaredNorm(x);
+      if (d2 < r2)
+      {
+        addCell(bins[firstScaleHolding(b, d2)], x, d2, c.count, c.normalSum, c.offsetDotNormal, c.spread);
+      }
+    },
+    [&](std::uint32_t i) {
+      const Vec3 x = v.points[i] - p;
+      const double d2 = squaredNorm(x);
+      if (d2 < r2)
+      {
+        addPoint(bins[firstScaleHolding(b, d2)], x, d2, v.normals[i]);
+      }
+    });
+  fitAllScalesFromBins(b, minNeighbors, bins, out);
+}
+
+} // namespace gls

@@ -1,0 +1,316 @@
+#include "gls/MultiresolutionCloud.h"
+
+#include "gls/Numeric.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+#include <utility>
+
+namespace gls
+{
+namespace
+{
+
+constexpr double kLatticeCells = static_cast<double>(std::uint64_t(1) << kMortonBits);
+
+/// Inverse of spreadMortonBits: gathers every third bit into the low 21 bits.
+std::uint64_t compactMortonBits(std::uint64_t v)
+{
+  v &= 0x1249249249249249ULL;
+  v = (v | (v >> 2)) & 0x10c30c30c30c30c3ULL;
+  v = (v | (v >> 4)) & 0x100f00f00f00f00fULL;
+  v = (v | (v >> 8)) & 0x1f0000ff0000ffULL;
+  v = (v | (v >> 16)) & 0x1f00000000ffffULL;
+  v = (v | (v >> 32)) & 0x1fffffULL;
+  return v;
+}
+
+/// Lower corner of the cell with Morton key `key` at a level of edge `edge`.
+Vec3 cellCorner(const Vec3& origin, std::uint64_t key, double edge)
+{
+  return { origin.x + static_cast<double>(compactMortonBits(key)) * edge,
+    origin.y + static_cast<double>(compactMortonBits(key >> 1)) * edge,
+    origin.z + static_cast<double>(compactMortonBits(key >> 2)) * edge };
+}
+
+std::uint64_t latticeCoordinate(double v, double origin, double edge)
+{
+  const double c = std::floor((v - origin) / edge);
+  if (!(c >= 0.0))
+  {
+    return 0;
+  }
+  return c >= kLatticeCells - 1.0 ? static_cast<std::uint64_t>(kLatticeCells - 1.0) : static_cast<std::uint64_t>(c);
+}
+
+/// Sorts (key, index) pairs: each thread sorts a slice, then the slices are merged. Pairs are unique, so the result
+/// is the one total order whatever the thread count.
+void sortPairs(std::vector<std::pair<std::uint64_t, std::uint64_t>>& pairs, int threads)
+{
+  const std::size_t n = pairs.size();
+  const std::size_t slices = static_cast<std::size_t>(std::max(1, std::min(threads, 8)));
+  if (slices == 1 || n < 65536)
+  {
+    std::sort(pairs.begin(), pairs.end());
+    return;
+  }
+  std::vector<std::size_t> bounds(slices + 1);
+  for (std::size_t s = 0; s <= slices; ++s)
+  {
+    bounds[s] = n * s / slices;
+  }
+  std::vector<std::thread> workers;
+  for (std::size_t s = 1; s < slices; ++s)
+  {
+    workers.emplace_back([&, s] { std::sort(pairs.begin() + bounds[s], pairs.begin() + bounds[s + 1]); });
+  }
+  std::sort(pairs.begin(), pairs.begin() + bounds[1]);
+  for (std::thread& w : workers)
+  {
+    w.join();
+  }
+  for (std::size_t width = 1; width < slices; width *= 2)
+  {
+    for (std::size_t s = 0; s + width < slices; s += 2 * width)
+    {
+      const std::size_t end = std::min(s + 2 * width, slices);
+      std::inplace_merge(pairs.begin() + bounds[s], pairs.begin() + bounds[s + width], pairs.begin() + bounds[end]);
+    }
+  }
+}
+
+} // namespace
+
+PyramidLayout choosePyramidLayout(
+  const double low[3], const double high[3], double spacing, double largestScale, double accuracy)
+{
+  PyramidLayout layout;
+  double extent = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    extent = std::max(extent, high[a] - low[a]);
+  }
+  if (!isFinite(extent))
+  {
+    extent = 0.0;
+  }
+  double h = spacing > 0.0 && isFinite(spacing) ? std::exp2(std::floor(std::log2(spacing))) : 0.0;
+  if (!(h > 0.0) || !isFinite(h))
+  {
+    h = extent > 0.0 ? std::exp2(std::ceil(std::log2(extent / (0.5 * kLatticeCells)))) : 1.0;
+  }
+  // The box and the origin's snap below it (at most one top cell, itself at most 2^20 h) fit in 2^21 cells.
+  while (extent / h >= 0.5 * kLatticeCells && isFinite(h))
+  {
+    h *= 2.0;
+  }
+  layout.finestCellSize = h;
+  layout.largestScale = largestScale;
+  layout.low = { low[0], low[1], low[2] };
+  layout.accuracy = accuracy;
+  return layout;
+}
+
+double MultiresolutionCloud::bytes() const
+{
+  return static_cast<double>(this->Points.size()) * (2.0 * sizeof(Vec3) + sizeof(std::uint64_t)) +
+    static_cast<double>(this->Cells.size()) * sizeof(PyramidCell) +
+    static_cast<double>(this->TopKeys.size()) * sizeof(std::uint64_t);
+}
+
+bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, std::size_t n,
+  const unsigned char* admit, const PyramidLayout& layout, const ParallelOptions& parallel)
+{
+  *this = MultiresolutionCloud();
+  const int threads = resolveThreadCount(parallel.threads);
+  // Progress: the keys and the sort are the first 60%, the levels the rest.
+  const auto stage = [&](double begin, double end) {
+    ParallelOptions o;
+    o.threads = parallel.threads;
+    o.chunk = 4096;
+    if (parallel.progress)
+    {
+      o.progress = [&parallel, begin, end](double f) { return parallel.progress(begin + (end - begin) * f); };
+    }
+    return o;
+  };
+  const auto abort = [&](double fraction) {
+    if (parallel.progress && parallel.progress(fraction))
+    {
+      *this = MultiresolutionCloud();
+      return true;
+    }
+    return false;
+  };
+
+  const double h0 = layout.finestCellSize;
+  int topLevel = 0;
+  while (topLevel < kMortonBits - 1 && std::ldexp(h0, topLevel) < 2.0 * layout.largestScale)
+  {
+    ++topLevel;
+  }
+  const double H = std::ldexp(h0, topLevel);
+  const Vec3 origin = { std::floor(layout.low.x / H) * H, std::floor(layout.low.y / H) * H,
+    std::floor(layout.low.z / H) * H };
+
+  // Keys of the admitted points on the finest lattice.
+  std::vector<std::uint64_t> admitted;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (admit[i])
+    {
+      admitted.push_back(i);
+    }
+  }
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> pairs(admitted.size());
+  if (!parallelFor(admitted.size(), stage(0.0, 0.1), [&](std::size_t b, std::size_t e, int) {
+        for (std::size_t k = b; k < e; ++k)
+        {
+          const double* q = xyz + 3 * admitted[k];
+          pairs[k] = { mortonKey(latticeCoordinate(q[0], origin.x, h0), latticeCoordinate(q[1], origin.y, h0),
+                         latticeCoordinate(q[2], origin.z, h0)),
+            admitted[k] };
+        }
+      }))
+  {
+    *this = MultiresolutionCloud();
+    return false;
+  }
+  std::vector<std::uint64_t>().swap(admitted);
+  sortPairs(pairs, threads);
+  if (abort(0.5))
+  {
+    return false;
+  }
+  const std::size_t m = pairs.size();
+  this->Points.resize(m);
+  this->Normals.resize(m);
+  this->Ids.resize(m);
+  std::vector<std::uint64_t> keys; // the current level's cell keys
+  std::vector<std::uint64_t> starts; // the current level's cells: [starts[c], starts[c + 1]) of the level below
+  for (std::size_t k = 0; k < m; ++k)
+  {
+    const std::uint64_t i = pairs[k].second;
+    this->Points[k] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
+    this->Normals[k] = { unitNormals[3 * i], unitNormals[3 * i + 1], unitNormals[3 * i + 2] };
+    this->Ids[k] = i;
+    if (k == 0 || pairs[k].first != pairs[k - 1].first)
+    {
+      keys.push_back(pairs[k].first);
+      starts.push_back(k);
+    }
+  }
+  starts.push_back(m);
+  std::vector<std::pair<std::uint64_t, std::uint64_t>>().swap(pairs);
+  if (abort(0.6))
+  {
+    return false;
+  }
+
+  // Level by level, finest first; each cell's sums come from its points (level 0) or its children, in order.
+  std::size_t below = 0; // index of the level below's first cell in Cells
+  for (int level = 0; level <= topLevel; ++level)
+  {
+    const std::size_t first = this->Cells.size();
+    const std::size_t count = keys.size();
+    this->Cells.resize(first + count);
+    const double edge = std::ldexp(h0, level);
+    const double progressBegin = 0.6 + 0.4 * level / (topLevel + 1.0);
+    const double progressEnd = 0.6 + 0.4 * (level + 1.0) / (topLevel + 1.0);
+    const bool done = parallelFor(count, stage(progressBegin, progressEnd), [&](std::size_t b, std::size_t e, int) {
+      for (std::size_t c = b; c < e; ++c)
+      {
+        PyramidCell& cell = this->Cells[first + c];
+        cell.corner = cellCorner(origin, keys[c], edge);
+        cell.first = static_cast<std::uint32_t>(level == 0 ? starts[c] : below + starts[c]);
+        cell.last = static_cast<std::uint32_t>(level == 0 ? starts[c + 1] : below + starts[c + 1]);
+        double count = 0.0;
+        Vec3 offset{}, normals{};
+        double offsetDotNormal = 0.0, spread = 0.0;
+        if (level == 0)
+        {
+          for (std::uint32_t i = cell.first; i < cell.last; ++i)
+          {
+            count += 1.0;
+            offset = offset + (this->Points[i] - cell.corner);
+            normals = normals + this->Normals[i];
+          }
+          cell.centroid = cell.corner + (1.0 / count) * offset;
+          for (std::uint32_t i = cell.first; i < cell.last; ++i)
+          {
+            const Vec3 y = this->Points[i] - cell.centroid;
+            offsetDotNormal += dot(y, this->Normals[i]);
+            spread += squaredNorm(y);
+          }
+        }
+        else
+        {
+          for (std::uint32_t i = cell.first; i < cell.last; ++i)
+          {
+            const PyramidCell& child = this->Cells[i];
+            count += child.count;
+            offset = offset + child.count * (child.centroid - cell.corner);
+            normals = normals + child.normalSum;
+          }
+          cell.centroid = cell.corner + (1.0 / count) * offset;
+          for (std::uint32_t i = cell.first; i < cell.last; ++i)
+          {
+            const PyramidCell& child = this->Cells[i];
+            const Vec3 y = child.centroid - cell.centroid;
+            offsetDotNormal += child.offsetDotNormal + dot(y, child.normalSum);
+            spread += child.spread + child.count * squaredNorm(y);
+          }
+        }
+        cell.count = count;
+        cell.normalSum = normals;
+        cell.offsetDotNormal = offsetDotNormal;
+        cell.spread = spread;
+      }
+    });
+    if (!done)
+    {
+      *this = MultiresolutionCloud();
+      return false;
+    }
+    if (level == topLevel)
+    {
+      this->TopKeys = keys;
+      break;
+    }
+    // The next level's cells: runs of equal parent keys.
+    std::vector<std::uint64_t> parentKeys, parentStarts;
+    for (std::size_t c = 0; c < count; ++c)
+    {
+      const std::uint64_t parent = keys[c] >> 3;
+      if (c == 0 || parent != (keys[c - 1] >> 3))
+      {
+        parentKeys.push_back(parent);
+        parentStarts.push_back(c);
+      }
+    }
+    parentStarts.push_back(count);
+    keys.swap(parentKeys);
+    starts.swap(parentStarts);
+    below = first;
+  }
+
+  MultiresolutionView& v = this->View;
+  v.cells = this->Cells.data();
+  v.topKeys = this->TopKeys.data();
+  v.topBegin = this->Cells.size() - this->TopKeys.size();
+  v.topEnd = this->Cells.size();
+  v.topLevel = topLevel;
+  for (int l = 0; l <= kMaxPyramidLevels; ++l)
+  {
+    v.levelSize[l] = std::ldexp(h0, l);
+  }
+  v.origin = origin;
+  v.accuracy = layout.accuracy;
+  v.points = this->Points.data();
+  v.normals = this->Normals.data();
+  v.count = this->Points.size();
+  return true;
+}
+
+} // namespace gls
