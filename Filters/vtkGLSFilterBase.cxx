@@ -19,6 +19,7 @@
 #include "vtkPointSet.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkDoubleArray.h"
 #include "vtkStringArray.h"
 
 #include <algorithm>
@@ -507,6 +508,20 @@ void vtkGLSFilterBase::WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd)
     coincident->SetName(vtkGLSArrayNames::CoincidentPoints);
     coincident->InsertNextValue(static_cast<vtkIdType>(run.CoincidentPoints));
     fd->AddArray(coincident);
+  }
+  if (!run.EvaluationUsed.empty())
+  {
+    vtkNew<vtkStringArray> evaluation;
+    evaluation->SetName(vtkGLSArrayNames::Evaluation);
+    evaluation->InsertNextValue(run.EvaluationUsed);
+    fd->AddArray(evaluation);
+    if (run.EvaluationUsed == "Multiresolution")
+    {
+      vtkNew<vtkDoubleArray> accuracy;
+      accuracy->SetName(vtkGLSArrayNames::Accuracy);
+      accuracy->InsertNextValue(run.AccuracyUsed);
+      fd->AddArray(accuracy);
+    }
   }
   if (!run.BackendUsed.empty())
   {

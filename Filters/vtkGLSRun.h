@@ -60,6 +60,8 @@ struct vtkGLSRun
 
   // Reported in the output's field data (vtkGLSFilterBase::WriteRunFieldData).
   std::string BackendUsed;               ///< where the fits ran ("" when none ran)
+  std::string EvaluationUsed;            ///< how the fits evaluated the moments ("" when none ran)
+  double AccuracyUsed = 0.0;             ///< epsilon of a multi-resolution fit
   long long GhostPoints = -1;            ///< ghosts this rank used (-1: no exchange)
   long long CoincidentPoints = 0;        ///< this piece's input points merged into another
 };

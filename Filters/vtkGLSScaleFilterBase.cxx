@@ -10,6 +10,7 @@
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 
+#include "gls/Evaluation.h"
 #include "gls/ScaleSampling.h"
 
 #include <algorithm>
@@ -67,6 +68,8 @@ vtkGLSScaleFilterBase::vtkGLSScaleFilterBase()
   , NumberOfScales(20)
   , ScaleSampling(QUADRATIC)
   , Backend(BACKEND_AUTO)
+  , Evaluation(EVALUATION_AUTO)
+  , Accuracy(gls::kDefaultAccuracy)
 {
 }
 
@@ -90,6 +93,7 @@ void vtkGLSScaleFilterBase::RemoveAllScales()
 int vtkGLSScaleFilterBase::Execute(vtkGLSRun& run)
 {
   this->LastBackendUsed.clear();
+  this->LastEvaluationUsed.clear();
   if (!this->CheckFitParameters() || !this->CheckParameters(run) ||
     !this->PrepareSamples(run, this->GetSampleRequest(run)))
   {
@@ -97,6 +101,7 @@ int vtkGLSScaleFilterBase::Execute(vtkGLSRun& run)
   }
   const int outcome = this->ComputeOutputs(run);
   this->LastBackendUsed = run.BackendUsed;
+  this->LastEvaluationUsed = run.EvaluationUsed;
   if (outcome == COMPLETED && run.Output)
   {
     WriteScales(run.Output->GetFieldData(), run.Scales);
@@ -179,7 +184,7 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   this->ResolveMinimumNeighbors(run);
   // Distributed: the other pieces' points within the largest scale of this piece join the fit after the owned
   // points; only the owned ones are evaluated.
-  if (dist.IsParallel() && !this->AddGhosts(run, run.Scales.back()))
+  if (dist.IsParallel() && !this->AddGhosts(run, this->GhostReach(run)))
   {
     return false;
   }
@@ -188,9 +193,48 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   settings.scales = run.Scales;
   settings.minNeighbors = run.MinimumNeighbors;
   settings.parallel.threads = this->NumberOfThreads;
+  // The pyramid's build reports only heartbeats (the feed's progress follows) and stops when aborted.
+  settings.parallel.progress = [this](double) { return this->Heartbeat(); };
+  this->ChooseEvaluation(run, settings);
   run.Samples = vtkGLSSampleSource::Fit(run.Cloud, settings);
   this->Heartbeat();
   return true;
+}
+
+double vtkGLSScaleFilterBase::GhostReach(const vtkGLSRun& run) const
+{
+  const double t = run.Scales.back();
+  return this->Evaluation == EVALUATION_EXACT ? t : t * (1.0 + std::sqrt(3.0) * this->Accuracy) * (1.0 + 1e-9);
+}
+
+void vtkGLSScaleFilterBase::ChooseEvaluation(vtkGLSRun& run, gls::ScaleSpaceSettings& settings)
+{
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  const double t = run.Scales.back();
+  gls::BallCountEstimate estimate;
+  if (this->Evaluation != EVALUATION_EXACT)
+  {
+    estimate = gls::estimateBallCount(run.Cloud.Points.data(), run.Cloud.Size(), run.Cloud.Owned, t);
+    estimate.neighbors = dist.Sum(estimate.neighbors);
+    estimate.samples = dist.Sum(estimate.samples);
+  }
+  const bool cells = this->Evaluation == EVALUATION_MULTIRESOLUTION ||
+    (this->Evaluation == EVALUATION_AUTO && estimate.mean() > gls::kExactNeighborLimit);
+  settings.evaluation = cells ? gls::Evaluation::Multiresolution : gls::Evaluation::Exact;
+  run.EvaluationUsed = cells ? "Multiresolution" : "Exact";
+  run.AccuracyUsed = this->Accuracy;
+  if (cells)
+  {
+    gls::MultiresolutionSettings& m = settings.multiresolution;
+    m.accuracy = this->Accuracy;
+    m.spacing = gls::surfaceSpacing(estimate.mean(), t);
+    m.haveBounds = run.HasFinitePoints;
+    for (int a = 0; a < 3; ++a)
+    {
+      m.low[a] = run.Bounds[2 * a];
+      m.high[a] = run.Bounds[2 * a + 1];
+    }
+  }
 }
 
 bool vtkGLSScaleFilterBase::FeedSamples(vtkGLSRun& run, gls::ScaleSampleSink& sink,
@@ -411,4 +455,6 @@ void vtkGLSScaleFilterBase::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ScaleSampling: " << this->ScaleSampling << "\n";
   os << indent << "ExplicitScales: " << this->ExplicitScales.size() << "\n";
   os << indent << "Backend: " << this->Backend << " (last used: " << this->LastBackendUsed << ")\n";
+  os << indent << "Evaluation: " << this->Evaluation << " (last used: " << this->LastEvaluationUsed << ")\n";
+  os << indent << "Accuracy: " << this->Accuracy << "\n";
 }

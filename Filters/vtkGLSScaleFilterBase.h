@@ -18,9 +18,17 @@
  * missing or mis-sized normals and empty input give a vtkErrorMacro and RequestData returns 0. The filters report
  * progress and stop early when aborted (the output then carries the input only, no partial arrays).
  *
- * Distributed runs: the ghosts are the other ranks' points within the largest scale of each piece's bounding box,
- * so the results equal a serial run's (to the summation order of the neighbours, about 1e-15 relative). The
- * output's field data then also carries GLSGhostPoints. See docs/distributed.md.
+ * Evaluation: each ball's moments are summed over every point of the ball (EXACT), or over a multi-resolution
+ * pyramid whose cells of edge at most Accuracy times their distance from the evaluated point are taken whole
+ * (MULTIRESOLUTION: cost per point about constant whatever the density; exact on spheres and planes; see
+ * docs/math.md, "Multi-resolution evaluation", for the error). AUTO (the default) is exact while the largest ball
+ * holds on average at most about 5,000 points. The output's field data GLSEvaluation says which ran ("Exact" or
+ * "Multiresolution"), and GLSAccuracy the epsilon of a multi-resolution run.
+ *
+ * Distributed runs: the ghosts are the other ranks' points within the largest scale of each piece's bounding box
+ * (enlarged by the largest cell a multi-resolution run may take whole), so the results equal a serial run's (to
+ * the summation order of the neighbours, about 1e-15 relative). The output's field data then also carries
+ * GLSGhostPoints. See docs/distributed.md.
  */
 #ifndef vtkGLSScaleFilterBase_h
 #define vtkGLSScaleFilterBase_h
@@ -38,6 +46,7 @@ class vtkFieldData;
 namespace gls
 {
 class ScaleSampleSink;
+struct ScaleSpaceSettings;
 }
 
 class VTKGLSFILTERS_EXPORT vtkGLSScaleFilterBase : public vtkGLSFitFilterBase
@@ -102,6 +111,33 @@ public:
   void SetBackendToCPU() { this->SetBackend(BACKEND_CPU); }
   void SetBackendToCUDA() { this->SetBackend(BACKEND_CUDA); }
   ///@}
+
+  enum EvaluationType
+  {
+    EVALUATION_AUTO = 0,           ///< exact while the largest ball averages at most about 5,000 points, else cells
+    EVALUATION_EXACT = 1,          ///< every point of every ball (the one pass)
+    EVALUATION_MULTIRESOLUTION = 2 ///< cells of edge <= Accuracy * distance taken whole
+  };
+
+  ///@{
+  /// How the moments of each ball are evaluated (default EVALUATION_AUTO); see the class documentation.
+  vtkSetClampMacro(Evaluation, int, EVALUATION_AUTO, EVALUATION_MULTIRESOLUTION);
+  vtkGetMacro(Evaluation, int);
+  void SetEvaluationToAuto() { this->SetEvaluation(EVALUATION_AUTO); }
+  void SetEvaluationToExact() { this->SetEvaluation(EVALUATION_EXACT); }
+  void SetEvaluationToMultiresolution() { this->SetEvaluation(EVALUATION_MULTIRESOLUTION); }
+  ///@}
+
+  ///@{
+  /// Epsilon of the multi-resolution evaluation (dimensionless, default 0.1): a cell is taken whole, all its points
+  /// weighted at its centroid, where its edge is at most Accuracy times its distance from the evaluated point.
+  /// Smaller is closer to exact and slower (the samples per point grow as 1 / Accuracy^2).
+  vtkSetClampMacro(Accuracy, double, 0.001, 1.0);
+  vtkGetMacro(Accuracy, double);
+  ///@}
+
+  /// How the last fit of this filter evaluated the moments ("Exact", "Multiresolution"), or "" if none ran.
+  const char* GetLastEvaluationUsed() const { return this->LastEvaluationUsed.c_str(); }
 
   /// The backend the last fit of this filter ran on ("CPU", "CUDA"), or "" if it reused stored arrays.
   const char* GetLastBackendUsed() const { return this->LastBackendUsed.c_str(); }
@@ -168,13 +204,25 @@ protected:
   int ScaleSampling;
   std::vector<double> ExplicitScales;
   int Backend;
+  int Evaluation;
+  double Accuracy;
   std::string LastBackendUsed;
+  std::string LastEvaluationUsed;
   bool WarnedAboutBackend = false;
 
 private:
   /// The samples of the run: stored arrays when the request allows and they are there, else a fit of the cloud
   /// (scales, memory budget, cloud, ghosts, engine). Collective; false (with an error) on failure.
   bool PrepareSamples(vtkGLSRun& run, const SampleRequest& request);
+
+  /// The largest ghost reach the fit may need: the largest scale, enlarged by the largest cell a multi-resolution
+  /// evaluation may take whole (its edge is below Accuracy times the scale, so its points are within
+  /// (1 + sqrt(3) Accuracy) t of the evaluated point).
+  double GhostReach(const vtkGLSRun& run) const;
+
+  /// Resolves Evaluation for the run's cloud (Auto: the ball-count estimate, summed over the pieces) and sets the
+  /// engine's evaluation settings and run.EvaluationUsed. Collective.
+  void ChooseEvaluation(vtkGLSRun& run, gls::ScaleSpaceSettings& settings);
 
   /// After a fit of every point: one warning (on rank 0) when most fits are NaN at some scales, with the median
   /// neighbour count there. `diagnosis` is the coverage the feed gathered (null for stored samples). Collective.

@@ -1,0 +1,552 @@
+// Real scan sizes: the multi-resolution evaluation against the exact one pass (docs/performance.md, "Large scans").
+//
+//   glsLargeScanBenchmark [--case L1|L2|L3|accuracy|all (all)] [--models bunny,rocker-arm] [--threads T (2)]
+//                         [--points N (L1: 10000000; L2 and accuracy: 1000000)] [--sizes a,b,... (L3)]
+//                         [--accuracies e1,e2,... (0.05,0.1,0.2)]
+//
+// Every cloud is a bundled mesh sampled by area to N points, normals interpolated from the mesh; 20 quadratic
+// scales 0.8% to 8% of the diagonal; the fused continuous features (nu on the fly, O(N) memory).
+//   L1: N = 10M, Evaluation Auto: wall time and peak memory of the features filter (each run in its own process,
+//       so the peak is its own; it includes the sampled cloud). Target: under 60 s and 4 GiB.
+//   L2: N = 1M, Exact and Auto in the same process: the speed-up (target: at least 10).
+//   L3: Auto at 0.3M, 1M, 3M, 10M points (and Exact at the sizes up to 1M): time per point.
+//   accuracy: N = 1M, the core engine exact and at each accuracy, every point and scale compared (p99 and max):
+//       |f - f_exact| (sigma of the exact run), |t kappa - t kappa_exact|, |tau - tau_exact| / t, the angle between
+//       eta and eta_exact (degrees), |phi - phi_exact|, |nu - nu_exact| / (nu_exact + median nu_exact), and the
+//       share of points whose first pertinent scale moves by more than one scale step; PASS/FAIL against the
+//       targets at the default accuracy.
+#include "MeshSampler.h"
+
+#include "vtkGLSContinuousFeatures.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkStringArray.h"
+
+#include "gls/Descriptors.h"
+#include "gls/Evaluation.h"
+#include "gls/ScaleAnalysis.h"
+#include "gls/ScaleSampling.h"
+#include "gls/ScaleSpaceEngine.h"
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+
+constexpr int kScales = 20;
+
+double now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double peakMemoryMiB()
+{
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;
+}
+
+std::vector<std::string> split(const std::string& s)
+{
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ','))
+  {
+    out.push_back(item);
+  }
+  return out;
+}
+
+std::string modelPath(const std::string& model)
+{
+  return std::string(GLS_BENCHMARK_DATA_DIR) + "/" + (model == "bunny" ? "stanford-bunny" : model) + ".obj";
+}
+
+/// Runs f in a child process (its peak memory is its own) and waits; false if the child failed.
+bool inChild(const std::function<int()>& f)
+{
+  std::fflush(stdout);
+  const pid_t pid = fork();
+  if (pid == 0)
+  {
+    const int rc = f();
+    std::fflush(stdout);
+    _exit(rc);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+/// The features filter on `cloud` with `evaluation`; prints and returns the wall time, or -1 on failure.
+double runFeatures(vtkPolyData* cloud, int evaluation, int threads, double accuracy, std::vector<double>* f = nullptr,
+  std::string* used = nullptr)
+{
+  vtkNew<vtkGLSContinuousFeatures> features;
+  features->SetInputData(cloud);
+  features->SetNumberOfScales(kScales);
+  features->SetNumberOfThreads(threads);
+  features->SetEvaluation(evaluation);
+  features->SetAccuracy(accuracy);
+  const double t0 = now();
+  features->Update();
+  const double wall = now() - t0;
+  vtkDataArray* a = features->GetOutput()->GetPointData()->GetArray("GLSFeature");
+  if (!a)
+  {
+    std::printf("error: the features filter failed\n");
+    return -1.0;
+  }
+  if (f)
+  {
+    f->resize(static_cast<std::size_t>(a->GetNumberOfTuples()));
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    {
+      (*f)[static_cast<std::size_t>(i)] = a->GetComponent(i, 0);
+    }
+  }
+  if (used)
+  {
+    *used = features->GetLastEvaluationUsed();
+  }
+  return wall;
+}
+
+int caseL1(const std::vector<std::string>& models, long long n, int threads, double accuracy)
+{
+  std::printf("\n== L1: %lld points, Evaluation Auto, fused features, %d threads (target: < 60 s, < 4 GiB)\n", n,
+    threads);
+  std::printf("%-12s %10s %12s %12s %s\n", "model", "wall s", "peak MiB", "evaluation", "verdict");
+  for (const std::string& model : models)
+  {
+    inChild([&] {
+      auto cloud = sampleMeshSurface(modelPath(model), n, 1);
+      if (!cloud)
+      {
+        return 1;
+      }
+      std::string used;
+      const double wall = runFeatures(cloud, 0, threads, accuracy, nullptr, &used);
+      const double peak = peakMemoryMiB();
+      std::printf("%-12s %10.1f %12.0f %12s %s\n", model.c_str(), wall, peak, used.c_str(),
+        wall >= 0.0 && wall < 60.0 && peak < 4096.0 ? "PASS" : "FAIL");
+      return wall >= 0.0 ? 0 : 1;
+    });
+  }
+  return 0;
+}
+
+int caseL2(const std::vector<std::string>& models, long long n, int threads, double accuracy)
+{
+  std::printf("\n== L2: %lld points, Exact and Auto in one run, fused features, %d threads (target: >= 10x)\n", n,
+    threads);
+  std::printf("%-12s %10s %10s %10s %12s %12s %s\n", "model", "exact s", "auto s", "speed-up", "f p99 diff",
+    "f max diff", "verdict");
+  for (const std::string& model : models)
+  {
+    inChild([&] {
+      auto cloud = sampleMeshSurface(modelPath(model), n, 1);
+      std::vector<double> fe, fa;
+      std::string used;
+      const double exact = runFeatures(cloud, 1, threads, accuracy, &fe);
+      const double fast = runFeatures(cloud, 0, threads, accuracy, &fa, &used);
+      std::vector<double> d;
+      for (std::size_t i = 0; i < fe.size(); ++i)
+      {
+        if (std::isfinite(fe[i]) && std::isfinite(fa[i]))
+        {
+          d.push_back(std::abs(fe[i] - fa[i]));
+        }
+      }
+      std::sort(d.begin(), d.end());
+      const double p99 = d.empty() ? NAN : d[d.size() * 99 / 100], worst = d.empty() ? NAN : d.back();
+      std::printf("%-12s %10.1f %10.1f %9.1fx %12.4f %12.4f %s (%s)\n", model.c_str(), exact, fast, exact / fast,
+        p99, worst, exact / fast >= 10.0 ? "PASS" : "FAIL", used.c_str());
+      return 0;
+    });
+  }
+  return 0;
+}
+
+int caseL3(const std::vector<std::string>& models, const std::vector<long long>& sizes, int threads,
+  double accuracy)
+{
+  std::printf("\n== L3: cost against N at the same relative scales, fused features, %d threads\n", threads);
+  std::printf("%-12s %12s %12s %14s %12s %14s\n", "model", "points", "auto s", "auto us/point", "exact s",
+    "exact us/point");
+  for (const std::string& model : models)
+  {
+    for (long long n : sizes)
+    {
+      inChild([&] {
+        auto cloud = sampleMeshSurface(modelPath(model), n, 1);
+        const double fast = runFeatures(cloud, 0, threads, accuracy);
+        const double exact = n <= 1000000 ? runFeatures(cloud, 1, threads, accuracy) : NAN;
+        std::printf("%-12s %12lld %12.1f %14.2f %12.1f %14.2f\n", model.c_str(), n, fast, 1e6 * fast / n, exact,
+          1e6 * exact / n);
+        return 0;
+      });
+    }
+  }
+  return 0;
+}
+
+/// What the accuracy comparison keeps of the exact run, per point and scale.
+struct ExactRow
+{
+  float tauOverT, tKappa, phi, eta[3];
+  double nu;
+};
+
+/// Percentiles from a log-spaced histogram (1e-16 to 1e4, 100 bins per decade), per thread then merged.
+struct Histogram
+{
+  static constexpr int kBins = 2000;
+  std::vector<double> count = std::vector<double>(kBins + 1, 0.0);
+  double worst = 0.0;
+  void add(double v)
+  {
+    if (!(v >= 0.0))
+    {
+      return;
+    }
+    worst = std::max(worst, v);
+    const int b = v <= 1e-16 ? 0 : std::min(kBins, static_cast<int>(100.0 * (std::log10(v) + 16.0)) + 1);
+    count[static_cast<std::size_t>(b)] += 1.0;
+  }
+  void merge(const Histogram& h)
+  {
+    for (int b = 0; b <= kBins; ++b)
+    {
+      count[static_cast<std::size_t>(b)] += h.count[static_cast<std::size_t>(b)];
+    }
+    worst = std::max(worst, h.worst);
+  }
+  double quantile(double q) const
+  {
+    double total = 0.0;
+    for (double c : count)
+    {
+      total += c;
+    }
+    double seen = 0.0;
+    for (int b = 0; b <= kBins; ++b)
+    {
+      seen += count[static_cast<std::size_t>(b)];
+      if (seen >= q * total)
+      {
+        return b == 0 ? 1e-16 : std::pow(10.0, b / 100.0 - 16.0); // the bin's upper edge
+      }
+    }
+    return worst;
+  }
+};
+
+enum Metric
+{
+  F,
+  KAPPA,
+  TAU,
+  ETA,
+  PHI,
+  NU,
+  METRICS
+};
+
+int firstPertinent(const double* nu, const std::vector<double>& scales)
+{
+  double found[kScales];
+  const int m = gls::pertinentScales(nu, scales.data(), static_cast<int>(scales.size()), kScales, found);
+  if (m == 0)
+  {
+    return -1;
+  }
+  return static_cast<int>(std::lower_bound(scales.begin(), scales.end(), found[0]) - scales.begin());
+}
+
+class ExactSink : public gls::ScaleSampleSink
+{
+public:
+  ExactSink(const std::vector<double>& scales, std::size_t n, int threads)
+    : Scales(scales)
+    , Rows(n * scales.size())
+    , Nu(static_cast<std::size_t>(threads), std::vector<double>(scales.size()))
+  {
+  }
+  void consume(std::uint64_t id, const gls::ScaleSample* s, int) override
+  {
+    for (std::size_t k = 0; k < this->Scales.size(); ++k)
+    {
+      const double t = this->Scales[k];
+      ExactRow& r = this->Rows[id * this->Scales.size() + k];
+      r = { static_cast<float>(s[k].tau / t), static_cast<float>(s[k].kappa * t), static_cast<float>(s[k].phi),
+        { static_cast<float>(s[k].eta.x), static_cast<float>(s[k].eta.y), static_cast<float>(s[k].eta.z) },
+        gls::geometricVariation(s[k], t, gls::VariationWeights{}) };
+    }
+  }
+  const std::vector<double>& Scales;
+  std::vector<ExactRow> Rows;
+  std::vector<std::vector<double>> Nu;
+};
+
+class CompareSink : public gls::ScaleSampleSink
+{
+public:
+  CompareSink(const std::vector<double>& scales, const std::vector<ExactRow>& exact, const std::vector<double>& f,
+    const std::vector<int>& first, double sigma, double medianNu, int threads)
+    : Scales(scales)
+    , Exact(exact)
+    , ExactF(f)
+    , ExactFirst(first)
+    , Sigma(sigma)
+    , MedianNu(medianNu)
+    , H(static_cast<std::size_t>(threads), std::vector<Histogram>(METRICS))
+    , Moved(static_cast<std::size_t>(threads), 0.0)
+    , Nu(static_cast<std::size_t>(threads), std::vector<double>(scales.size()))
+  {
+  }
+  void consume(std::uint64_t id, const gls::ScaleSample* s, int thread) override
+  {
+    std::vector<Histogram>& h = this->H[static_cast<std::size_t>(thread)];
+    std::vector<double>& nu = this->Nu[static_cast<std::size_t>(thread)];
+    const std::size_t S = this->Scales.size();
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      const double t = this->Scales[k];
+      const ExactRow& e = this->Exact[id * S + k];
+      nu[k] = gls::geometricVariation(s[k], t, gls::VariationWeights{});
+      if (!s[k].valid || !std::isfinite(e.tKappa))
+      {
+        continue;
+      }
+      h[KAPPA].add(std::abs(s[k].kappa * t - e.tKappa));
+      h[TAU].add(std::abs(s[k].tau / t - e.tauOverT));
+      const double c = s[k].eta.x * e.eta[0] + s[k].eta.y * e.eta[1] + s[k].eta.z * e.eta[2];
+      h[ETA].add(std::acos(std::max(-1.0, std::min(1.0, c))) * 180.0 / M_PI);
+      h[PHI].add(std::abs(s[k].phi - e.phi));
+      h[NU].add(std::abs(nu[k] - e.nu) / (e.nu + this->MedianNu));
+    }
+    const double f = gls::continuousFeature(nu.data(), this->Scales.data(), static_cast<int>(S), this->Sigma,
+      gls::FeatureMeasure::Scale);
+    if (std::isfinite(f) && std::isfinite(this->ExactF[id]))
+    {
+      h[F].add(std::abs(f - this->ExactF[id]));
+    }
+    const int first = firstPertinent(nu.data(), this->Scales);
+    const int e = this->ExactFirst[id];
+    if ((first < 0) != (e < 0) || std::abs(first - e) > 1)
+    {
+      this->Moved[static_cast<std::size_t>(thread)] += 1.0;
+    }
+  }
+  const std::vector<double>& Scales;
+  const std::vector<ExactRow>& Exact;
+  const std::vector<double>& ExactF;
+  const std::vector<int>& ExactFirst;
+  double Sigma, MedianNu;
+  std::vector<std::vector<Histogram>> H;
+  std::vector<double> Moved;
+  std::vector<std::vector<double>> Nu;
+};
+
+int caseAccuracy(const std::vector<std::string>& models, long long n, int threads, const std::vector<double>& eps)
+{
+  std::printf("\n== Accuracy against exact: %lld points, every point and scale, %d threads\n", n, threads);
+  const double targets[METRICS] = { 0.02, 0.01, 0.005, 0.5, 0.01, 0.1 };
+  const char* names[METRICS] = { "f", "t kappa", "tau/t", "eta deg", "phi", "nu rel" };
+  bool allPass = true;
+  for (const std::string& model : models)
+  {
+    auto cloud = sampleMeshSurface(modelPath(model), n, 1);
+    std::vector<double> xyz(3 * n), nrm(3 * n);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      cloud->GetPoint(i, &xyz[3 * i]);
+      cloud->GetPointData()->GetNormals()->GetTuple(i, &nrm[3 * i]);
+    }
+    double b[6];
+    cloud->GetBounds(b);
+    const double diag =
+      std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
+    gls::ScaleSpaceSettings settings;
+    settings.scales = gls::sampleScales(0.008 * diag, 0.08 * diag, kScales, gls::ScaleSampling::Quadratic);
+    settings.parallel.threads = threads;
+    const int T = gls::resolveThreadCount(threads);
+    const std::size_t N = static_cast<std::size_t>(n);
+    const std::vector<double>& scales = settings.scales;
+    double t0 = now();
+    ExactSink exact(scales, N, T);
+    {
+      gls::ScaleSpaceEngine engine(xyz.data(), nrm.data(), N, settings);
+      engine.run(exact);
+    }
+    const double exactTime = now() - t0;
+    // The exact run's sigma (median f 0.28, as the filters' default) and its features and first pertinent scales.
+    std::vector<double> nu(N * kScales);
+    for (std::size_t i = 0; i < N * kScales; ++i)
+    {
+      nu[i] = exact.Rows[i].nu;
+    }
+    const double sigma =
+      gls::sigmaForMedianFeature(nu, N, scales.data(), kScales, gls::FeatureMeasure::Scale, 0.28);
+    std::vector<double> f(N);
+    std::vector<int> first(N);
+    for (std::size_t i = 0; i < N; ++i)
+    {
+      f[i] = gls::continuousFeature(&nu[i * kScales], scales.data(), kScales, sigma, gls::FeatureMeasure::Scale);
+      first[i] = firstPertinent(&nu[i * kScales], scales);
+    }
+    std::vector<double> finite;
+    for (double v : nu)
+    {
+      if (std::isfinite(v))
+      {
+        finite.push_back(v);
+      }
+    }
+    std::nth_element(finite.begin(), finite.begin() + static_cast<long>(finite.size() / 2), finite.end());
+    const double medianNu = finite[finite.size() / 2];
+    std::vector<double>().swap(finite);
+    std::vector<double>().swap(nu);
+    std::printf("\n%s: exact %.1f s; sigma %.4g, median nu %.4g\n", model.c_str(), exactTime, sigma, medianNu);
+    std::printf("%-6s %8s %8s", "eps", "time s", "speed-up");
+    for (int m = 0; m < METRICS; ++m)
+    {
+      std::printf(" %10s p99 %9s", names[m], "max");
+    }
+    std::printf(" %9s\n", "moved");
+    for (double e : eps)
+    {
+      gls::ScaleSpaceSettings ms = settings;
+      ms.evaluation = gls::Evaluation::Multiresolution;
+      ms.multiresolution.accuracy = e;
+      t0 = now();
+      CompareSink compare(scales, exact.Rows, f, first, sigma, medianNu, T);
+      {
+        gls::ScaleSpaceEngine engine(xyz.data(), nrm.data(), N, ms);
+        engine.run(compare);
+      }
+      const double time = now() - t0;
+      std::vector<Histogram> h(METRICS);
+      double moved = 0.0;
+      for (int t = 0; t < T; ++t)
+      {
+        for (int m = 0; m < METRICS; ++m)
+        {
+          h[static_cast<std::size_t>(m)].merge(compare.H[static_cast<std::size_t>(t)][static_cast<std::size_t>(m)]);
+        }
+        moved += compare.Moved[static_cast<std::size_t>(t)];
+      }
+      const bool isDefault = std::abs(e - gls::kDefaultAccuracy) < 1e-12;
+      std::printf("%-6.3g %8.1f %7.1fx", e, time, exactTime / time);
+      for (int m = 0; m < METRICS; ++m)
+      {
+        const double p99 = h[static_cast<std::size_t>(m)].quantile(0.99);
+        const bool pass = p99 <= targets[m];
+        allPass = allPass && (!isDefault || pass);
+        std::printf(" %10.3g%s %9.3g", p99, isDefault ? (pass ? " ok" : " XX") : "   ",
+          h[static_cast<std::size_t>(m)].worst);
+      }
+      std::printf(" %8.2f%%\n", 100.0 * moved / static_cast<double>(N));
+    }
+  }
+  std::printf("\naccuracy at the default epsilon %.3g (p99 targets f 0.02, t kappa 0.01, tau/t 0.005, eta 0.5 deg, "
+              "phi 0.01, nu 0.1; 'ok' = met, 'XX' = missed): %s\n",
+    gls::kDefaultAccuracy, allPass ? "PASS" : "FAIL");
+  return 0;
+}
+
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::string which = "all";
+  std::vector<std::string> models = { "bunny", "rocker-arm" };
+  int threads = 2;
+  long long points = 0;
+  std::vector<long long> sizes = { 300000, 1000000, 3000000, 10000000 };
+  std::vector<double> eps = { 0.05, 0.1, 0.2 };
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
+    if (a == "--case" && v)
+    {
+      which = argv[++i];
+    }
+    else if (a == "--models" && v)
+    {
+      models = split(argv[++i]);
+    }
+    else if (a == "--threads" && v)
+    {
+      threads = std::atoi(argv[++i]);
+    }
+    else if (a == "--points" && v)
+    {
+      points = std::atoll(argv[++i]);
+    }
+    else if (a == "--sizes" && v)
+    {
+      sizes.clear();
+      for (const std::string& s : split(argv[++i]))
+      {
+        sizes.push_back(std::atoll(s.c_str()));
+      }
+    }
+    else if (a == "--accuracies" && v)
+    {
+      eps.clear();
+      for (const std::string& s : split(argv[++i]))
+      {
+        eps.push_back(std::atof(s.c_str()));
+      }
+    }
+    else
+    {
+      std::fprintf(stderr,
+        "usage: %s [--case L1|L2|L3|accuracy|all] [--models a,b] [--threads T] [--points N] [--sizes a,b] "
+        "[--accuracies e1,e2]\n",
+        argv[0]);
+      return 2;
+    }
+  }
+  const double accuracy = gls::kDefaultAccuracy;
+  if (which == "L1" || which == "all")
+  {
+    caseL1(models, points > 0 ? points : 10000000, threads, accuracy);
+  }
+  if (which == "L2" || which == "all")
+  {
+    caseL2(models, points > 0 ? points : 1000000, threads, accuracy);
+  }
+  if (which == "L3" || which == "all")
+  {
+    caseL3(models, sizes, threads, accuracy);
+  }
+  if (which == "accuracy" || which == "all")
+  {
+    caseAccuracy(models, points > 0 ? points : 1000000, threads, eps);
+  }
+  std::printf("\nlarge-scan benchmark complete\n");
+  return 0;
+}
