@@ -227,13 +227,16 @@ void vtkGLSScaleFilterBase::ChooseEvaluation(vtkGLSRun& run, gls::ScaleSpaceSett
   {
     gls::MultiresolutionSettings& m = settings.multiresolution;
     m.accuracy = this->Accuracy;
-    m.spacing = gls::surfaceSpacing(estimate.mean(), t);
+    // The layout from global facts only (the whole input's box and point count), so that every piece of a
+    // distributed run lays its pyramid out like the serial run.
     m.haveBounds = run.HasFinitePoints;
     for (int a = 0; a < 3; ++a)
     {
       m.low[a] = run.Bounds[2 * a];
       m.high[a] = run.Bounds[2 * a + 1];
     }
+    const double points = dist.Sum(static_cast<double>(run.Input->GetNumberOfPoints()));
+    m.spacing = gls::surfaceSpacingOfBox(m.low, m.high, static_cast<std::size_t>(points));
   }
 }
 

@@ -5,6 +5,7 @@
 #include "CollectingSink.h"
 #include "TestClouds.h"
 
+#include "gls/MultiresolutionKernel.h"
 #include "gls/MultiresolutionView.h"
 #include "gls/ScaleSampling.h"
 
@@ -220,6 +221,58 @@ TEST(Multiresolution, NoisySurfaceStaysWithinTheAccuracyTargets)
   EXPECT_LT(p99(eta), 0.5);
   // And not trivially: the accuracy changes something.
   EXPECT_GT(*std::max_element(kappa.begin(), kappa.end()), 1e-9);
+}
+
+TEST(Multiresolution, CpuKernelAgreesWithTheDeviceLoop)
+{
+  // The CPU kernel (level by level, batched) against evaluateAllScalesMultiresolution, the host/device loop the
+  // CUDA kernel runs: the same samples summed in another order.
+  const Cloud c = paraboloid(150, 1.0, 0.7, 0.3, 0.01, 0.05, 4);
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 12, gls::ScaleSampling::Quadratic);
+  gls::ScaleSpaceSettings settings;
+  settings.scales = scales;
+  settings.evaluation = gls::Evaluation::Multiresolution;
+  settings.multiresolution.accuracy = 0.15;
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  std::vector<double> squared;
+  for (double t : scales)
+  {
+    squared.push_back(t * t);
+  }
+  const gls::BinningTable table = gls::makeBinningTable(squared);
+  gls::ScaleBinning b;
+  b.scales = scales.data();
+  b.squaredScales = squared.data();
+  b.count = static_cast<int>(scales.size());
+  b.table = table.cells.data();
+  b.tableSize = static_cast<int>(table.cells.size());
+  b.inverseCellWidth = table.inverseCellWidth;
+  std::vector<gls::AggregateMoments> bins(scales.size());
+  std::vector<gls::ScaleSample> device(scales.size()), cpu(scales.size());
+  gls::MultiresolutionScratch scratch;
+  double worst = 0.0;
+  long taken = 0;
+  for (std::size_t i = 0; i < c.size(); i += 13)
+  {
+    const gls::Vec3 p = { c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] };
+    gls::evaluateAllScalesMultiresolution(engine.pyramid().view(), p, b, 6.0, bins.data(), device.data());
+    gls::evaluateAllScalesMultiresolutionOnCpu(engine.pyramid().view(), p, b, 6.0, scratch, cpu.data());
+    taken += static_cast<long>(scratch.taken.size());
+    for (std::size_t k = 0; k < scales.size(); ++k)
+    {
+      ASSERT_EQ(device[k].valid, cpu[k].valid);
+      ASSERT_EQ(device[k].neighbors, cpu[k].neighbors);
+      if (device[k].valid)
+      {
+        const double t = scales[k];
+        worst = std::max({ worst, std::abs(device[k].kappa - cpu[k].kappa) * t,
+          std::abs(device[k].tau - cpu[k].tau) / t, std::abs(device[k].phi - cpu[k].phi),
+          std::abs(device[k].dkappa - cpu[k].dkappa) * t * t });
+      }
+    }
+  }
+  EXPECT_GT(taken, 10000); // cells were taken whole
+  EXPECT_LT(worst, 1e-10);
 }
 
 TEST(Multiresolution, ResultsAreBitwiseIdenticalForAnyThreadCount)

@@ -48,6 +48,18 @@ bool CudaScaleSpace::prepare(const GridView&, const ScaleBinning&, double, std::
   return false;
 }
 
+bool CudaScaleSpace::prepare(const MultiresolutionView&, std::size_t, const ScaleBinning&, double, std::string& error)
+{
+  error = kNotBuilt;
+  return false;
+}
+
+bool CudaScaleSpace::prepareBinning(const ScaleBinning&, double, std::size_t, std::string& error)
+{
+  error = kNotBuilt;
+  return false;
+}
+
 std::size_t CudaScaleSpace::chunkCapacity() const
 {
   return 0;

@@ -49,9 +49,4 @@ BallCountEstimate estimateBallCount(const double* xyz, std::size_t count, std::s
   return e;
 }
 
-double surfaceSpacing(double meanNeighbors, double radius)
-{
-  return meanNeighbors > 0.0 ? radius * std::sqrt(3.14159265358979323846 / meanNeighbors) : 0.0;
-}
-
 } // namespace gls

@@ -165,13 +165,17 @@ double NeighborGrid::suggestCellSizeForKNearest(const double* xyz, std::size_t n
     }
     ++count;
   }
-  double e[3] = { hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2] };
+  const double size = surfaceSpacingOfBox(lo, hi, count) * std::sqrt(static_cast<double>(std::max(k, 1)));
+  return size > 0.0 ? size : 1.0;
+}
+
+double surfaceSpacingOfBox(const double low[3], const double high[3], std::size_t count)
+{
+  double e[3] = { high[0] - low[0], high[1] - low[1], high[2] - low[2] };
   std::sort(e, e + 3);
   // A surface sample: the two largest extents span the area that holds the points.
   const double area = std::max(e[2] * e[1], e[2] * e[2] * 1e-6);
-  const double spacing = std::sqrt(area / static_cast<double>(std::max<std::size_t>(count, 1)));
-  const double size = spacing * std::sqrt(static_cast<double>(std::max(k, 1)));
-  return size > 0.0 ? size : 1.0;
+  return std::sqrt(area / static_cast<double>(std::max<std::size_t>(count, 1)));
 }
 
 void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, std::uint64_t>>& out) const

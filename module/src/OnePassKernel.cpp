@@ -1,5 +1,7 @@
 #include "gls/OnePassKernel.h"
 
+#include "KernelVectors.h"
+
 #include <cstring>
 
 namespace gls
@@ -7,36 +9,15 @@ namespace gls
 namespace
 {
 
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#define GLS_KERNEL_DISPATCH 1
-#define GLS_ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define GLS_KERNEL_DISPATCH 0
-#define GLS_ALWAYS_INLINE inline
-#endif
-
 constexpr int kBatch = 64;
 
-#if defined(__GNUC__)
-/// Four doubles (GCC/clang vector extension: two SSE2 registers in the baseline build, one AVX register in the
-/// AVX2 build). Loaded and stored through memcpy, so no aliasing rule is bent. The helpers are always inlined, so
-/// the vector-argument ABI that -Wpsabi warns about never applies.
-typedef double Double4 __attribute__((vector_size(32)));
+#if GLS_KERNEL_VECTORS
+using kernel::Double4;
+using kernel::load4;
+using kernel::store4;
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
-
-GLS_ALWAYS_INLINE Double4 load4(const double* m)
-{
-  Double4 v;
-  std::memcpy(&v, m, sizeof(v));
-  return v;
-}
-
-GLS_ALWAYS_INLINE void store4(double* m, Double4 v)
-{
-  std::memcpy(m, &v, sizeof(v));
-}
 
 /// addToMoments (MomentBins.h) with the eight values f = (1, x, n, x.n) held as two vectors of four: the same
 /// products and sums, element by element (fused into multiply-adds in the AVX2 build).
@@ -139,11 +120,6 @@ __attribute__((target("avx2,fma"))) void evaluateAvx2(
   evaluate(g, p, b, minNeighbors, bins, out);
 }
 
-bool hasAvx2()
-{
-  static const bool yes = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  return yes;
-}
 #endif
 
 } // namespace
@@ -152,7 +128,7 @@ void evaluateAllScalesOnCpu(const GridView& g, const Vec3& p, const ScaleBinning
   Moments* bins, ScaleSample* out, CpuKernelBuild build)
 {
 #if GLS_KERNEL_DISPATCH
-  if (build == CpuKernelBuild::Fastest && hasAvx2())
+  if (build == CpuKernelBuild::Fastest && kernel::hasAvx2())
   {
     evaluateAvx2(g, p, b, minNeighbors, bins, out);
     return;
@@ -164,7 +140,7 @@ void evaluateAllScalesOnCpu(const GridView& g, const Vec3& p, const ScaleBinning
 const char* onePassKernelBuild()
 {
 #if GLS_KERNEL_DISPATCH
-  if (hasAvx2())
+  if (kernel::hasAvx2())
   {
     return "avx2+fma";
   }

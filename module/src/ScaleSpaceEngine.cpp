@@ -1,6 +1,6 @@
 #include "gls/ScaleSpaceEngine.h"
 
-#include "gls/MultiresolutionView.h"
+#include "gls/MultiresolutionKernel.h"
 #include "gls/Numeric.h"
 #include "gls/OnePassKernel.h"
 #include "gls/PointScaleSpace.h"
@@ -63,25 +63,18 @@ void ScaleSpaceEngine::buildPyramid(
 {
   const MultiresolutionSettings& m = this->Settings.multiresolution;
   double low[3] = { m.low[0], m.low[1], m.low[2] }, high[3] = { m.high[0], m.high[1], m.high[2] };
-  if (!m.haveBounds)
+  std::size_t admitted = 0;
+  for (std::size_t i = 0; i < count; ++i)
   {
-    bool first = true;
-    for (std::size_t i = 0; i < count; ++i)
+    for (int a = 0; a < 3 && admit[i] && !m.haveBounds; ++a)
     {
-      for (int a = 0; a < 3 && admit[i]; ++a)
-      {
-        low[a] = first ? points[3 * i + a] : std::min(low[a], points[3 * i + a]);
-        high[a] = first ? points[3 * i + a] : std::max(high[a], points[3 * i + a]);
-      }
-      first = first && !admit[i];
+      low[a] = admitted == 0 ? points[3 * i + a] : std::min(low[a], points[3 * i + a]);
+      high[a] = admitted == 0 ? points[3 * i + a] : std::max(high[a], points[3 * i + a]);
     }
+    admitted += admit[i] ? 1 : 0;
   }
   const double largest = this->Settings.scales.back();
-  double spacing = m.spacing;
-  if (!(spacing > 0.0))
-  {
-    spacing = surfaceSpacing(estimateBallCount(points, count, count, largest).mean(), largest);
-  }
+  const double spacing = m.spacing > 0.0 ? m.spacing : surfaceSpacingOfBox(low, high, admitted);
   const PyramidLayout layout = choosePyramidLayout(low, high, spacing, largest, m.accuracy);
   this->BuildAborted = !this->Pyramid.build(points, unitNormals, count, admit, layout, this->Settings.parallel);
 }
@@ -104,7 +97,11 @@ bool ScaleSpaceEngine::runOnDevice(ScaleSampleSink& sink, const std::vector<std:
   aborted = false;
   const int S = static_cast<int>(this->Settings.scales.size());
   CudaScaleSpace device;
-  if (!device.prepare(this->Grid.view(), this->binning(), this->Settings.minNeighbors, reason))
+  const bool prepared = this->Settings.evaluation == Evaluation::Multiresolution
+    ? device.prepare(this->Pyramid.view(), this->Pyramid.cellCount(), this->binning(), this->Settings.minNeighbors,
+        reason)
+    : device.prepare(this->Grid.view(), this->binning(), this->Settings.minNeighbors, reason);
+  if (!prepared)
   {
     return false;
   }
@@ -161,11 +158,7 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
   r = RunReport();
   if (backend != Backend::CPU)
   {
-    if (multiresolution)
-    {
-      r.fallbackReason = "the multi-resolution evaluation runs on the CPU in this build";
-    }
-    else if (method != EvaluationMethod::OnePass)
+    if (method != EvaluationMethod::OnePass && !multiresolution)
     {
       r.fallbackReason = "the per-scale reference evaluation runs on the CPU only";
     }
@@ -191,20 +184,15 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
   r.used = Backend::CPU;
   const int threads = resolveThreadCount(options.threads);
   std::vector<std::vector<Moments>> bins(static_cast<std::size_t>(threads));
-  std::vector<std::vector<AggregateMoments>> aggregateBins(static_cast<std::size_t>(threads));
+  std::vector<MultiresolutionScratch> scratch(static_cast<std::size_t>(threads));
   std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(threads));
   const GridView& g = this->Grid.view();
   const ScaleBinning binning = this->binning();
 
   return parallelFor(order.size(), options, [&](std::size_t begin, std::size_t end, int thread) {
     std::vector<Moments>& b = bins[thread];
-    std::vector<AggregateMoments>& a = aggregateBins[thread];
     std::vector<ScaleSample>& out = samples[thread];
-    if (multiresolution)
-    {
-      a.resize(static_cast<std::size_t>(S));
-    }
-    else
+    if (!multiresolution)
     {
       b.resize(static_cast<std::size_t>(S));
     }
@@ -222,8 +210,8 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
       }
       else if (multiresolution)
       {
-        evaluateAllScalesMultiresolution(
-          this->Pyramid.view(), p, binning, this->Settings.minNeighbors, a.data(), out.data());
+        evaluateAllScalesMultiresolutionOnCpu(
+          this->Pyramid.view(), p, binning, this->Settings.minNeighbors, scratch[thread], out.data());
       }
       else if (method == EvaluationMethod::OnePass)
       {
@@ -256,9 +244,9 @@ void ScaleSpaceEngine::evaluatePosition(const Vec3& p, std::vector<ScaleSample>&
   }
   if (this->Settings.evaluation == Evaluation::Multiresolution)
   {
-    std::vector<AggregateMoments> a(static_cast<std::size_t>(S));
-    evaluateAllScalesMultiresolution(
-      this->Pyramid.view(), p, this->binning(), this->Settings.minNeighbors, a.data(), out.data());
+    MultiresolutionScratch scratch;
+    evaluateAllScalesMultiresolutionOnCpu(
+      this->Pyramid.view(), p, this->binning(), this->Settings.minNeighbors, scratch, out.data());
     return;
   }
   evaluateAllScalesOnCpu(this->Grid.view(), p, this->binning(), this->Settings.minNeighbors, b.data(), out.data());

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "gls/GridView.h"
+#include "gls/MultiresolutionView.h"
 #include "gls/PointScaleSpace.h"
 
 #include <cstddef>
@@ -48,6 +49,12 @@ public:
   /// the geometry (origin, cell size, dims) of `geometry`; uploads the scales and the binning table.
   bool prepare(const GridView& geometry, const ScaleBinning& binning, double minNeighbors, std::string& error);
 
+  /// The multi-resolution evaluation instead: uploads the pyramid as built on the host (cells, top keys, points
+  /// and normals in pyramid order), the scales and the binning table; evaluate() then runs
+  /// evaluateAllScalesMultiresolution, the loop the CPU engine runs.
+  bool prepare(const MultiresolutionView& pyramid, std::size_t cellCount, const ScaleBinning& binning,
+    double minNeighbors, std::string& error);
+
   /// How many positions one evaluate() call may take (sized from the device's free memory).
   std::size_t chunkCapacity() const;
 
@@ -55,6 +62,9 @@ public:
   bool evaluate(const Vec3* positions, std::size_t count, ScaleSample* out, std::string& error);
 
 private:
+  /// Uploads the scales and binning table and sizes the chunks for bins of `binBytes`.
+  bool prepareBinning(const ScaleBinning& binning, double minNeighbors, std::size_t binBytes, std::string& error);
+
   struct Device;
   std::unique_ptr<Device> State;
 };

@@ -15,7 +15,7 @@ enum class Evaluation
 };
 
 /// The default Accuracy (epsilon) of the multi-resolution evaluation (docs/math.md gives the measurements).
-constexpr double kDefaultAccuracy = 0.1;
+constexpr double kDefaultAccuracy = 0.2;
 
 /// Auto stays exact while the largest ball holds on average at most this many points.
 constexpr double kExactNeighborLimit = 5000.0;
@@ -32,9 +32,5 @@ struct BallCountEstimate
 };
 
 BallCountEstimate estimateBallCount(const double* xyz, std::size_t count, std::size_t evaluated, double radius);
-
-/// The typical distance between neighbouring points of a surface that has `meanNeighbors` points in a ball of
-/// `radius` (the ball's disc holds them): radius * sqrt(pi / meanNeighbors); 0 when meanNeighbors <= 0.
-double surfaceSpacing(double meanNeighbors, double radius);
 
 } // namespace gls

@@ -25,8 +25,9 @@ struct PyramidLayout
   double accuracy = 0.1;       ///< a cell is one sample where edge <= accuracy * distance
 };
 
-/// The layout for a cloud whose admitted points lie in [low, high]: h0 a power of two near `spacing` (the typical
-/// distance between neighbouring points), enlarged until the lattice of 2^21 cells per axis covers the box.
+/// The layout for a cloud whose admitted points lie in [low, high]: h0 the power of two at or below twice `spacing`
+/// (the typical distance between neighbouring points), enlarged until the lattice of 2^21 cells per axis covers the
+/// box.
 PyramidLayout choosePyramidLayout(
   const double low[3], const double high[3], double spacing, double largestScale, double accuracy);
 
@@ -49,6 +50,7 @@ private:
   std::vector<Vec3> Points;
   std::vector<Vec3> Normals;
   std::vector<std::uint64_t> Ids;
+  std::vector<PyramidNode> Nodes;
   std::vector<PyramidCell> Cells;
   std::vector<std::uint64_t> TopKeys;
   MultiresolutionView View;

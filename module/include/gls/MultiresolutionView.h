@@ -17,22 +17,29 @@ namespace gls
 constexpr int kMortonBits = 21;   ///< bits of a cell coordinate per axis in a 63-bit Morton key
 constexpr int kMaxPyramidLevels = 21;
 
-/// One cell of the pyramid: its cube, the exact sums of its points, and its children.
-struct PyramidCell
+/// What the walk reads of a cell (32 bytes, apart from its sums, so that the walk touches few cache lines): its
+/// cube and its children.
+struct PyramidNode
 {
   Vec3 corner;              ///< lower corner of the cube (length unit)
+  std::uint32_t first, last; ///< level > 0: its children, cells [first, last); level 0: its points [first, last)
+};
+
+/// The exact sums of a cell's points (the same index as its PyramidNode).
+struct PyramidCell
+{
   Vec3 centroid;            ///< mean position of its points
   Vec3 normalSum;           ///< sum of its points' unit normals
   double count;             ///< number of points
   double offsetDotNormal;   ///< sum (q - centroid) . n over its points
   double spread;            ///< sum |q - centroid|^2 over its points (length^2)
-  std::uint32_t first, last; ///< level > 0: its children, cells [first, last); level 0: its points [first, last)
 };
 
 /// The pyramid as plain arrays (the same on the host and the device).
 struct MultiresolutionView
 {
-  const PyramidCell* cells = nullptr;  ///< all levels; the top level's cells are [topBegin, topEnd)
+  const PyramidNode* nodes = nullptr;  ///< all levels; the top level's cells are [topBegin, topEnd)
+  const PyramidCell* cells = nullptr;  ///< their sums, same indices
   const std::uint64_t* topKeys = nullptr; ///< Morton keys of the top level's cells, increasing
   std::uint64_t topBegin = 0, topEnd = 0;
   int topLevel = 0;                    ///< levels are 0 (finest) .. topLevel
@@ -152,7 +159,7 @@ GLS_INLINE void forEachMultiresolutionSample(
   while (top > 0)
   {
     --top;
-    const PyramidCell& cell = v.cells[stack[top]];
+    const PyramidNode& cell = v.nodes[stack[top]];
     const int level = stackLevel[top];
     const double edge = v.levelSize[level];
     const double box2 = squaredDistanceToCube(p, cell.corner, edge);
@@ -162,7 +169,7 @@ GLS_INLINE void forEachMultiresolutionSample(
     }
     if (edge * edge <= eps2 * box2)
     {
-      sample(cell);
+      sample(v.cells[stack[top]]);
     }
     else if (level == 0)
     {

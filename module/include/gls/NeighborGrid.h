@@ -40,6 +40,10 @@ private:
   GridView View;
 };
 
+/// The typical distance between neighbouring points of a surface sampled by `count` points in the box [low, high]:
+/// sqrt(area / count), the area spanned by the box's two largest extents (a lower bound of a closed surface's).
+double surfaceSpacingOfBox(const double low[3], const double high[3], std::size_t count);
+
 /// The rule of every GLS fit for oriented points: a point enters neighbourhoods when its coordinates are finite and
 /// its normal can be normalized (finite, non-zero). Fills unitNormals (3n: the unit normal, NaN where the normal
 /// cannot be normalized) and admit (n flags, the `include` mask of NeighborGrid::build).

@@ -35,7 +35,8 @@ public:
 struct MultiresolutionSettings
 {
   double accuracy = kDefaultAccuracy; ///< epsilon: a cell is one sample where edge <= epsilon * distance
-  double spacing = 0.0;               ///< typical neighbour distance (length unit); 0: estimated from the points
+  double spacing = 0.0;               ///< typical neighbour distance (length unit); 0: surfaceSpacingOfBox of the
+                                      ///< admitted points
   bool haveBounds = false;            ///< low/high given (else the admitted points' box)
   double low[3] = { 0.0, 0.0, 0.0 };
   double high[3] = { 0.0, 0.0, 0.0 };

@@ -122,6 +122,28 @@ __global__ void evaluateKernel(GridView grid, ScaleBinning binning, double minNe
   evaluateAllScales(grid, p, binning, minNeighbors, bins + i * S, samples);
 }
 
+__global__ void evaluateMultiresolutionKernel(MultiresolutionView pyramid, ScaleBinning binning, double minNeighbors,
+  const Vec3* positions, std::uint64_t count, AggregateMoments* bins, ScaleSample* out)
+{
+  const std::uint64_t i = blockIdx.x * static_cast<std::uint64_t>(blockDim.x) + threadIdx.x;
+  if (i >= count)
+  {
+    return;
+  }
+  const int S = binning.count;
+  const Vec3 p = positions[i];
+  ScaleSample* samples = out + i * S;
+  if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
+  {
+    for (int k = 0; k < S; ++k)
+    {
+      samples[k] = invalidSample<double>(0.0);
+    }
+    return;
+  }
+  evaluateAllScalesMultiresolution(pyramid, p, binning, minNeighbors, bins + i * S, samples);
+}
+
 unsigned blocksFor(std::uint64_t n, unsigned threads)
 {
   return static_cast<unsigned>((n + threads - 1) / threads);
@@ -183,7 +205,40 @@ struct CudaScaleSpace::Device
   DeviceArray<Vec3> Positions;
   DeviceArray<Moments> Bins;
   DeviceArray<ScaleSample> Out;
+  // The multi-resolution evaluation (Multiresolution true): the pyramid and its own bins.
+  bool Multiresolution = false;
+  MultiresolutionView Pyramid;
+  DeviceArray<PyramidNode> Nodes;
+  DeviceArray<PyramidCell> Cells;
+  DeviceArray<std::uint64_t> TopKeys;
+  DeviceArray<AggregateMoments> AggregateBins;
 };
+
+/// Chunk size: half the free memory for positions, moment bins and samples (`binBytes` per bin).
+bool CudaScaleSpace::prepareBinning(
+  const ScaleBinning& binning, double minNeighbors, std::size_t binBytes, std::string& error)
+{
+  Device& d = *this->State;
+  const int S = binning.count;
+  if (!d.Scales.upload(binning.scales, S, error) || !d.SquaredScales.upload(binning.squaredScales, S, error) ||
+    !d.Table.upload(binning.table, binning.tableSize, error))
+  {
+    return false;
+  }
+  d.Binning = binning;
+  d.Binning.scales = d.Scales.get();
+  d.Binning.squaredScales = d.SquaredScales.get();
+  d.Binning.table = d.Table.get();
+  d.MinNeighbors = minNeighbors;
+  std::size_t freeBytes = 0, totalBytes = 0;
+  if (!check(cudaMemGetInfo(&freeBytes, &totalBytes), "cudaMemGetInfo", error))
+  {
+    return false;
+  }
+  const std::size_t perPoint = sizeof(Vec3) + static_cast<std::size_t>(S) * (binBytes + sizeof(ScaleSample));
+  d.Capacity = std::max<std::size_t>(1, std::min<std::size_t>(freeBytes / 2 / perPoint, std::size_t(1) << 22));
+  return d.Positions.allocate(d.Capacity, error) && d.Out.allocate(d.Capacity * S, error);
+}
 
 CudaScaleSpace::CudaScaleSpace() = default;
 CudaScaleSpace::~CudaScaleSpace() = default;
@@ -249,32 +304,35 @@ bool CudaScaleSpace::prepare(
     return false;
   }
 
-  if (!d.Scales.upload(binning.scales, S, error) || !d.SquaredScales.upload(binning.squaredScales, S, error) ||
-    !d.Table.upload(binning.table, binning.tableSize, error))
-  {
-    return false;
-  }
   d.Grid = geometry;
   d.Grid.points = d.Points.get();
   d.Grid.normals = d.Normals.get();
   d.Grid.ids = d.Ids.get();
   d.Grid.cellStart = d.CellStart.get();
-  d.Binning = binning;
-  d.Binning.scales = d.Scales.get();
-  d.Binning.squaredScales = d.SquaredScales.get();
-  d.Binning.table = d.Table.get();
-  d.MinNeighbors = minNeighbors;
+  return this->prepareBinning(binning, minNeighbors, sizeof(Moments), error) &&
+    d.Bins.allocate(d.Capacity * S, error);
+}
 
-  // Chunk size: half the free memory for positions, moment bins and samples.
-  std::size_t freeBytes = 0, totalBytes = 0;
-  if (!check(cudaMemGetInfo(&freeBytes, &totalBytes), "cudaMemGetInfo", error))
+bool CudaScaleSpace::prepare(const MultiresolutionView& pyramid, std::size_t cellCount, const ScaleBinning& binning,
+  double minNeighbors, std::string& error)
+{
+  this->State = std::make_unique<Device>();
+  Device& d = *this->State;
+  const std::size_t topCount = static_cast<std::size_t>(pyramid.topEnd - pyramid.topBegin);
+  if (!d.Nodes.upload(pyramid.nodes, cellCount, error) || !d.Cells.upload(pyramid.cells, cellCount, error) || !d.TopKeys.upload(pyramid.topKeys, topCount, error) ||
+    !d.Points.upload(pyramid.points, pyramid.count, error) || !d.Normals.upload(pyramid.normals, pyramid.count, error))
   {
     return false;
   }
-  const std::size_t perPoint = sizeof(Vec3) + static_cast<std::size_t>(S) * (sizeof(Moments) + sizeof(ScaleSample));
-  d.Capacity = std::max<std::size_t>(1, std::min<std::size_t>(freeBytes / 2 / perPoint, std::size_t(1) << 22));
-  return d.Positions.allocate(d.Capacity, error) && d.Bins.allocate(d.Capacity * S, error) &&
-    d.Out.allocate(d.Capacity * S, error);
+  d.Multiresolution = true;
+  d.Pyramid = pyramid;
+  d.Pyramid.nodes = d.Nodes.get();
+  d.Pyramid.cells = d.Cells.get();
+  d.Pyramid.topKeys = d.TopKeys.get();
+  d.Pyramid.points = d.Points.get();
+  d.Pyramid.normals = d.Normals.get();
+  return this->prepareBinning(binning, minNeighbors, sizeof(AggregateMoments), error) &&
+    d.AggregateBins.allocate(d.Capacity * binning.count, error);
 }
 
 std::size_t CudaScaleSpace::chunkCapacity() const
@@ -300,8 +358,16 @@ bool CudaScaleSpace::evaluate(const Vec3* positions, std::size_t count, ScaleSam
   {
     return false;
   }
-  evaluateKernel<<<blocksFor(count, threads), threads>>>(
-    d.Grid, d.Binning, d.MinNeighbors, d.Positions.get(), count, d.Bins.get(), d.Out.get());
+  if (d.Multiresolution)
+  {
+    evaluateMultiresolutionKernel<<<blocksFor(count, threads), threads>>>(
+      d.Pyramid, d.Binning, d.MinNeighbors, d.Positions.get(), count, d.AggregateBins.get(), d.Out.get());
+  }
+  else
+  {
+    evaluateKernel<<<blocksFor(count, threads), threads>>>(
+      d.Grid, d.Binning, d.MinNeighbors, d.Positions.get(), count, d.Bins.get(), d.Out.get());
+  }
   return check(cudaGetLastError(), "evaluate kernel launch", error) &&
     check(cudaDeviceSynchronize(), "evaluate kernel", error) &&
     check(cudaMemcpy(out, d.Out.get(), count * d.Binning.count * sizeof(ScaleSample), cudaMemcpyDeviceToHost),

@@ -1,0 +1,28 @@
+// The CPU form of the multi-resolution evaluation (evaluateAllScalesMultiresolution in MultiresolutionView.h): the
+// same cells taken whole and the same points read one by one, found level by level instead of depth first, so
+// that each level's cells are classified in a loop without a branch per cell (the depth-first walk mispredicts
+// about one branch per cell: measured 20 ns per cell), then binned and added in batches. The sums are the same
+// sums in another order: results agree with the host/device loop to rounding (the tests bound it) and are
+// deterministic for any thread count.
+#pragma once
+
+#include "gls/MultiresolutionView.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace gls
+{
+
+/// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points).
+struct MultiresolutionScratch
+{
+  std::vector<std::uint32_t> frontier, next, opened, taken, read;
+  std::vector<AggregateMoments> bins;
+};
+
+/// Fits every scale of the evaluation point p, as evaluateAllScalesMultiresolution; out: S samples.
+void evaluateAllScalesMultiresolutionOnCpu(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
+  double minNeighbors, MultiresolutionScratch& scratch, ScaleSample* out);
+
+} // namespace gls

@@ -1,0 +1,247 @@
+#include "gls/MultiresolutionKernel.h"
+
+#include "KernelVectors.h"
+
+#include <cstring>
+
+namespace gls
+{
+namespace
+{
+
+constexpr int kBatch = 64;
+
+#if GLS_KERNEL_VECTORS
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+/// addSampleSums (AggregateMoments.h) with f = (f0, f1, f8): the same products and sums, element by element (fused
+/// into multiply-adds in the AVX2 build).
+GLS_ALWAYS_INLINE void addSums(AggregateMoments& a, kernel::Double4 f0, kernel::Double4 f1, double f8, double d2)
+{
+  using kernel::load4;
+  using kernel::store4;
+  const double d4 = d2 * d2;
+  double* m = a.m;
+  store4(m, load4(m) + f0);
+  store4(m + 4, load4(m + 4) + f1);
+  m[8] += f8;
+  store4(m + 9, load4(m + 9) + d2 * f0);
+  store4(m + 13, load4(m + 13) + d2 * f1);
+  m[17] += d2 * f8;
+  store4(m + 18, load4(m + 18) + d4 * f0);
+  store4(m + 22, load4(m + 22) + d4 * f1);
+  m[26] += d4 * f8;
+}
+
+GLS_ALWAYS_INLINE void addCellVectorized(AggregateMoments& a, const Vec3& x, double d2, const PyramidCell& c)
+{
+  const double m = c.count;
+  const kernel::Double4 f0 = { m, m * x.x, m * x.y, m * x.z };
+  const kernel::Double4 f1 = { c.normalSum.x, c.normalSum.y, c.normalSum.z, c.offsetDotNormal + dot(x, c.normalSum) };
+  addSums(a, f0, f1, c.spread + m * d2, d2);
+}
+
+GLS_ALWAYS_INLINE void addPointVectorized(AggregateMoments& a, const Vec3& x, double d2, const Vec3& n)
+{
+  const kernel::Double4 f0 = { 1.0, x.x, x.y, x.z };
+  const kernel::Double4 f1 = { n.x, n.y, n.z, dot(x, n) };
+  addSums(a, f0, f1, d2, d2);
+}
+#pragma GCC diagnostic pop
+#else
+GLS_ALWAYS_INLINE void addCellVectorized(AggregateMoments& a, const Vec3& x, double d2, const PyramidCell& c)
+{
+  addCell(a, x, d2, c.count, c.normalSum, c.offsetDotNormal, c.spread);
+}
+
+GLS_ALWAYS_INLINE void addPointVectorized(AggregateMoments& a, const Vec3& x, double d2, const Vec3& n)
+{
+  addPoint(a, x, d2, n);
+}
+#endif
+
+/// Appends the top-level cells the ball of radius r around p overlaps (as forEachMultiresolutionSample does).
+GLS_ALWAYS_INLINE void topCells(const MultiresolutionView& v, const Vec3& p, double r, std::vector<std::uint32_t>& out)
+{
+  const double H = v.levelSize[v.topLevel];
+  const std::int64_t cells = std::int64_t(1) << (kMortonBits - v.topLevel);
+  const std::int64_t x0 = pyramidCoordinate(p.x - r, v.origin.x, H, cells);
+  const std::int64_t x1 = pyramidCoordinate(p.x + r, v.origin.x, H, cells);
+  const std::int64_t y0 = pyramidCoordinate(p.y - r, v.origin.y, H, cells);
+  const std::int64_t y1 = pyramidCoordinate(p.y + r, v.origin.y, H, cells);
+  const std::int64_t z0 = pyramidCoordinate(p.z - r, v.origin.z, H, cells);
+  const std::int64_t z1 = pyramidCoordinate(p.z + r, v.origin.z, H, cells);
+  for (std::int64_t z = z0; z <= z1; ++z)
+  {
+    for (std::int64_t y = y0; y <= y1; ++y)
+    {
+      for (std::int64_t x = x0; x <= x1; ++x)
+      {
+        const std::int64_t c = findTopCell(v,
+          mortonKey(static_cast<std::uint64_t>(x), static_cast<std::uint64_t>(y), static_cast<std::uint64_t>(z)));
+        if (c >= 0)
+        {
+          out.push_back(static_cast<std::uint32_t>(c));
+        }
+      }
+    }
+  }
+}
+
+/// Adds the cells taken whole: their centroids inside the ball, binned by the centroid's distance.
+GLS_ALWAYS_INLINE void addTakenCells(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, double r2,
+  const std::vector<std::uint32_t>& taken, AggregateMoments* bins)
+{
+  std::uint32_t inside[kBatch];
+  double squared[kBatch];
+  int scale[kBatch];
+  const std::size_t n = taken.size();
+  for (std::size_t c = 0; c < n; c += kBatch)
+  {
+    const int m = static_cast<int>(n - c < kBatch ? n - c : kBatch);
+    int k = 0;
+    for (int j = 0; j < m; ++j)
+    {
+      const double d2 = squaredNorm(v.cells[taken[c + j]].centroid - p);
+      inside[k] = taken[c + j];
+      squared[k] = d2;
+      k += d2 < r2 ? 1 : 0;
+    }
+    for (int j = 0; j < k; ++j)
+    {
+      scale[j] = firstScaleHolding(b, squared[j]);
+    }
+    for (int j = 0; j < k; ++j)
+    {
+      const PyramidCell& cell = v.cells[inside[j]];
+      addCellVectorized(bins[scale[j]], cell.centroid - p, squared[j], cell);
+    }
+  }
+}
+
+/// Adds the points of the finest cells read one by one that lie inside the ball.
+GLS_ALWAYS_INLINE void addReadPoints(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, double r2,
+  const std::vector<std::uint32_t>& read, AggregateMoments* bins)
+{
+  std::uint32_t inside[kBatch];
+  double squared[kBatch];
+  int scale[kBatch];
+  for (std::uint32_t cell : read)
+  {
+    const PyramidNode& node = v.nodes[cell];
+    for (std::uint32_t c = node.first; c < node.last; c += kBatch)
+    {
+      const int m = static_cast<int>(node.last - c < kBatch ? node.last - c : kBatch);
+      int k = 0;
+      for (int j = 0; j < m; ++j)
+      {
+        const double d2 = squaredNorm(v.points[c + j] - p);
+        inside[k] = c + j;
+        squared[k] = d2;
+        k += d2 < r2 ? 1 : 0;
+      }
+      for (int j = 0; j < k; ++j)
+      {
+        scale[j] = firstScaleHolding(b, squared[j]);
+      }
+      for (int j = 0; j < k; ++j)
+      {
+        addPointVectorized(bins[scale[j]], v.points[inside[j]] - p, squared[j], v.normals[inside[j]]);
+      }
+    }
+  }
+}
+
+GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
+  double minNeighbors, MultiresolutionScratch& s, ScaleSample* out)
+{
+  if (b.count <= 0)
+  {
+    return;
+  }
+  s.bins.resize(static_cast<std::size_t>(b.count));
+  std::memset(static_cast<void*>(s.bins.data()), 0, sizeof(AggregateMoments) * s.bins.size()); // all 0.0
+  s.taken.clear();
+  s.read.clear();
+  s.frontier.clear();
+  const double r = b.scales[b.count - 1];
+  const double r2 = r * r;
+  const double eps2 = v.accuracy * v.accuracy;
+  if (v.topEnd > v.topBegin && r > 0.0)
+  {
+    topCells(v, p, r, s.frontier);
+  }
+  // Level by level: each cell of the frontier is skipped (outside the ball), taken whole, read point by point
+  // (level 0) or opened (its children make the next level's frontier); the writes only advance indices.
+  for (int level = v.topLevel; level >= 0 && !s.frontier.empty(); --level)
+  {
+    const double edge = v.levelSize[level];
+    const double edge2 = edge * edge;
+    const std::size_t n = s.frontier.size();
+    const std::size_t takenBefore = s.taken.size();
+    s.taken.resize(takenBefore + n);
+    s.opened.resize(n);
+    std::size_t taken = takenBefore, opened = 0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const std::uint32_t c = s.frontier[i];
+      const double box2 = squaredDistanceToCube(p, v.nodes[c].corner, edge);
+      const bool inside = box2 < r2;
+      const bool whole = edge2 <= eps2 * box2;
+      s.taken[taken] = c;
+      taken += inside && whole ? 1 : 0;
+      s.opened[opened] = c;
+      opened += inside && !whole ? 1 : 0;
+    }
+    s.taken.resize(taken);
+    if (level == 0)
+    {
+      s.read.assign(s.opened.begin(), s.opened.begin() + static_cast<long>(opened));
+      break;
+    }
+    s.next.clear();
+    for (std::size_t i = 0; i < opened; ++i)
+    {
+      const PyramidNode& node = v.nodes[s.opened[i]];
+      for (std::uint32_t c = node.first; c < node.last; ++c)
+      {
+        s.next.push_back(c);
+      }
+    }
+    s.frontier.swap(s.next);
+  }
+  addTakenCells(v, p, b, r2, s.taken, s.bins.data());
+  addReadPoints(v, p, b, r2, s.read, s.bins.data());
+  fitAllScalesFromBins(b, minNeighbors, s.bins.data(), out);
+}
+
+void evaluateBaseline(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, double minNeighbors,
+  MultiresolutionScratch& s, ScaleSample* out)
+{
+  evaluate(v, p, b, minNeighbors, s, out);
+}
+
+#if GLS_KERNEL_DISPATCH
+__attribute__((target("avx2,fma"))) void evaluateAvx2(const MultiresolutionView& v, const Vec3& p,
+  const ScaleBinning& b, double minNeighbors, MultiresolutionScratch& s, ScaleSample* out)
+{
+  evaluate(v, p, b, minNeighbors, s, out);
+}
+#endif
+
+} // namespace
+
+void evaluateAllScalesMultiresolutionOnCpu(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
+  double minNeighbors, MultiresolutionScratch& s, ScaleSample* out)
+{
+#if GLS_KERNEL_DISPATCH
+  if (kernel::hasAvx2())
+  {
+    evaluateAvx2(v, p, b, minNeighbors, s, out);
+    return;
+  }
+#endif
+  evaluateBaseline(v, p, b, minNeighbors, s, out);
+}
+
+} // namespace gls
