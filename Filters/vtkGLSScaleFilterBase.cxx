@@ -193,8 +193,9 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   settings.scales = run.Scales;
   settings.minNeighbors = run.MinimumNeighbors;
   settings.parallel.threads = this->NumberOfThreads;
-  // The pyramid's build reports only heartbeats (the feed's progress follows) and stops when aborted.
-  settings.parallel.progress = [this](double) { return this->Heartbeat(); };
+  // The pyramid's build reports its progress in the first 2% (the feed's own progress follows) and stops when
+  // aborted.
+  settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 0.02); };
   this->ChooseEvaluation(run, settings);
   run.Samples = vtkGLSSampleSource::Fit(run.Cloud, settings);
   this->Heartbeat();

@@ -47,7 +47,7 @@ SampleCounts countSamples(const gls::MultiresolutionView& v, const gls::Vec3& p,
 {
   SampleCounts n;
   gls::forEachMultiresolutionSample(
-    v, p, scales.back(),
+    v, p, scales.back(), scales.front(),
     [&](const gls::PyramidCell& c) {
       ++n.cells;
       const gls::Vec3 x = c.centroid - p;

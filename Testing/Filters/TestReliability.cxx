@@ -59,14 +59,19 @@ struct TimedAborter : vtkCommand
   Clock::time_point When;
 };
 
+/// evaluation: the scale filters' Evaluation (-1: the default).
 template <typename Filter>
-void expectQuickAbort(vtkPolyData* input, const char* array, double threshold = 0.05)
+void expectQuickAbort(vtkPolyData* input, const char* array, double threshold = 0.05, int evaluation = -1)
 {
   vtkNew<Filter> f;
   if constexpr (std::is_base_of<vtkGLSScaleFilterBase, Filter>::value)
   {
     f->SetMaxScale(0.01); // about 300 neighbours per point on this sphere: the run itself takes seconds
     f->SetMinScale(0.002);
+    if (evaluation >= 0)
+    {
+      f->SetEvaluation(evaluation);
+    }
   }
   vtkNew<TimedAborter> aborter;
   aborter->Threshold = threshold;
@@ -94,6 +99,10 @@ TEST(Reliability, AbortOnAMillionPointsReturnsWithinASecond)
   expectQuickAbort<vtkGLSGeometricVariation>(withNormals, "GLSGeometricVariation");
   expectQuickAbort<vtkGLSContinuousFeatures>(withNormals, "GLSFeature");
   expectQuickAbort<vtkGLSMultiScaleDissimilarity>(withNormals, "GLSDissimilarity");
+  // The multi-resolution evaluation: while its pyramid is built (the first 2% of the run), and while it fits.
+  const int cells = vtkGLSScaleFilterBase::EVALUATION_MULTIRESOLUTION;
+  expectQuickAbort<vtkGLSContinuousFeatures>(withNormals, "GLSFeature", 0.005, cells);
+  expectQuickAbort<vtkGLSContinuousFeatures>(withNormals, "GLSFeature", 0.3, cells);
 }
 
 /// Records the time of every progress report of the observed filter.

@@ -79,11 +79,15 @@ projection = GLSProjection(Input=normals, ScaleMode='Fixed scale', Scale=0.02)  
 bandwidth = GLSAdaptiveBandwidth(Input=normals, MinScale=0.005, MaxScale=0.03, NumberOfScales=8,  # noqa: F405
                                  ScaleSampling='Logarithmic', SmoothingRadius=0.02)
 adaptive = GLSProjection(Input=bandwidth)  # noqa: F405  (the per-point GLSBandwidth)
+# The multi-resolution evaluation (forced: the bunny is below Auto's limit), whose cells reach past the largest scale.
+cells_space = GLSScaleSpace(Input=normals, Evaluation='Multiresolution', Accuracy=0.3, **scales)  # noqa: F405
+cells_features = GLSContinuousFeatures(Input=normals, Evaluation='Multiresolution', **scales)  # noqa: F405
 
 saved = {}
 for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_features', fused_features),
                       ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('projection', projection),
-                      ('adaptive_projection', adaptive)):
+                      ('adaptive_projection', adaptive), ('cells_space', cells_space),
+                      ('cells_features', cells_features)):
     proxy.UpdatePipeline()
     data = servermanager.Fetch(proxy)
     pd = data.GetPointData()

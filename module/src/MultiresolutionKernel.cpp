@@ -167,6 +167,7 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
   const double r = b.scales[b.count - 1];
   const double r2 = r * r;
   const double eps2 = v.accuracy * v.accuracy;
+  const double floor2 = b.scales[0] * b.scales[0];
   if (v.topEnd > v.topBegin && r > 0.0)
   {
     topCells(v, p, r, s.frontier);
@@ -187,7 +188,7 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
       const std::uint32_t c = s.frontier[i];
       const double box2 = squaredDistanceToCube(p, v.nodes[c].corner, edge);
       const bool inside = box2 < r2;
-      const bool whole = edge2 <= eps2 * box2;
+      const bool whole = takenWhole(edge2, box2, eps2, floor2);
       s.taken[taken] = c;
       taken += inside && whole ? 1 : 0;
       s.opened[opened] = c;

@@ -114,13 +114,24 @@ GLS_INLINE std::int64_t findTopCell(const MultiresolutionView& v, std::uint64_t 
 
 constexpr int kPyramidStack = 8 * (kMaxPyramidLevels + 4);
 
-/// Calls sample(cell) for every cell taken whole and point(i) for every point read one by one, for the ball of
-/// radius r around p: every point of the ball is in exactly one of them (points of a cell taken whole may lie
+/// The rule of both walks: a cell of squared edge edge2, at squared distance box2 from p, is taken whole when its
+/// edge is at most epsilon times max(distance, smallest scale) (eps2 = epsilon^2, floor2 = the smallest scale
+/// squared: a cell nearer than the smallest scale contributes to no smaller ball, so the relative weight error
+/// (edge / t)^2 stays below epsilon^2 at every scale), and p is at least one edge away from it (p's nearest
+/// neighbours enter point by point).
+GLS_INLINE bool takenWhole(double edge2, double box2, double eps2, double floor2)
+{
+  return edge2 <= box2 && edge2 <= eps2 * (box2 > floor2 ? box2 : floor2);
+}
+
+/// Calls sample(cell) for every cell taken whole (takenWhole, with `smallest` the smallest scale) and point(i) for
+/// every point read one by one, for the ball of radius r around p: every point of the ball is in exactly one of them (points of a cell taken whole may lie
 /// outside the ball; the caller weights them at the cell's centroid). The order is fixed by the pyramid alone.
 template <typename CellVisit, typename PointVisit>
-GLS_INLINE void forEachMultiresolutionSample(
-  const MultiresolutionView& v, const Vec3& p, double r, CellVisit&& sample, PointVisit&& point)
+GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const Vec3& p, double r, double smallest,
+  CellVisit&& sample, PointVisit&& point)
 {
+  const double floor2 = smallest * smallest;
   if (v.topEnd <= v.topBegin || !(r > 0.0))
   {
     return;
@@ -167,7 +178,7 @@ GLS_INLINE void forEachMultiresolutionSample(
     {
       continue;
     }
-    if (edge * edge <= eps2 * box2)
+    if (takenWhole(edge * edge, box2, eps2, floor2))
     {
       sample(v.cells[stack[top]]);
     }
@@ -209,7 +220,7 @@ GLS_INLINE void evaluateAllScalesMultiresolution(const MultiresolutionView& v, c
   const double r = b.scales[b.count - 1];
   const double r2 = r * r;
   forEachMultiresolutionSample(
-    v, p, r,
+    v, p, r, b.scales[0],
     [&](const PyramidCell& c) {
       const Vec3 x = c.centroid - p;
       const double d2 = squaredNorm(x);
