@@ -3,6 +3,7 @@
 
 #include "gls/ScaleSpaceEngine.h"
 
+#include <cstring>
 #include <vector>
 
 namespace glstest
@@ -30,6 +31,16 @@ public:
   std::size_t Scales;
   std::vector<gls::ScaleSample> Samples;
 };
+
+/// True when two samples hold the same bits in every value (the determinism tests).
+inline bool sameBits(const gls::ScaleSample& a, const gls::ScaleSample& b)
+{
+  const double va[] = { a.tau, a.kappa, a.phi, a.dtau, a.dkappa, a.eta.x, a.eta.y, a.eta.z, a.deta.x, a.deta.y,
+    a.deta.z, a.neighbors };
+  const double vb[] = { b.tau, b.kappa, b.phi, b.dtau, b.dkappa, b.eta.x, b.eta.y, b.eta.z, b.deta.x, b.deta.y,
+    b.deta.z, b.neighbors };
+  return std::memcmp(va, vb, sizeof(va)) == 0;
+}
 
 /// Runs the engine over a cloud and returns every sample.
 inline CollectingSink runScaleSpace(const std::vector<double>& points, const std::vector<double>& normals,

@@ -287,11 +287,7 @@ TEST(Multiresolution, ResultsAreBitwiseIdenticalForAnyThreadCount)
     {
       const gls::ScaleSample& a = one.Samples[i];
       const gls::ScaleSample& b = many.Samples[i];
-      const double va[] = { a.tau, a.kappa, a.phi, a.dtau, a.dkappa, a.eta.x, a.eta.y, a.eta.z, a.deta.x,
-        a.deta.y, a.deta.z, a.neighbors };
-      const double vb[] = { b.tau, b.kappa, b.phi, b.dtau, b.dkappa, b.eta.x, b.eta.y, b.eta.z, b.deta.x,
-        b.deta.y, b.deta.z, b.neighbors };
-      ASSERT_EQ(0, std::memcmp(va, vb, sizeof(va))) << "sample " << i << " with " << threads << " threads";
+      ASSERT_TRUE(sameBits(a, b)) << "sample " << i << " with " << threads << " threads";
     }
   }
 }

@@ -60,34 +60,6 @@ GLS_ALWAYS_INLINE void addPointVectorized(AggregateMoments& a, const Vec3& x, do
 }
 #endif
 
-/// Appends the top-level cells the ball of radius r around p overlaps (as forEachMultiresolutionSample does).
-GLS_ALWAYS_INLINE void topCells(const MultiresolutionView& v, const Vec3& p, double r, std::vector<std::uint32_t>& out)
-{
-  const double H = v.levelSize[v.topLevel];
-  const std::int64_t cells = std::int64_t(1) << (kMortonBits - v.topLevel);
-  const std::int64_t x0 = pyramidCoordinate(p.x - r, v.origin.x, H, cells);
-  const std::int64_t x1 = pyramidCoordinate(p.x + r, v.origin.x, H, cells);
-  const std::int64_t y0 = pyramidCoordinate(p.y - r, v.origin.y, H, cells);
-  const std::int64_t y1 = pyramidCoordinate(p.y + r, v.origin.y, H, cells);
-  const std::int64_t z0 = pyramidCoordinate(p.z - r, v.origin.z, H, cells);
-  const std::int64_t z1 = pyramidCoordinate(p.z + r, v.origin.z, H, cells);
-  for (std::int64_t z = z0; z <= z1; ++z)
-  {
-    for (std::int64_t y = y0; y <= y1; ++y)
-    {
-      for (std::int64_t x = x0; x <= x1; ++x)
-      {
-        const std::int64_t c = findTopCell(v,
-          mortonKey(static_cast<std::uint64_t>(x), static_cast<std::uint64_t>(y), static_cast<std::uint64_t>(z)));
-        if (c >= 0)
-        {
-          out.push_back(static_cast<std::uint32_t>(c));
-        }
-      }
-    }
-  }
-}
-
 /// Adds the cells taken whole: their centroids inside the ball, binned by the centroid's distance.
 GLS_ALWAYS_INLINE void addTakenCells(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, double r2,
   const std::vector<std::uint32_t>& taken, AggregateMoments* bins)
@@ -170,7 +142,7 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
   const double floor2 = b.scales[0] * b.scales[0];
   if (v.topEnd > v.topBegin && r > 0.0)
   {
-    topCells(v, p, r, s.frontier);
+    forEachTopCell(v, p, r, [&](std::uint32_t c) { s.frontier.push_back(c); });
   }
   // Level by level: each cell of the frontier is skipped (outside the ball), taken whole, read point by point
   // (level 0) or opened (its children make the next level's frontier); the writes only advance indices.

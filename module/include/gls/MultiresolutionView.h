@@ -114,6 +114,36 @@ GLS_INLINE std::int64_t findTopCell(const MultiresolutionView& v, std::uint64_t 
 
 constexpr int kPyramidStack = 8 * (kMaxPyramidLevels + 4);
 
+/// Calls f(index) for each top-level cell the ball of radius r around p overlaps, z then y then x increasing. The
+/// top cells' edge is at least the ball's diameter (or there are two per axis): at most 8 calls.
+template <typename F>
+GLS_INLINE void forEachTopCell(const MultiresolutionView& v, const Vec3& p, double r, F&& f)
+{
+  const double H = v.levelSize[v.topLevel];
+  const std::int64_t cells = std::int64_t(1) << (kMortonBits - v.topLevel);
+  const std::int64_t x0 = pyramidCoordinate(p.x - r, v.origin.x, H, cells);
+  const std::int64_t x1 = pyramidCoordinate(p.x + r, v.origin.x, H, cells);
+  const std::int64_t y0 = pyramidCoordinate(p.y - r, v.origin.y, H, cells);
+  const std::int64_t y1 = pyramidCoordinate(p.y + r, v.origin.y, H, cells);
+  const std::int64_t z0 = pyramidCoordinate(p.z - r, v.origin.z, H, cells);
+  const std::int64_t z1 = pyramidCoordinate(p.z + r, v.origin.z, H, cells);
+  for (std::int64_t z = z0; z <= z1; ++z)
+  {
+    for (std::int64_t y = y0; y <= y1; ++y)
+    {
+      for (std::int64_t x = x0; x <= x1; ++x)
+      {
+        const std::int64_t c = findTopCell(v,
+          mortonKey(static_cast<std::uint64_t>(x), static_cast<std::uint64_t>(y), static_cast<std::uint64_t>(z)));
+        if (c >= 0)
+        {
+          f(static_cast<std::uint32_t>(c));
+        }
+      }
+    }
+  }
+}
+
 /// The rule of both walks: a cell of squared edge edge2, at squared distance box2 from p, is taken whole when its
 /// edge is at most epsilon times max(distance, smallest scale) (eps2 = epsilon^2, floor2 = the smallest scale
 /// squared: a cell nearer than the smallest scale contributes to no smaller ball, so the relative weight error
@@ -141,31 +171,20 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
   std::uint32_t stack[kPyramidStack];
   int stackLevel[kPyramidStack];
   int top = 0;
-  // The top-level cells the ball overlaps (their edge is at least the ball's diameter: at most 2 per axis).
-  const double H = v.levelSize[v.topLevel];
-  const std::int64_t cells = std::int64_t(1) << (kMortonBits - v.topLevel);
-  const std::int64_t x0 = pyramidCoordinate(p.x - r, v.origin.x, H, cells);
-  const std::int64_t x1 = pyramidCoordinate(p.x + r, v.origin.x, H, cells);
-  const std::int64_t y0 = pyramidCoordinate(p.y - r, v.origin.y, H, cells);
-  const std::int64_t y1 = pyramidCoordinate(p.y + r, v.origin.y, H, cells);
-  const std::int64_t z0 = pyramidCoordinate(p.z - r, v.origin.z, H, cells);
-  const std::int64_t z1 = pyramidCoordinate(p.z + r, v.origin.z, H, cells);
-  for (std::int64_t z = z1; z >= z0; --z)
-  {
-    for (std::int64_t y = y1; y >= y0; --y)
+  // The top-level cells the ball overlaps, pushed last to first so that they are visited in order.
+  std::uint32_t tops[8];
+  int found = 0;
+  forEachTopCell(v, p, r, [&](std::uint32_t c) {
+    if (found < 8)
     {
-      for (std::int64_t x = x1; x >= x0; --x)
-      {
-        const std::int64_t c = findTopCell(v,
-          mortonKey(static_cast<std::uint64_t>(x), static_cast<std::uint64_t>(y), static_cast<std::uint64_t>(z)));
-        if (c >= 0 && top < kPyramidStack)
-        {
-          stack[top] = static_cast<std::uint32_t>(c);
-          stackLevel[top] = v.topLevel;
-          ++top;
-        }
-      }
+      tops[found++] = c;
     }
+  });
+  for (int i = found - 1; i >= 0; --i)
+  {
+    stack[top] = tops[i];
+    stackLevel[top] = v.topLevel;
+    ++top;
   }
   while (top > 0)
   {

@@ -100,48 +100,45 @@ __global__ void gatherKernel(const std::uint64_t* order, std::uint64_t n, const 
   sortedIds[i] = ids[from];
 }
 
+/// The position of evaluation i; false, with its S samples invalid, when a coordinate is not finite.
+__device__ bool evaluationPoint(const Vec3* positions, std::uint64_t i, int S, ScaleSample* out, Vec3& p)
+{
+  p = positions[i];
+  if (isFinite(p.x) && isFinite(p.y) && isFinite(p.z))
+  {
+    return true;
+  }
+  for (int k = 0; k < S; ++k)
+  {
+    out[i * S + k] = invalidSample<double>(0.0);
+  }
+  return false;
+}
+
 __global__ void evaluateKernel(GridView grid, ScaleBinning binning, double minNeighbors, const Vec3* positions,
   std::uint64_t count, Moments* bins, ScaleSample* out)
 {
   const std::uint64_t i = blockIdx.x * static_cast<std::uint64_t>(blockDim.x) + threadIdx.x;
-  if (i >= count)
-  {
-    return;
-  }
   const int S = binning.count;
-  const Vec3 p = positions[i];
-  ScaleSample* samples = out + i * S;
-  if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
+  Vec3 p;
+  if (i >= count || !evaluationPoint(positions, i, S, out, p))
   {
-    for (int k = 0; k < S; ++k)
-    {
-      samples[k] = invalidSample<double>(0.0);
-    }
     return;
   }
-  evaluateAllScales(grid, p, binning, minNeighbors, bins + i * S, samples);
+  evaluateAllScales(grid, p, binning, minNeighbors, bins + i * S, out + i * S);
 }
 
 __global__ void evaluateMultiresolutionKernel(MultiresolutionView pyramid, ScaleBinning binning, double minNeighbors,
   const Vec3* positions, std::uint64_t count, AggregateMoments* bins, ScaleSample* out)
 {
   const std::uint64_t i = blockIdx.x * static_cast<std::uint64_t>(blockDim.x) + threadIdx.x;
-  if (i >= count)
-  {
-    return;
-  }
   const int S = binning.count;
-  const Vec3 p = positions[i];
-  ScaleSample* samples = out + i * S;
-  if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
+  Vec3 p;
+  if (i >= count || !evaluationPoint(positions, i, S, out, p))
   {
-    for (int k = 0; k < S; ++k)
-    {
-      samples[k] = invalidSample<double>(0.0);
-    }
     return;
   }
-  evaluateAllScalesMultiresolution(pyramid, p, binning, minNeighbors, bins + i * S, samples);
+  evaluateAllScalesMultiresolution(pyramid, p, binning, minNeighbors, bins + i * S, out + i * S);
 }
 
 unsigned blocksFor(std::uint64_t n, unsigned threads)
