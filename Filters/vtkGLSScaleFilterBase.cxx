@@ -212,8 +212,8 @@ void vtkGLSScaleFilterBase::ChooseEvaluation(vtkGLSRun& run, gls::ScaleSpaceSett
 {
   const vtkGLSDistributedCloud& dist = run.Distributed;
   const double t = run.Scales.back();
-  gls::BallCountEstimate estimate;
-  if (this->Evaluation != EVALUATION_EXACT)
+  gls::BallCountEstimate estimate; // only Auto needs it (every rank takes the same branch)
+  if (this->Evaluation == EVALUATION_AUTO)
   {
     estimate = gls::estimateBallCount(run.Cloud.Points.data(), run.Cloud.Size(), run.Cloud.Owned, t);
     estimate.neighbors = dist.Sum(estimate.neighbors);

@@ -232,7 +232,6 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
 void ScaleSpaceEngine::evaluatePosition(const Vec3& p, std::vector<ScaleSample>& out) const
 {
   const int S = static_cast<int>(this->Settings.scales.size());
-  std::vector<Moments> b(static_cast<std::size_t>(S));
   out.resize(static_cast<std::size_t>(S));
   if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
   {
@@ -249,6 +248,7 @@ void ScaleSpaceEngine::evaluatePosition(const Vec3& p, std::vector<ScaleSample>&
       this->Pyramid.view(), p, this->binning(), this->Settings.minNeighbors, scratch, out.data());
     return;
   }
+  std::vector<Moments> b(static_cast<std::size_t>(S));
   evaluateAllScalesOnCpu(this->Grid.view(), p, this->binning(), this->Settings.minNeighbors, b.data(), out.data());
 }
 
