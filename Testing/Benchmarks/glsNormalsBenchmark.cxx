@@ -2,9 +2,12 @@
 // a simulated scanner (ScannerSimulation.h: two positions, 10:1 denser along the scan lines than across, first
 // hits), the estimated normals against the hit triangles' normals; then the time of the estimate on 1M points.
 //
-//   glsNormalsBenchmark [--models bunny,spot,...] [--samples-along N] [--invariance 0|1] [--noisy-points N]
-//                       [--timing-points N]
-//                       [--threads T]
+//   glsNormalsBenchmark [--models bunny,spot,...] [--samples-along N] [--anisotropy A] [--subdivide L]
+//                       [--invariance 0|1] [--noisy-points N] [--timing-points N] [--threads T]
+//
+// --samples-along: rays per scan line (1200); --anisotropy: the spacing across the lines over the spacing along (10);
+// --subdivide: Loop subdivision levels applied to the smooth models (not the CAD parts) before the scan (0), so that
+// the truth is a smooth surface rather than facets larger than the scan's spacing.
 //
 // Per model and method: percentiles of the angle to the true normal (unoriented, degrees), the share within 5
 // degrees (of the hit triangle's normal, and of the mesh's smooth normal there), the share pointing the wrong way (oriented dot < 0, among the defined normals) and the share of NaN. The
@@ -27,6 +30,7 @@
 #include "vtkCleanPolyData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkLoopSubdivisionFilter.h"
 #include "vtkStaticPointLocator.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
@@ -153,6 +157,8 @@ int main(int argc, char* argv[])
   long long noisyPoints = 200000;
   bool invariance = true;
   int threads = 0;
+  int subdivide = 0;
+  double anisotropy = 10.0;
   for (int i = 1; i + 1 < argc; i += 2)
   {
     if (!std::strcmp(argv[i], "--models"))
@@ -167,11 +173,15 @@ int main(int argc, char* argv[])
       timingPoints = std::atoll(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--threads"))
       threads = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--anisotropy"))
+      anisotropy = std::atof(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--subdivide"))
+      subdivide = std::atoi(argv[i + 1]);
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--models a,b] [--samples-along N] [--invariance 0|1] [--noisy-points N] [--timing-points N] "
-        "[--threads T]\n",
+        "usage: %s [--models a,b] [--samples-along N] [--anisotropy A] [--subdivide L] [--invariance 0|1] "
+        "[--noisy-points N] [--timing-points N] [--threads T]\n",
         argv[0]);
       return 2;
     }
@@ -220,8 +230,9 @@ int main(int argc, char* argv[])
       } },
   };
 
-  std::printf("Scanner simulation: two positions, %d rays per scan line, 10:1 denser along the lines than across\n",
-    samplesAlong);
+  std::printf("Scanner simulation: two positions, %d rays per scan line, %g:1 denser along the lines than across, "
+              "smooth models Loop-subdivided %d times\n",
+    samplesAlong, anisotropy, subdivide);
   std::printf("| model        | method                             |  points |    p50 |    p90 |    p95 |    p99 | "
               "<= 5 deg | <= 5 deg of smooth | wrong way (scanner side) | wrong way (file winding) |   NaN |      s |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -233,7 +244,16 @@ int main(int argc, char* argv[])
     clean->SetInputConnection(reader->GetOutputPort());
     clean->SetTolerance(0.0);
     clean->Update();
-    vtkPolyData* mesh = clean->GetOutput();
+    vtkSmartPointer<vtkPolyData> mesh = clean->GetOutput();
+    const bool cad = model == "fandisk" || model == "rocker-arm";
+    if (subdivide > 0 && !cad)
+    {
+      vtkNew<vtkLoopSubdivisionFilter> loop;
+      loop->SetInputData(mesh);
+      loop->SetNumberOfSubdivisions(subdivide);
+      loop->Update();
+      mesh = loop->GetOutput();
+    }
     if (mesh->GetNumberOfCells() == 0)
     {
       std::printf("| %s | cannot read the mesh |\n", model.c_str());
@@ -241,8 +261,8 @@ int main(int argc, char* argv[])
     }
     ScannerSettings settings;
     settings.SamplesAlong = samplesAlong;
+    settings.Anisotropy = anisotropy;
     const ScannerScan scan = simulateScanner(mesh, settings);
-    const bool cad = model == "fandisk" || model == "rocker-arm";
     std::vector<unsigned char> counted(scan.Size(), 1);
     if (cad)
     {

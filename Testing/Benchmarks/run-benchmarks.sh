@@ -10,6 +10,12 @@ bin="${1:-build}/bin/glsBenchmarks"
 "$bin" --case P5
 # Normals under simulated scanner sampling, the noisy bunny, and the time on 1M points (docs/normals.md).
 "${1:-build}/bin/glsNormalsBenchmark"
+# The same scans of the smooth models' limit surfaces (Loop-subdivided twice), at 1200 and 4000 rays per scan line:
+# how the share within 5 degrees depends on the scan's resolution (docs/normals.md, "Resolution").
+for rays in 1200 4000; do
+  "${1:-build}/bin/glsNormalsBenchmark" --models stanford-bunny,spot,cheburashka --subdivide 2 --samples-along "$rays" \
+    --invariance 0 --noisy-points 0 --timing-points 0
+done
 # Real scan sizes: the multi-resolution evaluation, L1-L3 and the accuracy table (about 40 minutes on 2 cores;
 # docs/performance.md, "Large scans").
 "${1:-build}/bin/glsLargeScanBenchmark" --case all
