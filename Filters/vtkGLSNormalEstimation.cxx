@@ -68,12 +68,6 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
                   "processes: set Radius to a length (a serial run records the automatic one in GLSNormalRadius).");
     return FAILED;
   }
-  if (this->Refinement == GLS_REFINEMENT && dist.IsParallel())
-  {
-    vtkErrorMacro("Refinement GLS is not supported on several processes: run the normal estimation on one "
-                  "process, or without refinement.");
-    return FAILED;
-  }
   if (dist.IsParallel())
   {
     const gls::PlaneZ plane = gls::commonZ(run.Cloud.Points.data(), run.Cloud.Owned);
@@ -145,7 +139,8 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
   gls::NormalEstimationResult result;
   if (dist.IsParallel())
   {
-    if (!this->EstimateDistributed(run, reference, settings, result))
+    if (!this->EstimateDistributed(run, reference, settings, result) ||
+      (this->Refinement == GLS_REFINEMENT && !this->RefineDistributed(run, result)))
     {
       return FAILED;
     }
@@ -286,6 +281,7 @@ bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<dou
   result.normals = ownedPart(estimate.normals, 3);
   result.neighborCounts = ownedPart(estimate.neighborCounts, 1);
   result.spread = ownedPart(estimate.spread, 1);
+  result.reach = ownedPart(estimate.reach, 1);
   if (!mst)
   {
     return true;
@@ -348,6 +344,44 @@ bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<dou
     return false;
   }
   result.normals = mine;
+  return true;
+}
+
+bool vtkGLSNormalEstimation::RefineDistributed(vtkGLSRun& run, gls::NormalEstimationResult& result)
+{
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  const std::size_t owned = run.Cloud.Owned; // distinct positions of this piece
+  double largest = 0.0;
+  for (std::size_t u = 0; u < owned; ++u)
+  {
+    largest = std::isfinite(result.reach[u]) ? std::max(largest, result.reach[u]) : largest;
+  }
+  std::vector<double> points(run.Cloud.Points.begin(), run.Cloud.Points.begin() + static_cast<std::ptrdiff_t>(3 * owned));
+  std::vector<double> normals = result.normals;
+  std::size_t ghostCount = 0;
+  if (!dist.AllTrue(dist.AppendGhosts(points, owned, { { &normals, 3 } }, this->RefinementScale * largest, ghostCount)))
+  {
+    vtkErrorMacro("The exchange of ghost points for the GLS refinement failed.");
+    return false;
+  }
+  // A position held by several pieces counts once, as in a serial run (the owned copies come first, so each owned
+  // point is its position's first copy); the ghosts are neighbours only (no reach: not refined).
+  const std::size_t total = points.size() / 3;
+  std::vector<double> reach(result.reach);
+  reach.resize(total, std::numeric_limits<double>::quiet_NaN());
+  const gls::CoincidentPoints shared = gls::findCoincidentPoints(points.data(), total);
+  const std::vector<double> xyz = gls::distinctValues(shared, points.data(), 3);
+  std::vector<double> distinctNormals = gls::distinctValues(shared, normals.data(), 3);
+  const std::vector<double> distinctReach = gls::distinctValues(shared, reach.data(), 1);
+  gls::ParallelOptions parallel;
+  parallel.threads = this->NumberOfThreads;
+  gls::refineNormalsByGls(
+    xyz.data(), xyz.size() / 3, distinctReach, this->RefinementScale, distinctNormals.data(), parallel);
+  for (std::size_t u = 0; u < owned; ++u)
+  {
+    const std::size_t d = static_cast<std::size_t>(shared.representative[u]);
+    std::copy(&distinctNormals[3 * d], &distinctNormals[3 * d] + 3, &result.normals[3 * u]);
+  }
   return true;
 }
 

@@ -116,8 +116,9 @@ public:
   /// Refinement of the oriented normals: NO_REFINEMENT (default, the PCA normals) or GLS_REFINEMENT, where each
   /// normal becomes eta of the GLS oriented-sphere fit of its neighbours' points and (PCA, oriented) normals at the
   /// scale RefinementScale times the distance to the farthest neighbour its PCA used: the sphere follows the
-  /// curvature that the PCA plane ignores. A point whose fit is undefined keeps its PCA normal. Serial runs only (a
-  /// distributed run with GLS_REFINEMENT is an error).
+  /// curvature that the PCA plane ignores. A point whose fit is undefined keeps its PCA normal. In a distributed run
+  /// each piece fetches the oriented normals of the points within its largest refinement scale (a second ghost
+  /// exchange), so the result equals the serial one.
   vtkSetClampMacro(Refinement, int, NO_REFINEMENT, GLS_REFINEMENT);
   vtkGetMacro(Refinement, int);
   void SetRefinementToNone() { this->SetRefinement(NO_REFINEMENT); }
@@ -182,6 +183,11 @@ protected:
   /// error) on a communication failure.
   bool EstimateDistributed(vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings& settings,
     gls::NormalEstimationResult& result);
+
+  /// GLS refinement of a distributed estimate: the ghosts (other pieces' points within RefinementScale times this
+  /// piece's largest reach) with their oriented normals, coincident positions counted once as in a serial run, then
+  /// the serial refinement on the owned points. False (with an error) on a communication failure.
+  bool RefineDistributed(vtkGLSRun& run, gls::NormalEstimationResult& result);
 
   /// Writes Normals, NormalQuality and NormalNeighbors to every input point (copies of a merged position included),
   /// the one-line warning for the points without a normal, and the field data (GLSNormalRadius, the run's).

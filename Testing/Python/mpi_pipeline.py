@@ -75,6 +75,7 @@ fused_similar = GLSMultiScaleDissimilarity(Input=normals, UseQueryPointCoordinat
                                            QueryPoint=[-0.03, 0.12, 0.03], PriorMinScale=0.02, **scales)
 agreeing = GLSNormalEstimation(Input=normals, NeighborhoodType='Radius', Radius=0.006,  # noqa: F405
                                Orientation='Agree with existing normals', ExistingNormals=['POINTS', 'Normals'])
+refined = GLSNormalEstimation(Input=cloud, NumberOfNeighbors=16, Refinement='GLS')  # noqa: F405
 projection = GLSProjection(Input=normals, ScaleMode='Fixed scale', Scale=0.02)  # noqa: F405
 bandwidth = GLSAdaptiveBandwidth(Input=normals, MinScale=0.005, MaxScale=0.03, NumberOfScales=8,  # noqa: F405
                                  ScaleSampling='Logarithmic', SmoothingRadius=0.02)
@@ -85,7 +86,7 @@ cells_features = GLSContinuousFeatures(Input=normals, Evaluation='Multiresolutio
 
 saved = {}
 for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_features', fused_features),
-                      ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('projection', projection),
+                      ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('refined', refined), ('projection', projection),
                       ('adaptive_projection', adaptive), ('cells_space', cells_space),
                       ('cells_features', cells_features)):
     proxy.UpdatePipeline()
