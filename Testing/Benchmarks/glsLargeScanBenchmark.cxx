@@ -15,6 +15,7 @@
 //       eta and eta_exact (degrees), |phi - phi_exact|, |nu - nu_exact| / (nu_exact + median nu_exact), and the
 //       share of points whose first pertinent scale moves by more than one scale step; PASS/FAIL against the
 //       targets at the default accuracy.
+#include "CommaList.h"
 #include "MeshSampler.h"
 
 #include "vtkGLSContinuousFeatures.h"
@@ -63,18 +64,6 @@ double peakMemoryMiB()
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return u.ru_maxrss / 1024.0;
-}
-
-std::vector<std::string> split(const std::string& s)
-{
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ','))
-  {
-    out.push_back(item);
-  }
-  return out;
 }
 
 std::string modelPath(const std::string& model)
@@ -517,7 +506,7 @@ int main(int argc, char* argv[])
     }
     else if (a == "--models" && v)
     {
-      models = split(argv[++i]);
+      models = splitCommaList(argv[++i]);
     }
     else if (a == "--threads" && v)
     {
@@ -530,7 +519,7 @@ int main(int argc, char* argv[])
     else if (a == "--sizes" && v)
     {
       sizes.clear();
-      for (const std::string& s : split(argv[++i]))
+      for (const std::string& s : splitCommaList(argv[++i]))
       {
         sizes.push_back(std::atoll(s.c_str()));
       }
@@ -538,7 +527,7 @@ int main(int argc, char* argv[])
     else if (a == "--accuracies" && v)
     {
       eps.clear();
-      for (const std::string& s : split(argv[++i]))
+      for (const std::string& s : splitCommaList(argv[++i]))
       {
         eps.push_back(std::atof(s.c_str()));
       }

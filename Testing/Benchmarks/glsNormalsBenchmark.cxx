@@ -21,6 +21,7 @@
 // (TOWARDS_VIEWPOINT_ARRAY); GLS refined; and, as a reference for what "within 5 degrees" can mean on these meshes, the
 // mesh's own vertex normals interpolated at the hits (a smooth surface against its facets);
 // vtkPCANormalEstimation (k = 16, graph-traversal orientation).
+#include "CommaList.h"
 #include "MeshSampler.h"
 #include "ScannerSimulation.h"
 
@@ -135,18 +136,6 @@ void report(const char* model, const char* method, vtkPolyData* out, const Scann
   std::fflush(stdout);
 }
 
-std::vector<std::string> split(const std::string& s)
-{
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ','))
-  {
-    out.push_back(item);
-  }
-  return out;
-}
-
 } // namespace
 
 int main(int argc, char* argv[])
@@ -236,7 +225,7 @@ int main(int argc, char* argv[])
   std::printf("| model        | method                             |  points |    p50 |    p90 |    p95 |    p99 | "
               "<= 5 deg | <= 5 deg of smooth | wrong way (scanner side) | wrong way (file winding) |   NaN |      s |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const std::string& model : split(models))
+  for (const std::string& model : splitCommaList(models))
   {
     vtkNew<vtkOBJReader> reader;
     reader->SetFileName((std::string(GLS_BENCHMARK_DATA_DIR) + "/" + model + ".obj").c_str());
