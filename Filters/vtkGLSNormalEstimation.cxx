@@ -140,7 +140,7 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
   if (dist.IsParallel())
   {
     if (!this->EstimateDistributed(run, reference, settings, result) ||
-      (this->Refinement == GLS_REFINEMENT && !this->RefineDistributed(run, result)))
+      (this->Refinement == GLS_REFINEMENT && !this->RefineDistributed(run, settings.parallel, result)))
     {
       return FAILED;
     }
@@ -347,7 +347,8 @@ bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<dou
   return true;
 }
 
-bool vtkGLSNormalEstimation::RefineDistributed(vtkGLSRun& run, gls::NormalEstimationResult& result)
+bool vtkGLSNormalEstimation::RefineDistributed(
+  vtkGLSRun& run, const gls::ParallelOptions& parallelOptions, gls::NormalEstimationResult& result)
 {
   const vtkGLSDistributedCloud& dist = run.Distributed;
   const std::size_t owned = run.Cloud.Owned; // distinct positions of this piece
@@ -373,8 +374,8 @@ bool vtkGLSNormalEstimation::RefineDistributed(vtkGLSRun& run, gls::NormalEstima
   const std::vector<double> xyz = gls::distinctValues(shared, points.data(), 3);
   std::vector<double> distinctNormals = gls::distinctValues(shared, normals.data(), 3);
   const std::vector<double> distinctReach = gls::distinctValues(shared, reach.data(), 1);
-  gls::ParallelOptions parallel;
-  parallel.threads = this->NumberOfThreads;
+  gls::ParallelOptions parallel = parallelOptions;
+  parallel.progress = nullptr; // no abort half-way through a collective run
   gls::refineNormalsByGls(
     xyz.data(), xyz.size() / 3, distinctReach, this->RefinementScale, distinctNormals.data(), parallel);
   for (std::size_t u = 0; u < owned; ++u)

@@ -61,6 +61,7 @@ namespace gls
 {
 struct NormalEstimationSettings;
 struct NormalEstimationResult;
+struct ParallelOptions;
 }
 
 class VTKGLSFILTERS_EXPORT vtkGLSNormalEstimation : public vtkGLSFilterBase
@@ -186,8 +187,10 @@ protected:
 
   /// GLS refinement of a distributed estimate: the ghosts (other pieces' points within RefinementScale times this
   /// piece's largest reach) with their oriented normals, coincident positions counted once as in a serial run, then
-  /// the serial refinement on the owned points. False (with an error) on a communication failure.
-  bool RefineDistributed(vtkGLSRun& run, gls::NormalEstimationResult& result);
+  /// the serial refinement on the owned points (the run's threads, without progress: no abort half-way through a
+  /// collective run). False (with an error) on a communication failure.
+  bool RefineDistributed(
+    vtkGLSRun& run, const gls::ParallelOptions& parallel, gls::NormalEstimationResult& result);
 
   /// Writes Normals, NormalQuality and NormalNeighbors to every input point (copies of a merged position included),
   /// the one-line warning for the points without a normal, and the field data (GLSNormalRadius, the run's).

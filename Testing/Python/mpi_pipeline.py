@@ -86,8 +86,8 @@ cells_features = GLSContinuousFeatures(Input=normals, Evaluation='Multiresolutio
 
 saved = {}
 for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_features', fused_features),
-                      ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('refined', refined), ('projection', projection),
-                      ('adaptive_projection', adaptive), ('cells_space', cells_space),
+                      ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('refined', refined),
+                      ('projection', projection), ('adaptive_projection', adaptive), ('cells_space', cells_space),
                       ('cells_features', cells_features)):
     proxy.UpdatePipeline()
     data = servermanager.Fetch(proxy)
