@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <random>
 
 using namespace glstest;
 
@@ -273,6 +274,71 @@ TEST(Multiresolution, CpuKernelAgreesWithTheDeviceLoop)
   }
   EXPECT_GT(taken, 10000); // cells were taken whole
   EXPECT_LT(worst, 1e-10);
+}
+
+TEST(Multiresolution, PointsOfOneRegionShareOneWalkWhateverTheOrder)
+{
+  // The CPU kernel walks once per walkRegion and reuses the walk for the next point of the same region: evaluating
+  // the points in a shuffled order with one scratch (walks reused and replaced) gives bitwise what a fresh scratch
+  // per point gives; each region holds p, and regions hold several points each.
+  const Cloud c = paraboloid(200, 1.0, 0.7, 0.3, 0.01, 0.05, 5);
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.5, 8, gls::ScaleSampling::Quadratic);
+  gls::ScaleSpaceSettings settings;
+  settings.scales = scales;
+  settings.evaluation = gls::Evaluation::Multiresolution;
+  settings.multiresolution.accuracy = 0.15;
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  const gls::MultiresolutionView& v = engine.pyramid().view();
+  EXPECT_GE(v.walkLevel, 1); // 40,000 points: cubes of 2 or 4 finest cells, no larger than the smallest scale
+  EXPECT_LE(v.walkLevel, 2);
+  EXPECT_LE(v.levelSize[v.walkLevel], scales.front());
+  std::vector<double> squared;
+  for (double t : scales)
+  {
+    squared.push_back(t * t);
+  }
+  const gls::BinningTable table = gls::makeBinningTable(squared);
+  gls::ScaleBinning b;
+  b.scales = scales.data();
+  b.squaredScales = squared.data();
+  b.count = static_cast<int>(scales.size());
+  b.table = table.cells.data();
+  b.tableSize = static_cast<int>(table.cells.size());
+  b.inverseCellWidth = table.inverseCellWidth;
+  const std::vector<std::uint64_t>& order = engine.evaluationOrder();
+  std::vector<std::uint64_t> shuffled(order.begin(), order.begin() + 3000);
+  std::mt19937 random(7);
+  std::shuffle(shuffled.begin() + 1500, shuffled.end(), random); // half in pyramid order, half shuffled
+  gls::MultiresolutionScratch reused;
+  std::vector<gls::ScaleSample> a(scales.size()), fresh(scales.size());
+  long walks = 0;
+  gls::WalkRegion last{};
+  for (std::size_t o = 0; o < shuffled.size(); ++o)
+  {
+    const std::uint64_t i = shuffled[o];
+    const gls::Vec3 p = { c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] };
+    const gls::WalkRegion region = gls::walkRegion(v, p);
+    ASSERT_GT(region.edge, 0.0);
+    for (double d : { p.x - region.corner.x, p.y - region.corner.y, p.z - region.corner.z })
+    {
+      ASSERT_GE(d, 0.0);
+      ASSERT_LE(d, region.edge);
+    }
+    if (o < 1500 && (o == 0 || region.corner.x != last.corner.x || region.corner.y != last.corner.y ||
+                      region.corner.z != last.corner.z))
+    {
+      ++walks;
+    }
+    last = region;
+    gls::evaluateAllScalesMultiresolutionOnCpu(v, p, b, 6.0, reused, a.data());
+    gls::MultiresolutionScratch once;
+    gls::evaluateAllScalesMultiresolutionOnCpu(v, p, b, 6.0, once, fresh.data());
+    for (std::size_t k = 0; k < scales.size(); ++k)
+    {
+      ASSERT_TRUE(sameBits(a[k], fresh[k])) << "point " << i << " scale " << k;
+    }
+  }
+  EXPECT_LT(walks, 1500 / 4); // points in pyramid order: one walk for several points
 }
 
 TEST(Multiresolution, ResultsAreBitwiseIdenticalForAnyThreadCount)

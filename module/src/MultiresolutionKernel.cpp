@@ -124,28 +124,23 @@ GLS_ALWAYS_INLINE void addReadPoints(const MultiresolutionView& v, const Vec3& p
   }
 }
 
-GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
-  double minNeighbors, MultiresolutionScratch& s, ScaleSample* out)
+/// The walk of a region (walkRegion): the cells taken whole (s.taken) and the finest cells read point by point
+/// (s.read) for every point of the region, found level by level: each cell of the frontier is skipped (outside
+/// every ball of the region), taken whole, read point by point (level 0) or opened (its children make the next
+/// level's frontier); the writes only advance indices.
+GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& region, double r, double smallest,
+  MultiresolutionScratch& s)
 {
-  if (b.count <= 0)
-  {
-    return;
-  }
-  s.bins.resize(static_cast<std::size_t>(b.count));
-  std::memset(static_cast<void*>(s.bins.data()), 0, sizeof(AggregateMoments) * s.bins.size()); // all 0.0
   s.taken.clear();
   s.read.clear();
   s.frontier.clear();
-  const double r = b.scales[b.count - 1];
   const double r2 = r * r;
   const double eps2 = v.accuracy * v.accuracy;
-  const double floor2 = b.scales[0] * b.scales[0];
+  const double floor2 = smallest * smallest;
   if (v.topEnd > v.topBegin && r > 0.0)
   {
-    forEachTopCell(v, p, r, [&](std::uint32_t c) { s.frontier.push_back(c); });
+    forEachTopCell(v, region, r, [&](std::uint32_t c) { s.frontier.push_back(c); });
   }
-  // Level by level: each cell of the frontier is skipped (outside the ball), taken whole, read point by point
-  // (level 0) or opened (its children make the next level's frontier); the writes only advance indices.
   for (int level = v.topLevel; level >= 0 && !s.frontier.empty(); --level)
   {
     const double edge = v.levelSize[level];
@@ -158,7 +153,7 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
     for (std::size_t i = 0; i < n; ++i)
     {
       const std::uint32_t c = s.frontier[i];
-      const double box2 = squaredDistanceToCube(p, v.nodes[c].corner, edge);
+      const double box2 = squaredDistanceToCube(region, v.nodes[c].corner, edge);
       const bool inside = box2 < r2;
       const bool whole = takenWhole(edge2, box2, eps2, floor2);
       s.taken[taken] = c;
@@ -183,8 +178,42 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
     }
     s.frontier.swap(s.next);
   }
-  addTakenCells(v, p, b, r2, s.taken, s.bins.data());
-  addReadPoints(v, p, b, r2, s.read, s.bins.data());
+}
+
+/// Whether the scratch holds the walk of this region, pyramid and radius.
+bool holdsWalk(const MultiresolutionScratch& s, const MultiresolutionView& v, const WalkRegion& region, double r,
+  double smallest)
+{
+  return s.walked && s.walkedNodes == v.nodes && s.walkedCount == v.count && s.walkedAccuracy == v.accuracy &&
+    s.walkedRadius == r && s.walkedSmallest == smallest && s.walkedRegion.edge == region.edge &&
+    s.walkedRegion.corner.x == region.corner.x && s.walkedRegion.corner.y == region.corner.y &&
+    s.walkedRegion.corner.z == region.corner.z;
+}
+
+GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
+  double minNeighbors, MultiresolutionScratch& s, ScaleSample* out)
+{
+  if (b.count <= 0)
+  {
+    return;
+  }
+  s.bins.resize(static_cast<std::size_t>(b.count));
+  std::memset(static_cast<void*>(s.bins.data()), 0, sizeof(AggregateMoments) * s.bins.size()); // all 0.0
+  const double r = b.scales[b.count - 1];
+  const WalkRegion region = walkRegion(v, p);
+  if (!holdsWalk(s, v, region, r, b.scales[0]))
+  {
+    walk(v, region, r, b.scales[0], s);
+    s.walked = true;
+    s.walkedNodes = v.nodes;
+    s.walkedCount = v.count;
+    s.walkedAccuracy = v.accuracy;
+    s.walkedRadius = r;
+    s.walkedSmallest = b.scales[0];
+    s.walkedRegion = region;
+  }
+  addTakenCells(v, p, b, r * r, s.taken, s.bins.data());
+  addReadPoints(v, p, b, r * r, s.read, s.bins.data());
   fitAllScalesFromBins(b, minNeighbors, s.bins.data(), out);
 }
 

@@ -23,13 +23,14 @@ struct PyramidLayout
   double largestScale = 0.0;   ///< the top level's cells are at least twice this (or the 2^21 lattice is full)
   Vec3 low{};                  ///< a corner below every point; the lattice origin is snapped below it
   double accuracy = 0.1;       ///< a cell is one sample where edge <= accuracy * distance
+  int walkLevel = 0;           ///< the points of one cube of this level share a walk (MultiresolutionView)
 };
 
 /// The layout for a cloud whose admitted points lie in [low, high]: h0 the power of two at or below twice `spacing`
 /// (the typical distance between neighbouring points), enlarged until the lattice of 2^21 cells per axis covers the
-/// box.
-PyramidLayout choosePyramidLayout(
-  const double low[3], const double high[3], double spacing, double largestScale, double accuracy);
+/// box; walks shared by cubes of up to 4 h0 no larger than the smallest scale.
+PyramidLayout choosePyramidLayout(const double low[3], const double high[3], double spacing, double smallestScale,
+  double largestScale, double accuracy);
 
 class MultiresolutionCloud
 {

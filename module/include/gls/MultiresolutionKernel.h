@@ -1,7 +1,8 @@
 // The CPU form of the multi-resolution evaluation (evaluateAllScalesMultiresolution in MultiresolutionView.h): the
 // same cells taken whole and the same points read one by one, found level by level instead of depth first, so
 // that each level's cells are classified in a loop without a branch per cell (the depth-first walk mispredicts
-// about one branch per cell: measured 20 ns per cell), then binned and added in batches. The sums are the same
+// about one branch per cell: measured 20 ns per cell), then binned and added in batches. The walk depends on p's
+// walkRegion only, so it runs once for consecutive points of one region. The sums are the same
 // sums in another order: results agree with the host/device loop to rounding (the tests bound it) and are
 // deterministic for any thread count.
 #pragma once
@@ -14,11 +15,19 @@
 namespace gls
 {
 
-/// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points).
+/// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points). It keeps the last walk
+/// (the samples of one walkRegion, shared by the points of that region: consecutive points in pyramid order
+/// mostly share it) with what identifies it; a scratch reused for another pyramid at the same address with the
+/// same count and accuracy must be reset (`walked = false`).
 struct MultiresolutionScratch
 {
   std::vector<std::uint32_t> frontier, next, opened, taken, read;
   std::vector<AggregateMoments> bins;
+  bool walked = false;
+  const PyramidNode* walkedNodes = nullptr;
+  std::uint64_t walkedCount = 0;
+  double walkedAccuracy = 0.0, walkedRadius = 0.0, walkedSmallest = 0.0;
+  WalkRegion walkedRegion{};
 };
 
 /// Fits every scale of the evaluation point p, as evaluateAllScalesMultiresolution; out: S samples.

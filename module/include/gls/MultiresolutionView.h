@@ -7,6 +7,7 @@
 #pragma once
 
 #include "gls/AggregateMoments.h"
+#include "gls/Numeric.h"
 #include "gls/PointScaleSpace.h"
 
 #include <cstdint>
@@ -46,6 +47,7 @@ struct MultiresolutionView
   double levelSize[kMaxPyramidLevels + 1] = {}; ///< edge of a cell of each level
   Vec3 origin{};                       ///< lower corner of every level's cell (0, 0, 0)
   double accuracy = 0.1;               ///< a cell is one sample where edge <= accuracy * distance to its box
+  int walkLevel = 0;                   ///< the points of one lattice cube of this level share one walk (walkRegion)
   const Vec3* points = nullptr;        ///< the points in pyramid order (the cells' points are contiguous)
   const Vec3* normals = nullptr;       ///< their unit normals
   std::uint64_t count = 0;
@@ -69,12 +71,42 @@ GLS_INLINE std::uint64_t mortonKey(std::uint64_t i, std::uint64_t j, std::uint64
   return spreadMortonBits(i) | (spreadMortonBits(j) << 1) | (spreadMortonBits(k) << 2);
 }
 
-/// Squared distance from p to the cube [corner, corner + edge]^3 (0 inside).
-GLS_INLINE double squaredDistanceToCube(const Vec3& p, const Vec3& corner, double edge)
+/// The box a walk measures its distances from: the lattice cube of level walkLevel that holds p (or p itself,
+/// edge 0, outside the lattice). Every point of one cube has the same walk, so the CPU kernel walks once per cube;
+/// since the cube holds p, a distance from it is at most p's own distance and the walk's rules hold for p.
+struct WalkRegion
 {
-  const double dx = distanceToInterval(p.x, corner.x, corner.x + edge);
-  const double dy = distanceToInterval(p.y, corner.y, corner.y + edge);
-  const double dz = distanceToInterval(p.z, corner.z, corner.z + edge);
+  Vec3 corner; ///< lower corner (length unit)
+  double edge; ///< edge (length unit; 0: the region is the point `corner`)
+};
+
+GLS_INLINE WalkRegion walkRegion(const MultiresolutionView& v, const Vec3& p)
+{
+  const double edge = v.levelSize[v.walkLevel];
+  const double cells = static_cast<double>(std::int64_t(1) << (kMortonBits - v.walkLevel));
+  const double cx = roundDown((p.x - v.origin.x) / edge);
+  const double cy = roundDown((p.y - v.origin.y) / edge);
+  const double cz = roundDown((p.z - v.origin.z) / edge);
+  if (!(edge > 0.0 && cx >= 0.0 && cx < cells && cy >= 0.0 && cy < cells && cz >= 0.0 && cz < cells))
+  {
+    return { p, 0.0 };
+  }
+  return { { v.origin.x + cx * edge, v.origin.y + cy * edge, v.origin.z + cz * edge }, edge };
+}
+
+/// Distance between the intervals [lo1, hi1] and [lo2, hi2] (0 where they overlap).
+GLS_INLINE double gapBetweenIntervals(double lo1, double hi1, double lo2, double hi2)
+{
+  return lo2 > hi1 ? lo2 - hi1 : (lo1 > hi2 ? lo1 - hi2 : 0.0);
+}
+
+/// Squared distance from the region to the cube [corner, corner + edge]^3 (0 where they overlap): at most the
+/// squared distance from any point of the region.
+GLS_INLINE double squaredDistanceToCube(const WalkRegion& a, const Vec3& corner, double edge)
+{
+  const double dx = gapBetweenIntervals(a.corner.x, a.corner.x + a.edge, corner.x, corner.x + edge);
+  const double dy = gapBetweenIntervals(a.corner.y, a.corner.y + a.edge, corner.y, corner.y + edge);
+  const double dz = gapBetweenIntervals(a.corner.z, a.corner.z + a.edge, corner.z, corner.z + edge);
   return dx * dx + dy * dy + dz * dz;
 }
 
@@ -112,21 +144,23 @@ GLS_INLINE std::int64_t findTopCell(const MultiresolutionView& v, std::uint64_t 
   return lo < v.topEnd - v.topBegin && v.topKeys[lo] == key ? static_cast<std::int64_t>(v.topBegin + lo) : -1;
 }
 
-constexpr int kPyramidStack = 8 * (kMaxPyramidLevels + 4);
+constexpr int kMaxTopCells = 27;
+constexpr int kPyramidStack = kMaxTopCells + 8 * (kMaxPyramidLevels + 4);
 
-/// Calls f(index) for each top-level cell the ball of radius r around p overlaps, z then y then x increasing. The
-/// top cells' edge is at least the ball's diameter (or there are two per axis): at most 8 calls.
+/// Calls f(index) for each top-level cell that the region grown by r overlaps, z then y then x increasing. The
+/// top cells' edge is at least the ball's diameter (or there are two per axis): at most 8 calls for a point, 27
+/// for a cube.
 template <typename F>
-GLS_INLINE void forEachTopCell(const MultiresolutionView& v, const Vec3& p, double r, F&& f)
+GLS_INLINE void forEachTopCell(const MultiresolutionView& v, const WalkRegion& a, double r, F&& f)
 {
   const double H = v.levelSize[v.topLevel];
   const std::int64_t cells = std::int64_t(1) << (kMortonBits - v.topLevel);
-  const std::int64_t x0 = pyramidCoordinate(p.x - r, v.origin.x, H, cells);
-  const std::int64_t x1 = pyramidCoordinate(p.x + r, v.origin.x, H, cells);
-  const std::int64_t y0 = pyramidCoordinate(p.y - r, v.origin.y, H, cells);
-  const std::int64_t y1 = pyramidCoordinate(p.y + r, v.origin.y, H, cells);
-  const std::int64_t z0 = pyramidCoordinate(p.z - r, v.origin.z, H, cells);
-  const std::int64_t z1 = pyramidCoordinate(p.z + r, v.origin.z, H, cells);
+  const std::int64_t x0 = pyramidCoordinate(a.corner.x - r, v.origin.x, H, cells);
+  const std::int64_t x1 = pyramidCoordinate(a.corner.x + a.edge + r, v.origin.x, H, cells);
+  const std::int64_t y0 = pyramidCoordinate(a.corner.y - r, v.origin.y, H, cells);
+  const std::int64_t y1 = pyramidCoordinate(a.corner.y + a.edge + r, v.origin.y, H, cells);
+  const std::int64_t z0 = pyramidCoordinate(a.corner.z - r, v.origin.z, H, cells);
+  const std::int64_t z1 = pyramidCoordinate(a.corner.z + a.edge + r, v.origin.z, H, cells);
   for (std::int64_t z = z0; z <= z1; ++z)
   {
     for (std::int64_t y = y0; y <= y1; ++y)
@@ -144,7 +178,7 @@ GLS_INLINE void forEachTopCell(const MultiresolutionView& v, const Vec3& p, doub
   }
 }
 
-/// The rule of both walks: a cell of squared edge edge2, at squared distance box2 from p, is taken whole when its
+/// The rule of both walks: a cell of squared edge edge2, at squared distance box2 from p's region, is taken whole when its
 /// edge is at most epsilon times max(distance, smallest scale) (eps2 = epsilon^2, floor2 = the smallest scale
 /// squared: a cell nearer than the smallest scale contributes to no smaller ball, so the relative weight error
 /// (edge / t)^2 stays below epsilon^2 at every scale), and p is at least one edge away from it (p's nearest
@@ -155,8 +189,10 @@ GLS_INLINE bool takenWhole(double edge2, double box2, double eps2, double floor2
 }
 
 /// Calls sample(cell) for every cell taken whole (takenWhole, with `smallest` the smallest scale) and point(i) for
-/// every point read one by one, for the ball of radius r around p: every point of the ball is in exactly one of them (points of a cell taken whole may lie
-/// outside the ball; the caller weights them at the cell's centroid). The order is fixed by the pyramid alone.
+/// every point read one by one, for the ball of radius r around p: every point of the ball is in exactly one of
+/// them (points of a cell taken whole may lie outside the ball; the caller weights them at the cell's centroid).
+/// Distances are measured from p's walkRegion, so the samples and their order are fixed by the pyramid and that
+/// region alone.
 template <typename CellVisit, typename PointVisit>
 GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const Vec3& p, double r, double smallest,
   CellVisit&& sample, PointVisit&& point)
@@ -172,10 +208,11 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
   int stackLevel[kPyramidStack];
   int top = 0;
   // The top-level cells the ball overlaps, pushed last to first so that they are visited in order.
-  std::uint32_t tops[8];
+  const WalkRegion region = walkRegion(v, p);
+  std::uint32_t tops[kMaxTopCells];
   int found = 0;
-  forEachTopCell(v, p, r, [&](std::uint32_t c) {
-    if (found < 8)
+  forEachTopCell(v, region, r, [&](std::uint32_t c) {
+    if (found < kMaxTopCells)
     {
       tops[found++] = c;
     }
@@ -192,7 +229,7 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
     const PyramidNode& cell = v.nodes[stack[top]];
     const int level = stackLevel[top];
     const double edge = v.levelSize[level];
-    const double box2 = squaredDistanceToCube(p, cell.corner, edge);
+    const double box2 = squaredDistanceToCube(region, cell.corner, edge);
     if (!(box2 < r2))
     {
       continue;

@@ -1,4 +1,4 @@
-// Small host/device numeric helpers: NaN, sqrt and finiteness for any floating type.
+// Small host/device numeric helpers: NaN, sqrt, floor and finiteness for any floating type.
 #pragma once
 
 #include "gls/HostDevice.h"
@@ -24,6 +24,14 @@ GLS_INLINE T squareRoot(T v)
 {
   using std::sqrt;
   return sqrt(v);
+}
+
+/// The largest integer at or below v (as a T).
+template <typename T>
+GLS_INLINE T roundDown(T v)
+{
+  using std::floor;
+  return floor(v);
 }
 
 template <typename T>
