@@ -1,6 +1,6 @@
 #include "gls/MultiresolutionKernel.h"
 
-#include "KernelVectors.h"
+#include "KernelBatches.h"
 
 #include <cstring>
 
@@ -8,8 +8,6 @@ namespace gls
 {
 namespace
 {
-
-constexpr int kBatch = 64;
 
 #if GLS_KERNEL_VECTORS
 #pragma GCC diagnostic push
@@ -64,63 +62,25 @@ GLS_ALWAYS_INLINE void addPointVectorized(AggregateMoments& a, const Vec3& x, do
 GLS_ALWAYS_INLINE void addTakenCells(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, double r2,
   const std::vector<std::uint32_t>& taken, AggregateMoments* bins)
 {
-  std::uint32_t inside[kBatch];
-  double squared[kBatch];
-  int scale[kBatch];
-  const std::size_t n = taken.size();
-  for (std::size_t c = 0; c < n; c += kBatch)
-  {
-    const int m = static_cast<int>(n - c < kBatch ? n - c : kBatch);
-    int k = 0;
-    for (int j = 0; j < m; ++j)
-    {
-      const double d2 = squaredNorm(v.cells[taken[c + j]].centroid - p);
-      inside[k] = taken[c + j];
-      squared[k] = d2;
-      k += d2 < r2 ? 1 : 0;
-    }
-    for (int j = 0; j < k; ++j)
-    {
-      scale[j] = firstScaleHolding(b, squared[j]);
-    }
-    for (int j = 0; j < k; ++j)
-    {
-      const PyramidCell& cell = v.cells[inside[j]];
-      addCellVectorized(bins[scale[j]], cell.centroid - p, squared[j], cell);
-    }
-  }
+  kernel::addInsideBall(
+    p, b, r2, std::size_t(0), taken.size(), [&](std::size_t c) { return taken[c]; },
+    [&](std::uint32_t i) -> const Vec3& { return v.cells[i].centroid; },
+    [&](std::uint32_t i, double d2, int k) {
+      const PyramidCell& cell = v.cells[i];
+      addCellVectorized(bins[k], cell.centroid - p, d2, cell);
+    });
 }
 
 /// Adds the points of the finest cells read one by one that lie inside the ball.
 GLS_ALWAYS_INLINE void addReadPoints(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, double r2,
   const std::vector<std::uint32_t>& read, AggregateMoments* bins)
 {
-  std::uint32_t inside[kBatch];
-  double squared[kBatch];
-  int scale[kBatch];
   for (std::uint32_t cell : read)
   {
-    const PyramidNode& node = v.nodes[cell];
-    for (std::uint32_t c = node.first; c < node.last; c += kBatch)
-    {
-      const int m = static_cast<int>(node.last - c < kBatch ? node.last - c : kBatch);
-      int k = 0;
-      for (int j = 0; j < m; ++j)
-      {
-        const double d2 = squaredNorm(v.points[c + j] - p);
-        inside[k] = c + j;
-        squared[k] = d2;
-        k += d2 < r2 ? 1 : 0;
-      }
-      for (int j = 0; j < k; ++j)
-      {
-        scale[j] = firstScaleHolding(b, squared[j]);
-      }
-      for (int j = 0; j < k; ++j)
-      {
-        addPointVectorized(bins[scale[j]], v.points[inside[j]] - p, squared[j], v.normals[inside[j]]);
-      }
-    }
+    kernel::addInsideBall(
+      p, b, r2, v.nodes[cell].first, v.nodes[cell].last, [](std::uint32_t c) { return c; },
+      [&](std::uint32_t i) -> const Vec3& { return v.points[i]; },
+      [&](std::uint32_t i, double d2, int k) { addPointVectorized(bins[k], v.points[i] - p, d2, v.normals[i]); });
   }
 }
 

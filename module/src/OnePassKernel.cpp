@@ -1,6 +1,6 @@
 #include "gls/OnePassKernel.h"
 
-#include "KernelVectors.h"
+#include "KernelBatches.h"
 
 #include <cstring>
 
@@ -8,8 +8,6 @@ namespace gls
 {
 namespace
 {
-
-constexpr int kBatch = 64;
 
 #if GLS_KERNEL_VECTORS
 using kernel::Double4;
@@ -50,31 +48,9 @@ GLS_ALWAYS_INLINE void addToMomentsVectorized(Moments& a, const Vec3& x, double 
 GLS_ALWAYS_INLINE void addRun(const GridView& g, const Vec3& p, const ScaleBinning& b, double r2,
   std::uint64_t begin, std::uint64_t end, Moments* bins)
 {
-  std::uint64_t inside[kBatch];
-  double squared[kBatch];
-  int scale[kBatch];
-  for (std::uint64_t c = begin; c < end; c += kBatch)
-  {
-    // The ball test only advances the write index: no branch to mispredict at the ball's edge.
-    const int m = static_cast<int>(end - c < kBatch ? end - c : kBatch);
-    int n = 0;
-    for (int j = 0; j < m; ++j)
-    {
-      const double d2 = squaredNorm(g.points[c + j] - p);
-      inside[n] = c + j;
-      squared[n] = d2;
-      n += d2 < r2 ? 1 : 0;
-    }
-    for (int j = 0; j < n; ++j)
-    {
-      scale[j] = firstScaleHolding(b, squared[j]);
-    }
-    for (int j = 0; j < n; ++j)
-    {
-      const std::uint64_t i = inside[j];
-      addToMomentsVectorized(bins[scale[j]], g.points[i] - p, squared[j], g.normals[i]);
-    }
-  }
+  kernel::addInsideBall(
+    p, b, r2, begin, end, [](std::uint64_t c) { return c; }, [&](std::uint64_t i) -> const Vec3& { return g.points[i]; },
+    [&](std::uint64_t i, double d2, int k) { addToMomentsVectorized(bins[k], g.points[i] - p, d2, g.normals[i]); });
 }
 
 GLS_ALWAYS_INLINE void evaluate(
