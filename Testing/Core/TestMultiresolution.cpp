@@ -3,6 +3,7 @@
 // enough to be taken whole, within the accuracy targets on a noisy surface, bitwise deterministic across thread
 // counts, and abortable while its pyramid is built.
 #include "CollectingSink.h"
+#include "TestBinning.h"
 #include "TestClouds.h"
 
 #include "gls/MultiresolutionKernel.h"
@@ -235,19 +236,8 @@ TEST(Multiresolution, CpuKernelAgreesWithTheDeviceLoop)
   settings.evaluation = gls::Evaluation::Multiresolution;
   settings.multiresolution.accuracy = 0.15;
   gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
-  std::vector<double> squared;
-  for (double t : scales)
-  {
-    squared.push_back(t * t);
-  }
-  const gls::BinningTable table = gls::makeBinningTable(squared);
-  gls::ScaleBinning b;
-  b.scales = scales.data();
-  b.squaredScales = squared.data();
-  b.count = static_cast<int>(scales.size());
-  b.table = table.cells.data();
-  b.tableSize = static_cast<int>(table.cells.size());
-  b.inverseCellWidth = table.inverseCellWidth;
+  const TestBinning binning(scales);
+  const gls::ScaleBinning& b = binning.View;
   std::vector<gls::AggregateMoments> bins(scales.size());
   std::vector<gls::ScaleSample> device(scales.size()), cpu(scales.size());
   gls::MultiresolutionScratch scratch;
@@ -292,19 +282,8 @@ TEST(Multiresolution, PointsOfOneRegionShareOneWalkWhateverTheOrder)
   EXPECT_GE(v.walkLevel, 1); // 40,000 points: cubes of 2 or 4 finest cells, no larger than the smallest scale
   EXPECT_LE(v.walkLevel, 2);
   EXPECT_LE(v.levelSize[v.walkLevel], scales.front());
-  std::vector<double> squared;
-  for (double t : scales)
-  {
-    squared.push_back(t * t);
-  }
-  const gls::BinningTable table = gls::makeBinningTable(squared);
-  gls::ScaleBinning b;
-  b.scales = scales.data();
-  b.squaredScales = squared.data();
-  b.count = static_cast<int>(scales.size());
-  b.table = table.cells.data();
-  b.tableSize = static_cast<int>(table.cells.size());
-  b.inverseCellWidth = table.inverseCellWidth;
+  const TestBinning binning(scales);
+  const gls::ScaleBinning& b = binning.View;
   const std::vector<std::uint64_t>& order = engine.evaluationOrder();
   std::vector<std::uint64_t> shuffled(order.begin(), order.begin() + 3000);
   std::mt19937 random(7);

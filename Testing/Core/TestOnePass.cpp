@@ -1,6 +1,7 @@
 // The one-pass moment evaluation against the straightforward per-scale evaluation (one ball query and one fit per
 // scale), and bitwise determinism across thread counts.
 #include "CollectingSink.h"
+#include "TestBinning.h"
 #include "TestClouds.h"
 
 #include "gls/NeighborGrid.h"
@@ -19,31 +20,6 @@ using namespace glstest;
 
 namespace
 {
-
-/// The scales' squared values, binning table and ScaleBinning view, as the engine builds them.
-struct TestBinning
-{
-  explicit TestBinning(const std::vector<double>& scales)
-    : Scales(scales)
-  {
-    for (double t : scales)
-    {
-      this->Squared.push_back(t * t);
-    }
-    this->Table = gls::makeBinningTable(this->Squared);
-    this->View.scales = this->Scales.data();
-    this->View.squaredScales = this->Squared.data();
-    this->View.count = static_cast<int>(this->Scales.size());
-    this->View.table = this->Table.cells.data();
-    this->View.tableSize = static_cast<int>(this->Table.cells.size());
-    this->View.inverseCellWidth = this->Table.inverseCellWidth;
-  }
-  TestBinning(const TestBinning&) = delete;
-  TestBinning& operator=(const TestBinning&) = delete;
-  std::vector<double> Scales, Squared;
-  gls::BinningTable Table;
-  gls::ScaleBinning View;
-};
 
 /// Largest relative difference between two samples of scale t over the dimensionless descriptors.
 double descriptorDifference(const gls::ScaleSample& p, const gls::ScaleSample& q, double t)
