@@ -22,8 +22,8 @@ using namespace glstest;
 namespace
 {
 
-CollectingSink runMultiresolution(const Cloud& c, const std::vector<double>& scales, double accuracy,
-  int threads = 0, double minNeighbors = 6.0)
+gls::ScaleSpaceSettings multiresolutionSettings(
+  const std::vector<double>& scales, double accuracy, int threads = 0, double minNeighbors = 6.0)
 {
   gls::ScaleSpaceSettings settings;
   settings.scales = scales;
@@ -31,6 +31,13 @@ CollectingSink runMultiresolution(const Cloud& c, const std::vector<double>& sca
   settings.parallel.threads = threads;
   settings.evaluation = gls::Evaluation::Multiresolution;
   settings.multiresolution.accuracy = accuracy;
+  return settings;
+}
+
+CollectingSink runMultiresolution(const Cloud& c, const std::vector<double>& scales, double accuracy,
+  int threads = 0, double minNeighbors = 6.0)
+{
+  const gls::ScaleSpaceSettings settings = multiresolutionSettings(scales, accuracy, threads, minNeighbors);
   gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
   EXPECT_EQ(engine.evaluation(), gls::Evaluation::Multiresolution);
   CollectingSink sink(c.size(), scales.size());
@@ -231,11 +238,7 @@ TEST(Multiresolution, CpuKernelAgreesWithTheDeviceLoop)
   // CUDA kernel runs: the same samples summed in another order.
   const Cloud c = paraboloid(150, 1.0, 0.7, 0.3, 0.01, 0.05, 4);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 12, gls::ScaleSampling::Quadratic);
-  gls::ScaleSpaceSettings settings;
-  settings.scales = scales;
-  settings.evaluation = gls::Evaluation::Multiresolution;
-  settings.multiresolution.accuracy = 0.15;
-  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.15));
   const TestBinning binning(scales);
   const gls::ScaleBinning& b = binning.View;
   std::vector<gls::AggregateMoments> bins(scales.size());
@@ -273,11 +276,7 @@ TEST(Multiresolution, PointsOfOneRegionShareOneWalkWhateverTheOrder)
   // per point gives; each region holds p, and regions hold several points each.
   const Cloud c = paraboloid(200, 1.0, 0.7, 0.3, 0.01, 0.05, 5);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.5, 8, gls::ScaleSampling::Quadratic);
-  gls::ScaleSpaceSettings settings;
-  settings.scales = scales;
-  settings.evaluation = gls::Evaluation::Multiresolution;
-  settings.multiresolution.accuracy = 0.15;
-  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.15));
   const gls::MultiresolutionView& v = engine.pyramid().view();
   EXPECT_GE(v.walkLevel, 1); // 40,000 points: cubes of 2 or 4 finest cells, no larger than the smallest scale
   EXPECT_LE(v.walkLevel, 2);
