@@ -140,14 +140,11 @@ GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regi
   }
 }
 
-/// Whether the scratch holds the walk of this region, pyramid and radius.
-bool holdsWalk(const MultiresolutionScratch& s, const MultiresolutionView& v, const WalkRegion& region, double r,
-  double smallest)
+bool sameWalk(const WalkKey& a, const WalkKey& b)
 {
-  return s.walked && s.walkedNodes == v.nodes && s.walkedCount == v.count && s.walkedAccuracy == v.accuracy &&
-    s.walkedRadius == r && s.walkedSmallest == smallest && s.walkedRegion.edge == region.edge &&
-    s.walkedRegion.corner.x == region.corner.x && s.walkedRegion.corner.y == region.corner.y &&
-    s.walkedRegion.corner.z == region.corner.z;
+  return a.nodes == b.nodes && a.count == b.count && a.accuracy == b.accuracy && a.radius == b.radius &&
+    a.smallest == b.smallest && a.region.edge == b.region.edge && a.region.corner.x == b.region.corner.x &&
+    a.region.corner.y == b.region.corner.y && a.region.corner.z == b.region.corner.z;
 }
 
 GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
@@ -160,17 +157,12 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
   s.bins.resize(static_cast<std::size_t>(b.count));
   std::memset(static_cast<void*>(s.bins.data()), 0, sizeof(AggregateMoments) * s.bins.size()); // all 0.0
   const double r = b.scales[b.count - 1];
-  const WalkRegion region = walkRegion(v, p);
-  if (!holdsWalk(s, v, region, r, b.scales[0]))
+  const WalkKey key{ v.nodes, v.count, v.accuracy, r, b.scales[0], walkRegion(v, p) };
+  if (!s.walked || !sameWalk(s.walkedKey, key))
   {
-    walk(v, region, r, b.scales[0], s);
+    walk(v, key.region, r, key.smallest, s);
     s.walked = true;
-    s.walkedNodes = v.nodes;
-    s.walkedCount = v.count;
-    s.walkedAccuracy = v.accuracy;
-    s.walkedRadius = r;
-    s.walkedSmallest = b.scales[0];
-    s.walkedRegion = region;
+    s.walkedKey = key;
   }
   addTakenCells(v, p, b, r * r, s.taken, s.bins.data());
   addReadPoints(v, p, b, r * r, s.read, s.bins.data());

@@ -49,7 +49,8 @@ GLS_ALWAYS_INLINE void addRun(const GridView& g, const Vec3& p, const ScaleBinni
   std::uint64_t begin, std::uint64_t end, Moments* bins)
 {
   kernel::addInsideBall(
-    p, b, r2, begin, end, [](std::uint64_t c) { return c; }, [&](std::uint64_t i) -> const Vec3& { return g.points[i]; },
+    p, b, r2, begin, end, [](std::uint64_t c) { return c; },
+    [&](std::uint64_t i) -> const Vec3& { return g.points[i]; },
     [&](std::uint64_t i, double d2, int k) { addToMomentsVectorized(bins[k], g.points[i] - p, d2, g.normals[i]); });
 }
 

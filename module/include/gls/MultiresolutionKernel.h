@@ -15,19 +15,26 @@
 namespace gls
 {
 
+/// What a walk depends on: the pyramid (its nodes, point count and accuracy), the largest and smallest scales and
+/// the walk region.
+struct WalkKey
+{
+  const PyramidNode* nodes = nullptr;
+  std::uint64_t count = 0;
+  double accuracy = 0.0, radius = 0.0, smallest = 0.0;
+  WalkRegion region{};
+};
+
 /// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points). It keeps the last walk
 /// (the samples of one walkRegion, shared by the points of that region: consecutive points in pyramid order
-/// mostly share it) with what identifies it; a scratch reused for another pyramid at the same address with the
-/// same count and accuracy must be reset (`walked = false`).
+/// mostly share it) with its key; a scratch reused for another pyramid at the same address with the same count and
+/// accuracy must be reset (`walked = false`).
 struct MultiresolutionScratch
 {
   std::vector<std::uint32_t> frontier, next, opened, taken, read;
   std::vector<AggregateMoments> bins;
   bool walked = false;
-  const PyramidNode* walkedNodes = nullptr;
-  std::uint64_t walkedCount = 0;
-  double walkedAccuracy = 0.0, walkedRadius = 0.0, walkedSmallest = 0.0;
-  WalkRegion walkedRegion{};
+  WalkKey walkedKey{};
 };
 
 /// Fits every scale of the evaluation point p, as evaluateAllScalesMultiresolution; out: S samples.

@@ -178,8 +178,8 @@ GLS_INLINE void forEachTopCell(const MultiresolutionView& v, const WalkRegion& a
   }
 }
 
-/// The rule of both walks: a cell of squared edge edge2, at squared distance box2 from p's region, is taken whole when its
-/// edge is at most epsilon times max(distance, smallest scale) (eps2 = epsilon^2, floor2 = the smallest scale
+/// The rule of both walks: a cell of squared edge edge2, at squared distance box2 from p's region, is taken whole
+/// when its edge is at most epsilon times max(distance, smallest scale) (eps2 = epsilon^2, floor2 = the smallest scale
 /// squared: a cell nearer than the smallest scale contributes to no smaller ball, so the relative weight error
 /// (edge / t)^2 stays below epsilon^2 at every scale), and p is at least one edge away from it (p's nearest
 /// neighbours enter point by point).
@@ -207,7 +207,7 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
   std::uint32_t stack[kPyramidStack];
   int stackLevel[kPyramidStack];
   int top = 0;
-  // The top-level cells the ball overlaps, pushed last to first so that they are visited in order.
+  // The top-level cells the balls of p's region overlap, pushed last to first so that they are visited in order.
   const WalkRegion region = walkRegion(v, p);
   std::uint32_t tops[kMaxTopCells];
   int found = 0;
