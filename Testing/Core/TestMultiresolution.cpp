@@ -117,6 +117,17 @@ TEST(Multiresolution, SphereIsExactForEveryAccuracy)
   expectAnalytic(runMultiresolution(sphere(30000, r, true), scales, 0.1), scales, -1.0 / r, 1e-12);
 }
 
+TEST(Multiresolution, SphereFarFromTheOriginStaysExact)
+{
+  // Scan coordinates (a map grid) put the cloud far from the origin; the CPU kernel forms its sums about each walk
+  // region's corner and the fit about each point, so only the local extent matters. Sums about the origin would
+  // lose about (2e5 / 2)^2 * 1e-16 = 1e-6 of kappa t.
+  const double r = 2.0;
+  const Cloud c = sphere(30000, r, false, 2.0e5, -1.5e5, 3.0e4);
+  const std::vector<double> scales = gls::sampleScales(0.3, 1.6, 20, gls::ScaleSampling::Quadratic);
+  expectAnalytic(runMultiresolution(c, scales, 0.1), scales, 1.0 / r, 1e-8);
+}
+
 TEST(Multiresolution, CellsAreTakenWholeAndStraddleTheScales)
 {
   const Cloud c = sphere(60000, 2.0);

@@ -9,15 +9,18 @@ namespace gls
 namespace
 {
 
+/// Adds the sums f = (f0, f1, f8) of a sample at squared distance d2 (addSampleSums in AggregateMoments.h: the same
+/// products and sums, element by element, fused into multiply-adds in the AVX2 build).
+GLS_ALWAYS_INLINE void addPackedSums(AggregateMoments& a, const double* f, double d2)
+{
 #if GLS_KERNEL_VECTORS
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
-/// addSampleSums (AggregateMoments.h) with f = (f0, f1, f8): the same products and sums, element by element (fused
-/// into multiply-adds in the AVX2 build).
-GLS_ALWAYS_INLINE void addSums(AggregateMoments& a, kernel::Double4 f0, kernel::Double4 f1, double f8, double d2)
-{
   using kernel::load4;
   using kernel::store4;
+  const kernel::Double4 f0 = load4(f);
+  const kernel::Double4 f1 = load4(f + 4);
+  const double f8 = f[8];
   const double d4 = d2 * d2;
   double* m = a.m;
   store4(m, load4(m) + f0);
@@ -29,58 +32,93 @@ GLS_ALWAYS_INLINE void addSums(AggregateMoments& a, kernel::Double4 f0, kernel::
   store4(m + 18, load4(m + 18) + d4 * f0);
   store4(m + 22, load4(m + 22) + d4 * f1);
   m[26] += d4 * f8;
-}
-
-GLS_ALWAYS_INLINE void addCellVectorized(AggregateMoments& a, const Vec3& x, double d2, const PyramidCell& c)
-{
-  const double m = c.count;
-  const kernel::Double4 f0 = { m, m * x.x, m * x.y, m * x.z };
-  const kernel::Double4 f1 = { c.normalSum.x, c.normalSum.y, c.normalSum.z, c.offsetDotNormal + dot(x, c.normalSum) };
-  addSums(a, f0, f1, c.spread + m * d2, d2);
-}
-
-GLS_ALWAYS_INLINE void addPointVectorized(AggregateMoments& a, const Vec3& x, double d2, const Vec3& n)
-{
-  const kernel::Double4 f0 = { 1.0, x.x, x.y, x.z };
-  const kernel::Double4 f1 = { n.x, n.y, n.z, dot(x, n) };
-  addSums(a, f0, f1, d2, d2);
-}
 #pragma GCC diagnostic pop
 #else
-GLS_ALWAYS_INLINE void addCellVectorized(AggregateMoments& a, const Vec3& x, double d2, const PyramidCell& c)
-{
-  addCell(a, x, d2, c.count, c.normalSum, c.offsetDotNormal, c.spread);
-}
-
-GLS_ALWAYS_INLINE void addPointVectorized(AggregateMoments& a, const Vec3& x, double d2, const Vec3& n)
-{
-  addPoint(a, x, d2, n);
-}
+  addSampleSums(a, f, d2);
 #endif
+}
 
-/// Adds the cells taken whole: their centroids inside the ball, binned by the centroid's distance.
-GLS_ALWAYS_INLINE void addTakenCells(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, double r2,
-  const std::vector<std::uint32_t>& taken, AggregateMoments* bins)
+/// The samples of a walk, packed once for every point of its region: each sample's position (a cell's centroid or a
+/// point) and its nine sums f = (1, x, n, x.n, |x|^2) about the region's corner o (x = q - o), so that a point adds
+/// them as they are and moves the bins from o to itself once (shiftBins) instead of forming f for every sample.
+void packWalk(const MultiresolutionView& v, const Vec3& o, MultiresolutionScratch& s)
+{
+  std::size_t n = s.taken.size();
+  for (std::uint32_t cell : s.read)
+  {
+    n += v.nodes[cell].last - v.nodes[cell].first;
+  }
+  s.packed.resize(n);
+  PackedSample* out = s.packed.data();
+  for (std::uint32_t i : s.taken)
+  {
+    const PyramidCell& c = v.cells[i];
+    const Vec3 x = c.centroid - o;
+    const double m = c.count;
+    out->position = c.centroid;
+    double* f = out->sums;
+    f[0] = m;
+    f[1] = m * x.x;
+    f[2] = m * x.y;
+    f[3] = m * x.z;
+    f[4] = c.normalSum.x;
+    f[5] = c.normalSum.y;
+    f[6] = c.normalSum.z;
+    f[7] = c.offsetDotNormal + dot(x, c.normalSum);
+    f[8] = c.spread + m * squaredNorm(x);
+    ++out;
+  }
+  for (std::uint32_t cell : s.read)
+  {
+    for (std::uint32_t i = v.nodes[cell].first; i < v.nodes[cell].last; ++i)
+    {
+      const Vec3 x = v.points[i] - o;
+      const Vec3& normal = v.normals[i];
+      out->position = v.points[i];
+      double* f = out->sums;
+      f[0] = 1.0;
+      f[1] = x.x;
+      f[2] = x.y;
+      f[3] = x.z;
+      f[4] = normal.x;
+      f[5] = normal.y;
+      f[6] = normal.z;
+      f[7] = dot(x, normal);
+      f[8] = squaredNorm(x);
+      ++out;
+    }
+  }
+}
+
+/// Adds the packed samples inside the ball of p, binned by their distance from p (cells: their centroid's).
+GLS_ALWAYS_INLINE void addPackedSamples(
+  const Vec3& p, const ScaleBinning& b, double r2, const std::vector<PackedSample>& packed, AggregateMoments* bins)
 {
   kernel::addInsideBall(
-    p, b, r2, std::size_t(0), taken.size(), [&](std::size_t c) { return taken[c]; },
-    [&](std::uint32_t i) -> const Vec3& { return v.cells[i].centroid; },
-    [&](std::uint32_t i, double d2, int k) {
-      const PyramidCell& cell = v.cells[i];
-      addCellVectorized(bins[k], cell.centroid - p, d2, cell);
-    });
+    p, b, r2, std::size_t(0), packed.size(), [](std::size_t c) { return c; },
+    [&](std::size_t i) -> const Vec3& { return packed[i].position; },
+    [&](std::size_t i, double d2, int k) { addPackedSums(bins[k], packed[i].sums, d2); });
 }
 
-/// Adds the points of the finest cells read one by one that lie inside the ball.
-GLS_ALWAYS_INLINE void addReadPoints(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, double r2,
-  const std::vector<std::uint32_t>& read, AggregateMoments* bins)
+/// Moves the bins' sums from coordinates about o to coordinates about p (x_p = x_o + u, u = o - p): sum x gains
+/// u sum 1, sum x.n gains u . sum n, sum |x|^2 gains 2 u . sum x + |u|^2 sum 1; the weights d^(2k) stay p's.
+GLS_ALWAYS_INLINE void shiftBins(const Vec3& u, int count, AggregateMoments* bins)
 {
-  for (std::uint32_t cell : read)
+  const double uu = squaredNorm(u);
+  for (int k = 0; k < count; ++k)
   {
-    kernel::addInsideBall(
-      p, b, r2, v.nodes[cell].first, v.nodes[cell].last, [](std::uint32_t c) { return c; },
-      [&](std::uint32_t i) -> const Vec3& { return v.points[i]; },
-      [&](std::uint32_t i, double d2, int k) { addPointVectorized(bins[k], v.points[i] - p, d2, v.normals[i]); });
+    for (int j = 0; j < 3; ++j)
+    {
+      double* f = bins[k].m + j * kAggregateValues;
+      const double W = f[0];
+      const Vec3 P{ f[1], f[2], f[3] };
+      const Vec3 N{ f[4], f[5], f[6] };
+      f[1] += u.x * W;
+      f[2] += u.y * W;
+      f[3] += u.z * W;
+      f[7] += dot(u, N);
+      f[8] += 2.0 * dot(u, P) + uu * W;
+    }
   }
 }
 
@@ -161,11 +199,12 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
   if (!s.walked || !sameWalk(s.walkedKey, key))
   {
     walk(v, key.region, r, key.smallest, s);
+    packWalk(v, key.region.corner, s);
     s.walked = true;
     s.walkedKey = key;
   }
-  addTakenCells(v, p, b, r * r, s.taken, s.bins.data());
-  addReadPoints(v, p, b, r * r, s.read, s.bins.data());
+  addPackedSamples(p, b, r * r, s.packed, s.bins.data());
+  shiftBins(key.region.corner - p, b.count, s.bins.data());
   fitAllScalesFromBins(b, minNeighbors, s.bins.data(), out);
 }
 

@@ -2,9 +2,11 @@
 // same cells taken whole and the same points read one by one, found level by level instead of depth first, so
 // that each level's cells are classified in a loop without a branch per cell (the depth-first walk mispredicts
 // about one branch per cell: measured 20 ns per cell), then binned and added in batches. The walk depends on p's
-// walkRegion only, so it runs once for consecutive points of one region. The sums are the same
-// sums in another order: results agree with the host/device loop to rounding (the tests bound it) and are
-// deterministic for any thread count.
+// walkRegion only, so it runs once for consecutive points of one region, and its samples are packed once with
+// their sums about the region's corner (PackedSample); each point adds them as they are and moves its bins to
+// itself (exact algebra, a shift of the origin). The sums are therefore the same sums in another order and about
+// another origin: results agree with the host/device loop to rounding (the tests bound it) and are deterministic
+// for any thread count.
 #pragma once
 
 #include "gls/MultiresolutionView.h"
@@ -25,6 +27,14 @@ struct WalkKey
   WalkRegion region{};
 };
 
+/// One sample of a walk as every point of its region reads it (packWalk in MultiresolutionKernel.cpp): its
+/// position (a cell's centroid or a point) and its nine sums (1, x, n, x.n, |x|^2) about the region's corner.
+struct PackedSample
+{
+  Vec3 position;
+  double sums[kAggregateValues];
+};
+
 /// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points). It keeps the last walk
 /// (the samples of one walkRegion, shared by the points of that region: consecutive points in pyramid order
 /// mostly share it) with its key; a scratch reused for another pyramid at the same address with the same count and
@@ -33,6 +43,7 @@ struct MultiresolutionScratch
 {
   std::vector<std::uint32_t> frontier, next, opened, taken, read;
   std::vector<AggregateMoments> bins;
+  std::vector<PackedSample> packed;
   bool walked = false;
   WalkKey walkedKey{};
 };
