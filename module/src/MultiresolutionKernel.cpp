@@ -54,18 +54,8 @@ void packWalk(const MultiresolutionView& v, const Vec3& o, MultiresolutionScratc
   {
     const PyramidCell& c = v.cells[i];
     const Vec3 x = c.centroid - o;
-    const double m = c.count;
     out->position = c.centroid;
-    double* f = out->sums;
-    f[0] = m;
-    f[1] = m * x.x;
-    f[2] = m * x.y;
-    f[3] = m * x.z;
-    f[4] = c.normalSum.x;
-    f[5] = c.normalSum.y;
-    f[6] = c.normalSum.z;
-    f[7] = c.offsetDotNormal + dot(x, c.normalSum);
-    f[8] = c.spread + m * squaredNorm(x);
+    cellSums(x, squaredNorm(x), c.count, c.normalSum, c.offsetDotNormal, c.spread, out->sums);
     ++out;
   }
   for (std::uint32_t cell : s.read)
@@ -73,18 +63,8 @@ void packWalk(const MultiresolutionView& v, const Vec3& o, MultiresolutionScratc
     for (std::uint32_t i = v.nodes[cell].first; i < v.nodes[cell].last; ++i)
     {
       const Vec3 x = v.points[i] - o;
-      const Vec3& normal = v.normals[i];
       out->position = v.points[i];
-      double* f = out->sums;
-      f[0] = 1.0;
-      f[1] = x.x;
-      f[2] = x.y;
-      f[3] = x.z;
-      f[4] = normal.x;
-      f[5] = normal.y;
-      f[6] = normal.z;
-      f[7] = dot(x, normal);
-      f[8] = squaredNorm(x);
+      pointSums(x, squaredNorm(x), v.normals[i], out->sums);
       ++out;
     }
   }

@@ -41,6 +41,37 @@ GLS_INLINE double neighborCount(const AggregateMoments& a)
   return a.m[0];
 }
 
+/// The sums f = (1, x, n, x.n, |x|^2) of one point at local position x (d2 = |x|^2) with normal n.
+GLS_INLINE void pointSums(const Vec3& x, double d2, const Vec3& n, double* f)
+{
+  f[0] = 1.0;
+  f[1] = x.x;
+  f[2] = x.y;
+  f[3] = x.z;
+  f[4] = n.x;
+  f[5] = n.y;
+  f[6] = n.z;
+  f[7] = dot(x, n);
+  f[8] = d2;
+}
+
+/// The exact sums f over the `count` points of a cell whose centroid is at local position x (d2 = |x|^2), with
+/// normal sum `normals`, sum (q - c).n = `offsetDotNormal` and sum |q - c|^2 = `spread`: sum x = m x,
+/// sum x.n = offsetDotNormal + x.normals, sum |x|^2 = spread + m d2.
+GLS_INLINE void cellSums(const Vec3& x, double d2, double count, const Vec3& normals, double offsetDotNormal,
+  double spread, double* f)
+{
+  f[0] = count;
+  f[1] = count * x.x;
+  f[2] = count * x.y;
+  f[3] = count * x.z;
+  f[4] = normals.x;
+  f[5] = normals.y;
+  f[6] = normals.z;
+  f[7] = offsetDotNormal + dot(x, normals);
+  f[8] = spread + count * d2;
+}
+
 /// Adds the sums f = (1, x, n, x.n, |x|^2) of a sample whose points all sit at squared distance d2.
 GLS_INLINE void addSampleSums(AggregateMoments& a, const double* f, double d2)
 {
@@ -56,7 +87,8 @@ GLS_INLINE void addSampleSums(AggregateMoments& a, const double* f, double d2)
 /// Adds one point with local position x (d2 = |x|^2) and normal n: exactly what the exact pass adds.
 GLS_INLINE void addPoint(AggregateMoments& a, const Vec3& x, double d2, const Vec3& n)
 {
-  const double f[kAggregateValues] = { 1.0, x.x, x.y, x.z, n.x, n.y, n.z, dot(x, n), d2 };
+  double f[kAggregateValues];
+  pointSums(x, d2, n, f);
   addSampleSums(a, f, d2);
 }
 
@@ -67,8 +99,8 @@ GLS_INLINE void addPoint(AggregateMoments& a, const Vec3& x, double d2, const Ve
 GLS_INLINE void addCell(AggregateMoments& a, const Vec3& x, double d2, double count, const Vec3& normals,
   double offsetDotNormal, double spread)
 {
-  const double f[kAggregateValues] = { count, count * x.x, count * x.y, count * x.z, normals.x, normals.y, normals.z,
-    offsetDotNormal + dot(x, normals), spread + count * d2 };
+  double f[kAggregateValues];
+  cellSums(x, d2, count, normals, offsetDotNormal, spread, f);
   addSampleSums(a, f, d2);
 }
 
