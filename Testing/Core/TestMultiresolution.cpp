@@ -57,11 +57,13 @@ SampleCounts countSamples(const gls::MultiresolutionView& v, const gls::Vec3& p,
   SampleCounts n;
   gls::forEachMultiresolutionSample(
     v, p, scales.back(), scales.front(),
-    [&](const gls::PyramidCell& c) {
+    [&](std::uint32_t node, int level) {
       ++n.cells;
+      gls::PyramidCell c;
+      gls::cellMoments(v, node, level, c);
       const gls::Vec3 x = c.centroid - p;
       const double d = std::sqrt(gls::squaredNorm(x));
-      const double reach = std::sqrt(c.spread / c.count) * 2.0; // a cell's points lie about this far from its centroid
+      const double reach = std::sqrt(gls::spreadOf(c) / c.count) * 2.0; // its points lie about this far from c
       for (double t : scales)
       {
         if (d - reach < t && t < d + reach)
@@ -266,7 +268,8 @@ TEST(Multiresolution, CpuKernelAgreesWithTheDeviceLoop)
     for (std::size_t k = 0; k < scales.size(); ++k)
     {
       ASSERT_EQ(device[k].valid, cpu[k].valid);
-      ASSERT_EQ(device[k].neighbors, cpu[k].neighbors);
+      // Cells spread over two shells add fractional counts, summed in another order.
+      ASSERT_NEAR(device[k].neighbors, cpu[k].neighbors, 1e-12 * device[k].neighbors);
       if (device[k].valid)
       {
         const double t = scales[k];

@@ -48,7 +48,8 @@ bool CudaScaleSpace::prepare(const GridView&, const ScaleBinning&, double, std::
   return false;
 }
 
-bool CudaScaleSpace::prepare(const MultiresolutionView&, std::size_t, const ScaleBinning&, double, std::string& error)
+bool CudaScaleSpace::prepare(
+  const MultiresolutionView&, std::size_t, std::size_t, const ScaleBinning&, double, std::string& error)
 {
   error = kNotBuilt;
   return false;

@@ -80,6 +80,61 @@ void sortPairs(std::vector<std::pair<std::uint64_t, std::uint64_t>>& pairs, int 
   }
 }
 
+/// The sums of a parent cell from those of its `count` children (in order), about its new centroid c: with
+/// d = c_k - c for child k, sum y y^T gains C_k + m_k d d^T; sum y n^T gains N_k + d (sum n)_k^T;
+/// sum y (y . n) gains T_k + N_k d + d tr(N_k) + d (d . (sum n)_k); sum y |y|^2 gains
+/// Q_k + 2 C_k d + tr(C_k) d + m_k |d|^2 d (y = y_k + d for the child's points, sum y_k = 0).
+void mergeChildren(const PyramidCell* children, std::uint32_t count, const Vec3& reference, PyramidCell& cell)
+{
+  double m = 0.0;
+  Vec3 offset{ 0.0, 0.0, 0.0 }, normalSum{ 0.0, 0.0, 0.0 };
+  for (std::uint32_t k = 0; k < count; ++k)
+  {
+    m += children[k].count;
+    offset = offset + children[k].count * (children[k].centroid - reference);
+    normalSum = normalSum + children[k].normalSum;
+  }
+  cell.centroid = reference + (1.0 / m) * offset;
+  cell.normalSum = normalSum;
+  cell.count = m;
+  for (double& v : cell.offsetOffset)
+  {
+    v = 0.0;
+  }
+  for (double& v : cell.offsetNormal)
+  {
+    v = 0.0;
+  }
+  cell.offsetOffsetDotNormal = { 0.0, 0.0, 0.0 };
+  cell.offsetSquaredOffset = { 0.0, 0.0, 0.0 };
+  for (std::uint32_t k = 0; k < count; ++k)
+  {
+    const PyramidCell& child = children[k];
+    const Vec3 d = child.centroid - cell.centroid;
+    const double mk = child.count;
+    const double dd[6] = { d.x * d.x, d.x * d.y, d.x * d.z, d.y * d.y, d.y * d.z, d.z * d.z };
+    for (int i = 0; i < 6; ++i)
+    {
+      cell.offsetOffset[i] += child.offsetOffset[i] + mk * dd[i];
+    }
+    const double dv[3] = { d.x, d.y, d.z };
+    const double nv[3] = { child.normalSum.x, child.normalSum.y, child.normalSum.z };
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        cell.offsetNormal[3 * a + b] += child.offsetNormal[3 * a + b] + dv[a] * nv[b];
+      }
+    }
+    const Vec3 Nd = offsetNormalTimes(child, d);
+    cell.offsetOffsetDotNormal = cell.offsetOffsetDotNormal + child.offsetOffsetDotNormal + Nd +
+      (offsetDotNormalOf(child) + dot(d, child.normalSum)) * d;
+    const Vec3 Cd = offsetOffsetTimes(child, d);
+    cell.offsetSquaredOffset = cell.offsetSquaredOffset + child.offsetSquaredOffset + 2.0 * Cd +
+      (spreadOf(child) + mk * squaredNorm(d)) * d;
+  }
+}
+
 } // namespace
 
 PyramidLayout choosePyramidLayout(const double low[3], const double high[3], double spacing, double smallestScale,
@@ -125,7 +180,8 @@ PyramidLayout choosePyramidLayout(const double low[3], const double high[3], dou
 double MultiresolutionCloud::bytes() const
 {
   return static_cast<double>(this->Points.size()) * (2.0 * sizeof(Vec3) + sizeof(std::uint64_t)) +
-    static_cast<double>(this->Cells.size()) * (sizeof(PyramidCell) + sizeof(PyramidNode)) +
+    static_cast<double>(this->Nodes.size()) * sizeof(PyramidNode) +
+    static_cast<double>(this->Cells.size()) * sizeof(PyramidCell) +
     static_cast<double>(this->TopKeys.size()) * sizeof(std::uint64_t);
 }
 
@@ -218,66 +274,50 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
     return false;
   }
 
-  // Level by level, finest first; each cell's sums come from its points (level 0) or its children, in order.
-  std::size_t below = 0; // index of the level below's first cell in Cells
+  // Level by level, finest first: every level's nodes; the sums of the levels from kFirstSummedLevel up, those of
+  // that level from their points, those above from their children, in order.
+  std::size_t below = 0; // index of the level below's first node in Nodes
   for (int level = 0; level <= topLevel; ++level)
   {
-    const std::size_t first = this->Cells.size();
+    const std::size_t first = this->Nodes.size();
     const std::size_t count = keys.size();
-    this->Cells.resize(first + count);
     this->Nodes.resize(first + count);
+    const bool summed = level >= kFirstSummedLevel;
+    if (level == kFirstSummedLevel)
+    {
+      this->SummedBegin = first;
+    }
+    const std::size_t firstCell = this->Cells.size();
+    if (summed)
+    {
+      this->Cells.resize(firstCell + count);
+    }
     const double edge = std::ldexp(h0, level);
     const double progressBegin = 0.6 + 0.4 * level / (topLevel + 1.0);
     const double progressEnd = 0.6 + 0.4 * (level + 1.0) / (topLevel + 1.0);
     const bool done = parallelFor(count, stage(progressBegin, progressEnd), [&](std::size_t b, std::size_t e, int) {
       for (std::size_t c = b; c < e; ++c)
       {
-        PyramidCell& cell = this->Cells[first + c];
         PyramidNode& node = this->Nodes[first + c];
         node.corner = cellCorner(origin, keys[c], edge);
         node.first = static_cast<std::uint32_t>(level == 0 ? starts[c] : below + starts[c]);
         node.last = static_cast<std::uint32_t>(level == 0 ? starts[c + 1] : below + starts[c + 1]);
-        double count = 0.0;
-        Vec3 offset{}, normals{};
-        double offsetDotNormal = 0.0, spread = 0.0;
-        if (level == 0)
+        if (!summed)
         {
-          for (std::uint32_t i = node.first; i < node.last; ++i)
-          {
-            count += 1.0;
-            offset = offset + (this->Points[i] - node.corner);
-            normals = normals + this->Normals[i];
-          }
-          cell.centroid = node.corner + (1.0 / count) * offset;
-          for (std::uint32_t i = node.first; i < node.last; ++i)
-          {
-            const Vec3 y = this->Points[i] - cell.centroid;
-            offsetDotNormal += dot(y, this->Normals[i]);
-            spread += squaredNorm(y);
-          }
+          continue;
+        }
+        PyramidCell& cell = this->Cells[firstCell + c];
+        if (level == kFirstSummedLevel)
+        {
+          std::uint32_t p0 = 0, p1 = 0;
+          pointRange(this->Nodes.data(), static_cast<std::uint32_t>(first + c), level, p0, p1);
+          momentsOfPoints(this->Points.data(), this->Normals.data(), p0, p1, node.corner, cell);
         }
         else
         {
-          for (std::uint32_t i = node.first; i < node.last; ++i)
-          {
-            const PyramidCell& child = this->Cells[i];
-            count += child.count;
-            offset = offset + child.count * (child.centroid - node.corner);
-            normals = normals + child.normalSum;
-          }
-          cell.centroid = node.corner + (1.0 / count) * offset;
-          for (std::uint32_t i = node.first; i < node.last; ++i)
-          {
-            const PyramidCell& child = this->Cells[i];
-            const Vec3 y = child.centroid - cell.centroid;
-            offsetDotNormal += child.offsetDotNormal + dot(y, child.normalSum);
-            spread += child.spread + child.count * squaredNorm(y);
-          }
+          mergeChildren(this->Cells.data() + (node.first - this->SummedBegin), node.last - node.first, node.corner,
+            cell);
         }
-        cell.count = count;
-        cell.normalSum = normals;
-        cell.offsetDotNormal = offsetDotNormal;
-        cell.spread = spread;
       }
     });
     if (!done)
@@ -311,8 +351,10 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
   v.nodes = this->Nodes.data();
   v.cells = this->Cells.data();
   v.topKeys = this->TopKeys.data();
-  v.topBegin = this->Cells.size() - this->TopKeys.size();
-  v.topEnd = this->Cells.size();
+  v.summedBegin = this->SummedBegin;
+  v.summedLevel = kFirstSummedLevel;
+  v.topBegin = this->Nodes.size() - this->TopKeys.size();
+  v.topEnd = this->Nodes.size();
   v.topLevel = topLevel;
   for (int l = 0; l <= kMaxPyramidLevels; ++l)
   {

@@ -99,8 +99,8 @@ bool ScaleSpaceEngine::runOnDevice(ScaleSampleSink& sink, const std::vector<std:
   const int S = static_cast<int>(this->Settings.scales.size());
   CudaScaleSpace device;
   const bool prepared = this->Settings.evaluation == Evaluation::Multiresolution
-    ? device.prepare(this->Pyramid.view(), this->Pyramid.cellCount(), this->binning(), this->Settings.minNeighbors,
-        reason)
+    ? device.prepare(this->Pyramid.view(), this->Pyramid.nodeCount(), this->Pyramid.cellCount(), this->binning(),
+        this->Settings.minNeighbors, reason)
     : device.prepare(this->Grid.view(), this->binning(), this->Settings.minNeighbors, reason);
   if (!prepared)
   {

@@ -1,9 +1,8 @@
 // The moments of the multi-resolution pass (docs/math.md, "Multi-resolution evaluation"): the exact pass's
-// A_k = sum d^(2k) f for k = 0, 1, 2, where a sample is either one point or a whole cell of points that all take
-// the weight of the cell's centroid. A cell keeps the exact sums of its points (count, centroid, sum n,
-// sum (q - c).n, sum |q - c|^2), so sum f over its points is exact about any evaluation point; only the distance d
-// of its points is the centroid's. Because |x|^2 of a cell's points is no longer m d^2, the nine values
-// f = (1, x, n, x.n, |x|^2) are all stored (27 sums).
+// A_k = sum d^(2k) f for k = 0, 1, 2, where a sample is either one point or a whole cell of points (CellMoments.h:
+// its points weighted by a linear field across the cell and binned by a spread of squared distances). Because
+// |x|^2 of a cell's points is no longer its weight's d^2, the nine values f = (1, x, n, x.n, |x|^2) are all stored
+// (27 sums).
 #pragma once
 
 #include "gls/MomentBins.h"
@@ -55,23 +54,6 @@ GLS_INLINE void pointSums(const Vec3& x, double d2, const Vec3& n, double* f)
   f[8] = d2;
 }
 
-/// The exact sums f over the `count` points of a cell whose centroid is at local position x (d2 = |x|^2), with
-/// normal sum `normals`, sum (q - c).n = `offsetDotNormal` and sum |q - c|^2 = `spread`: sum x = m x,
-/// sum x.n = offsetDotNormal + x.normals, sum |x|^2 = spread + m d2.
-GLS_INLINE void cellSums(const Vec3& x, double d2, double count, const Vec3& normals, double offsetDotNormal,
-  double spread, double* f)
-{
-  f[0] = count;
-  f[1] = count * x.x;
-  f[2] = count * x.y;
-  f[3] = count * x.z;
-  f[4] = normals.x;
-  f[5] = normals.y;
-  f[6] = normals.z;
-  f[7] = offsetDotNormal + dot(x, normals);
-  f[8] = spread + count * d2;
-}
-
 /// Adds the sums f = (1, x, n, x.n, |x|^2) of a sample whose points all sit at squared distance d2.
 GLS_INLINE void addSampleSums(AggregateMoments& a, const double* f, double d2)
 {
@@ -89,18 +71,6 @@ GLS_INLINE void addPoint(AggregateMoments& a, const Vec3& x, double d2, const Ve
 {
   double f[kAggregateValues];
   pointSums(x, d2, n, f);
-  addSampleSums(a, f, d2);
-}
-
-/// Adds a cell of `count` points whose centroid is at local position x (d2 = |x|^2), with normal sum `normals`,
-/// sum (q - c).n = `offsetDotNormal` and sum |q - c|^2 = `spread`: the exact sums of its points about the
-/// evaluation point (sum x = m x, sum x.n = offsetDotNormal + x.normals, sum |x|^2 = spread + m d2), all weighted
-/// at the centroid's distance.
-GLS_INLINE void addCell(AggregateMoments& a, const Vec3& x, double d2, double count, const Vec3& normals,
-  double offsetDotNormal, double spread)
-{
-  double f[kAggregateValues];
-  cellSums(x, d2, count, normals, offsetDotNormal, spread, f);
   addSampleSums(a, f, d2);
 }
 

@@ -49,11 +49,11 @@ public:
   /// the geometry (origin, cell size, dims) of `geometry`; uploads the scales and the binning table.
   bool prepare(const GridView& geometry, const ScaleBinning& binning, double minNeighbors, std::string& error);
 
-  /// The multi-resolution evaluation instead: uploads the pyramid as built on the host (cells, top keys, points
-  /// and normals in pyramid order), the scales and the binning table; evaluate() then runs
-  /// evaluateAllScalesMultiresolution, the loop the CPU engine runs.
-  bool prepare(const MultiresolutionView& pyramid, std::size_t cellCount, const ScaleBinning& binning,
-    double minNeighbors, std::string& error);
+  /// The multi-resolution evaluation instead: uploads the pyramid as built on the host (its nodeCount nodes, its
+  /// cellCount summed cells, top keys, points and normals in pyramid order), the scales and the binning table;
+  /// evaluate() then runs evaluateAllScalesMultiresolution, the loop the CPU engine runs.
+  bool prepare(const MultiresolutionView& pyramid, std::size_t nodeCount, std::size_t cellCount,
+    const ScaleBinning& binning, double minNeighbors, std::string& error);
 
   /// How many positions one evaluate() call may take (sized from the device's free memory).
   std::size_t chunkCapacity() const;

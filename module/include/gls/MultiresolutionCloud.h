@@ -15,6 +15,10 @@
 namespace gls
 {
 
+/// The finest level whose cells keep their sums (PyramidCell); the cells of finer levels, of about 1.5 and 3 points
+/// each on a surface, form theirs from their points when a walk takes them whole.
+constexpr int kFirstSummedLevel = 2;
+
 /// How a pyramid is laid out. Two pyramids built with the same layout over clouds that agree within the reach of
 /// an evaluation point give that point the same samples (this is what makes distributed runs equal serial ones).
 struct PyramidLayout
@@ -43,6 +47,8 @@ public:
   const MultiresolutionView& view() const { return this->View; }
   /// Original indices of the points in pyramid order (a locality-preserving evaluation order).
   const std::vector<std::uint64_t>& ids() const { return this->Ids; }
+  /// Nodes of every level (PyramidNode), and the cells with stored sums (levels kFirstSummedLevel and above).
+  std::size_t nodeCount() const { return this->Nodes.size(); }
   std::size_t cellCount() const { return this->Cells.size(); }
   /// Bytes held (points, normals, ids, cells).
   double bytes() const;
@@ -54,6 +60,7 @@ private:
   std::vector<PyramidNode> Nodes;
   std::vector<PyramidCell> Cells;
   std::vector<std::uint64_t> TopKeys;
+  std::size_t SummedBegin = 0;
   MultiresolutionView View;
 };
 

@@ -27,12 +27,20 @@ struct WalkKey
   WalkRegion region{};
 };
 
-/// One sample of a walk as every point of its region reads it (packWalk in MultiresolutionKernel.cpp): its
-/// position (a cell's centroid or a point) and its nine sums (1, x, n, x.n, |x|^2) about the region's corner.
-struct PackedSample
+/// A point of a walk as every point of its region reads it (packWalk in MultiresolutionKernel.cpp): its position
+/// and its nine sums (1, x, n, x.n, |x|^2) about the region's corner.
+struct PackedPoint
 {
   Vec3 position;
   double sums[kAggregateValues];
+};
+
+/// A cell of a walk as every point of its region reads it: its centroid and its CellSample about the region's
+/// corner.
+struct PackedCell
+{
+  Vec3 centroid;
+  CellSample sample;
 };
 
 /// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points). It keeps the last walk
@@ -42,8 +50,10 @@ struct PackedSample
 struct MultiresolutionScratch
 {
   std::vector<std::uint32_t> frontier, next, opened, taken, read;
+  std::vector<int> takenLevel;
   std::vector<AggregateMoments> bins;
-  std::vector<PackedSample> packed;
+  std::vector<PackedPoint> packedPoints;
+  std::vector<PackedCell> packedCells;
   bool walked = false;
   WalkKey walkedKey{};
 };

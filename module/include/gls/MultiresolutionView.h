@@ -1,12 +1,14 @@
 // The multi-resolution evaluation of one point (docs/math.md, "Multi-resolution evaluation"), host/device: a walk
-// down an octree of cubic cells (a pyramid of levels, cells of level l of edge h0 2^l, each keeping the exact sums
-// of its points) that takes a whole cell as one sample where the cell is small against its distance from the
-// evaluation point (edge <= Accuracy * distance to the cell's box), and the points themselves elsewhere. The
-// evaluation point's own cell and the cells near it are therefore always read point by point. Built by
-// MultiresolutionCloud; the moments and fits are the exact pass's (AggregateMoments.h, fitAllScalesFromBins).
+// down an octree of cubic cells (a pyramid of levels, cells of level l of edge h0 2^l, each with the exact sums of
+// its points up to the second order, CellMoments.h) that takes a whole cell as one sample where the cell is small
+// against its distance from the evaluation point (edge <= Accuracy * distance to the cell's box), and the points
+// themselves elsewhere. The evaluation point's own cell and the cells near it are therefore always read point by
+// point. Built by MultiresolutionCloud; the moments and fits are the exact pass's (AggregateMoments.h,
+// fitAllScalesFromBins).
 #pragma once
 
 #include "gls/AggregateMoments.h"
+#include "gls/CellMoments.h"
 #include "gls/Numeric.h"
 #include "gls/PointScaleSpace.h"
 
@@ -26,21 +28,16 @@ struct PyramidNode
   std::uint32_t first, last; ///< level > 0: its children, cells [first, last); level 0: its points [first, last)
 };
 
-/// The exact sums of a cell's points (the same index as its PyramidNode).
-struct PyramidCell
-{
-  Vec3 centroid;            ///< mean position of its points
-  Vec3 normalSum;           ///< sum of its points' unit normals
-  double count;             ///< number of points
-  double offsetDotNormal;   ///< sum (q - centroid) . n over its points
-  double spread;            ///< sum |q - centroid|^2 over its points (length^2)
-};
-
 /// The pyramid as plain arrays (the same on the host and the device).
 struct MultiresolutionView
 {
-  const PyramidNode* nodes = nullptr;  ///< all levels; the top level's cells are [topBegin, topEnd)
-  const PyramidCell* cells = nullptr;  ///< their sums, same indices
+  const PyramidNode* nodes = nullptr;  ///< all levels, finest first; the top level's cells are [topBegin, topEnd)
+  /// The sums of the cells of levels summedLevel and above: node i's at cells[i - summedBegin]. The finer cells
+  /// hold a few points each (about 1.5 and 3 on a surface): their sums are formed from their points when a walk
+  /// takes them whole (cellMoments), which saves most of the pyramid's memory.
+  const PyramidCell* cells = nullptr;
+  std::uint64_t summedBegin = 0;       ///< index of the first node of level summedLevel
+  int summedLevel = 0;
   const std::uint64_t* topKeys = nullptr; ///< Morton keys of the top level's cells, increasing
   std::uint64_t topBegin = 0, topEnd = 0;
   int topLevel = 0;                    ///< levels are 0 (finest) .. topLevel
@@ -188,7 +185,42 @@ GLS_INLINE bool takenWhole(double edge2, double box2, double eps2, double floor2
   return edge2 <= box2 && edge2 <= eps2 * (box2 > floor2 ? box2 : floor2);
 }
 
-/// Calls sample(cell) for every cell taken whole (takenWhole, with `smallest` the smallest scale) and point(i) for
+/// The points [first, last) of the cell `node` of level `level` (a cell's points are contiguous).
+GLS_INLINE void pointRange(const PyramidNode* nodes, std::uint32_t node, int level, std::uint32_t& first,
+  std::uint32_t& last)
+{
+  std::uint32_t a = node, z = node;
+  for (int l = level; l > 0; --l)
+  {
+    a = nodes[a].first;
+    z = nodes[z].last - 1;
+  }
+  first = nodes[a].first;
+  last = nodes[z].last;
+}
+
+/// The sums of the cell `node` of level `level`: stored, or formed from its points (momentsOfPoints about its
+/// corner, as the build forms those of level summedLevel).
+GLS_INLINE void cellMoments(const MultiresolutionView& v, std::uint32_t node, int level, PyramidCell& cell)
+{
+  if (level >= v.summedLevel)
+  {
+    cell = v.cells[node - v.summedBegin];
+    return;
+  }
+  std::uint32_t first = 0, last = 0;
+  pointRange(v.nodes, node, level, first, last);
+  momentsOfPoints(v.points, v.normals, first, last, v.nodes[node].corner, cell);
+}
+
+/// The point a walk region's samples take their direction from (CellSample::gradient): its centre.
+GLS_INLINE Vec3 regionCentre(const WalkRegion& a)
+{
+  const double h = 0.5 * a.edge;
+  return { a.corner.x + h, a.corner.y + h, a.corner.z + h };
+}
+
+/// Calls sample(node, level) for every cell taken whole (takenWhole, with `smallest` the smallest scale) and point(i) for
 /// every point read one by one, for the ball of radius r around p: every point of the ball is in exactly one of
 /// them (points of a cell taken whole may lie outside the ball; the caller weights them at the cell's centroid).
 /// Distances are measured from p's walkRegion, so the samples and their order are fixed by the pyramid and that
@@ -236,7 +268,7 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
     }
     if (takenWhole(edge * edge, box2, eps2, floor2))
     {
-      sample(v.cells[stack[top]]);
+      sample(stack[top], level);
     }
     else if (level == 0)
     {
@@ -259,8 +291,8 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
 }
 
 /// Fits every scale of the evaluation point p from the multi-resolution samples of the ball of the largest scale:
-/// points inside the ball enter exactly, as in evaluateAllScales; a cell taken whole enters with all its points at
-/// its centroid's distance (binned by it, and left out when the centroid is outside the ball).
+/// points inside the ball enter exactly, as in evaluateAllScales; a cell taken whole enters as its CellSample
+/// (its points weighted by a linear field, their squared distances spread over the shells they meet).
 /// b: the S increasing scales and their binning table; bins: S scratch moment sets; out: S samples.
 GLS_INLINE void evaluateAllScalesMultiresolution(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
   double minNeighbors, AggregateMoments* bins, ScaleSample* out)
@@ -275,15 +307,15 @@ GLS_INLINE void evaluateAllScalesMultiresolution(const MultiresolutionView& v, c
   }
   const double r = b.scales[b.count - 1];
   const double r2 = r * r;
+  const Vec3 anchor = regionCentre(walkRegion(v, p));
   forEachMultiresolutionSample(
     v, p, r, b.scales[0],
-    [&](const PyramidCell& c) {
-      const Vec3 x = c.centroid - p;
-      const double d2 = squaredNorm(x);
-      if (d2 < r2)
-      {
-        addCell(bins[firstScaleHolding(b, d2)], x, d2, c.count, c.normalSum, c.offsetDotNormal, c.spread);
-      }
+    [&](std::uint32_t node, int level) {
+      PyramidCell cell;
+      cellMoments(v, node, level, cell);
+      CellSample s;
+      makeCellSample(cell, p, cell.centroid - anchor, s);
+      addCellSample(bins, b, r2, s, squaredNorm(cell.centroid - p));
     },
     [&](std::uint32_t i) {
       const Vec3 x = v.points[i] - p;

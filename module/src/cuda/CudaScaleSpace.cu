@@ -310,13 +310,14 @@ bool CudaScaleSpace::prepare(
     d.Bins.allocate(d.Capacity * S, error);
 }
 
-bool CudaScaleSpace::prepare(const MultiresolutionView& pyramid, std::size_t cellCount, const ScaleBinning& binning,
-  double minNeighbors, std::string& error)
+bool CudaScaleSpace::prepare(const MultiresolutionView& pyramid, std::size_t nodeCount, std::size_t cellCount,
+  const ScaleBinning& binning, double minNeighbors, std::string& error)
 {
   this->State = std::make_unique<Device>();
   Device& d = *this->State;
   const std::size_t topCount = static_cast<std::size_t>(pyramid.topEnd - pyramid.topBegin);
-  if (!d.Nodes.upload(pyramid.nodes, cellCount, error) || !d.Cells.upload(pyramid.cells, cellCount, error) || !d.TopKeys.upload(pyramid.topKeys, topCount, error) ||
+  if (!d.Nodes.upload(pyramid.nodes, nodeCount, error) || !d.Cells.upload(pyramid.cells, cellCount, error) ||
+    !d.TopKeys.upload(pyramid.topKeys, topCount, error) ||
     !d.Points.upload(pyramid.points, pyramid.count, error) || !d.Normals.upload(pyramid.normals, pyramid.count, error))
   {
     return false;
