@@ -87,6 +87,9 @@ void packWalk(const MultiresolutionView& v, const WalkRegion& region, Multiresol
     PackedCell& out = s.packedCells[k];
     out.centroid = cell.centroid;
     makeCellSample(cell, o, cell.centroid - anchor, out.sample);
+    const double a = out.sample.halfWidth;
+    out.inverseWidth = a > 0.0 ? 1.0 / (2.0 * a) : 0.0;
+    out.varianceThird = a * a * (1.0 / 3.0);
   }
   std::size_t n = 0;
   for (std::uint32_t cell : s.read)
@@ -107,61 +110,155 @@ void packWalk(const MultiresolutionView& v, const WalkRegion& region, Multiresol
   }
 }
 
-/// Adds the packed cells for p, in batches: the squared distances and the shells of both ends of each cell's spread
-/// first (loads without a branch between them), then the cells within one shell (most of them: m0 = 1, m1 = the
-/// mean, m2 = mean^2 + half^2 / 3, as forEachShellOfSpread gives them), then the others through
-/// forEachShellOfSpread itself.
-GLS_ALWAYS_INLINE void addPackedCells(
-  const Vec3& p, const ScaleBinning& b, double r2, const std::vector<PackedCell>& cells, AggregateMoments* bins)
+/// A threshold event of a cell spread over several shells (addPackedCells): from the first ball whose squared
+/// radius T exceeds c, the cell's shares gain sign * rho * (T^(j+1) - c^(j+1)) / (j + 1) in m_j (rho = 1 / (2 half)).
+/// The terms in c go into the bin as they are; those in T into the bin's ramp (ramps), which rampsIntoBins turns
+/// into every later ball's terms.
+GLS_ALWAYS_INLINE void addSpreadEvent(
+  AggregateMoments& a, CellRamp& ramp, const CellSample& s, double rho, double c)
 {
-  constexpr int kCellBatch = 32;
-  double mean[kCellBatch];
-  int shell[kCellBatch];
-  std::uint32_t single[kCellBatch], split[kCellBatch];
-  const std::size_t n = cells.size();
-  for (std::size_t c = 0; c < n; c += kCellBatch)
+#if GLS_KERNEL_VECTORS
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+  using kernel::Double4;
+  using kernel::load4;
+  using kernel::store4;
+  const Double4 f0 = load4(s.sums), f1 = load4(s.sums + 4);
+  const Double4 g0 = load4(s.gradient), g1 = load4(s.gradient + 4);
+  const double f8 = s.sums[8], g8 = s.gradient[8];
+  store4(ramp.f, load4(ramp.f) + rho * f0);
+  store4(ramp.f + 4, load4(ramp.f + 4) + rho * f1);
+  ramp.f[8] += rho * f8;
+  store4(ramp.h, load4(ramp.h) + rho * g0);
+  store4(ramp.h + 4, load4(ramp.h + 4) + rho * g1);
+  ramp.h[8] += rho * g8;
+  const double q0 = -rho * c, q1 = -rho * c * c * 0.5, q2 = -rho * c * c * c * (1.0 / 3.0);
+  const double r1 = -2.0 * rho * c, r2 = -2.0 * rho * c * c;
+  double* m = a.m;
+  store4(m, load4(m) + q0 * f0);
+  store4(m + 4, load4(m + 4) + q0 * f1);
+  m[8] += q0 * f8;
+  store4(m + 9, load4(m + 9) + (q1 * f0 + r1 * g0));
+  store4(m + 13, load4(m + 13) + (q1 * f1 + r1 * g1));
+  m[17] += q1 * f8 + r1 * g8;
+  store4(m + 18, load4(m + 18) + (q2 * f0 + r2 * g0));
+  store4(m + 22, load4(m + 22) + (q2 * f1 + r2 * g1));
+  m[26] += q2 * f8 + r2 * g8;
+#pragma GCC diagnostic pop
+#else
+  const double q0 = -rho * c, q1 = -rho * c * c * 0.5, q2 = -rho * c * c * c * (1.0 / 3.0);
+  const double r1 = -2.0 * rho * c, r2 = -2.0 * rho * c * c;
+  for (int j = 0; j < kAggregateValues; ++j)
   {
-    const int m = static_cast<int>(n - c < kCellBatch ? n - c : kCellBatch);
-    for (int j = 0; j < m; ++j)
+    ramp.f[j] += rho * s.sums[j];
+    ramp.h[j] += rho * s.gradient[j];
+    a.m[j] += q0 * s.sums[j];
+    a.m[kAggregateValues + j] += q1 * s.sums[j] + r1 * s.gradient[j];
+    a.m[2 * kAggregateValues + j] += q2 * s.sums[j] + r2 * s.gradient[j];
+  }
+#endif
+}
+
+/// Turns the ramps into bins: ball k (squared radius T) gains T R_f in A_0, T^2 / 2 R_f + 2 T R_h in A_1 and
+/// T^3 / 3 R_f + 2 T^2 R_h in A_2, R the sum of the ramps of bins 0..k; bin k gains ball k's terms less ball
+/// k - 1's, so that the running sum over the bins gives them.
+GLS_ALWAYS_INLINE void rampsIntoBins(const ScaleBinning& b, const CellRamp* ramps, AggregateMoments* bins)
+{
+  double rf[kAggregateValues] = {}, rh[kAggregateValues] = {};
+  double before[3 * kAggregateValues] = {};
+  for (int k = 0; k < b.count; ++k)
+  {
+    const double T = b.squaredScales[k];
+    const double c1 = 0.5 * T * T, c2 = T * T * T * (1.0 / 3.0), h1 = 2.0 * T, h2 = 2.0 * T * T;
+    double* m = bins[k].m;
+    for (int j = 0; j < kAggregateValues; ++j)
     {
-      const PackedCell& cell = cells[c + j];
-      mean[j] = squaredNorm(cell.centroid - p) + cell.sample.spreadPerPoint;
-    }
-    int singles = 0, splits = 0;
-    for (int j = 0; j < m; ++j)
-    {
-      const double half = cells[c + j].sample.halfWidth;
-      const double lo = mean[j] - half, hi = mean[j] + half;
-      const int first = firstScaleHolding(b, lo > 0.0 ? lo : 0.0);
-      const int last = hi < r2 ? firstScaleHolding(b, hi) : -1;
-      shell[j] = first;
-      single[singles] = static_cast<std::uint32_t>(j);
-      singles += first == last ? 1 : 0;
-      split[splits] = static_cast<std::uint32_t>(j);
-      splits += first != last && lo < r2 ? 1 : 0;
-    }
-    for (int i = 0; i < singles; ++i)
-    {
-      const int j = static_cast<int>(single[i]);
-      const CellSample& sample = cells[c + j].sample;
-      addPackedCellShare(bins[shell[j]], sample, 1.0, mean[j],
-        mean[j] * mean[j] + sample.halfWidth * sample.halfWidth * (1.0 / 3.0));
-    }
-    for (int i = 0; i < splits; ++i)
-    {
-      const CellSample& sample = cells[c + split[i]].sample;
-      forEachShellOfSpread(b, r2, mean[split[i]], sample.halfWidth,
-        [&](int k, double m0, double m1, double m2) { addPackedCellShare(bins[k], sample, m0, m1, m2); });
+      rf[j] += ramps[k].f[j];
+      rh[j] += ramps[k].h[j];
+      const double e0 = T * rf[j];
+      const double e1 = c1 * rf[j] + h1 * rh[j];
+      const double e2 = c2 * rf[j] + h2 * rh[j];
+      m[j] += e0 - before[j];
+      m[kAggregateValues + j] += e1 - before[kAggregateValues + j];
+      m[2 * kAggregateValues + j] += e2 - before[2 * kAggregateValues + j];
+      before[j] = e0;
+      before[kAggregateValues + j] = e1;
+      before[2 * kAggregateValues + j] = e2;
     }
   }
+}
+
+/// Adds the packed cells for p. A cell within one shell (most cells near p) adds its sample there (m0 = 1,
+/// m1 = the mean, m2 = mean^2 + half^2 / 3, as forEachShellOfSpread gives them). A cell whose spread meets several
+/// shells adds the same pieces in another form, whatever their number: two threshold events, at the spread's ends
+/// (addSpreadEvent); the ramps they leave are turned into bins once per point (rampsIntoBins). Cells are first
+/// sorted into the two kinds without a branch, then each kind is added in a loop of its own.
+GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, double r2, MultiresolutionScratch& s,
+  AggregateMoments* bins)
+{
+  const std::vector<PackedCell>& cells = s.packedCells;
+  const int S = b.count;
+  const std::size_t n = cells.size();
+  s.cellMean.resize(n);
+  s.cellShell.resize(n);
+  s.singleCells.resize(n);
+  s.spreadCells.resize(n);
+  std::size_t singles = 0, spreads = 0;
+  for (std::size_t c = 0; c < n; ++c)
+  {
+    const PackedCell& cell = cells[c];
+    const double a = cell.sample.halfWidth;
+    const double mean = squaredNorm(cell.centroid - p) + cell.sample.spreadPerPoint;
+    const double lo = mean - a, hi = mean + a;
+    int first = firstScaleHolding(b, lo > 0.0 ? lo : 0.0);
+    // One shell: below the first shell's sphere; or a spread too narrow to split (forEachShellOfSpread).
+    const bool within = hi < b.squaredScales[first];
+    const bool narrow = !(a > kNarrowestSpread * hi);
+    if (narrow && !within)
+    {
+      first = firstScaleHolding(b, mean < r2 ? mean : 0.0);
+    }
+    const bool single = within || narrow;
+    const bool inside = (single ? mean : lo) < r2;
+    s.cellMean[c] = mean;
+    s.cellShell[c] = first;
+    s.singleCells[singles] = static_cast<std::uint32_t>(c);
+    singles += single && inside ? 1 : 0;
+    s.spreadCells[spreads] = static_cast<std::uint32_t>(c);
+    spreads += !single && inside ? 1 : 0;
+  }
+  for (std::size_t i = 0; i < singles; ++i)
+  {
+    const std::uint32_t c = s.singleCells[i];
+    const double mean = s.cellMean[c];
+    addPackedCellShare(bins[s.cellShell[c]], cells[c].sample, 1.0, mean, mean * mean + cells[c].varianceThird);
+  }
+  if (spreads == 0)
+  {
+    return;
+  }
+  s.ramps.assign(static_cast<std::size_t>(S) + 1, CellRamp{});
+  AggregateMoments beyond; // the bin of the events at or past the largest scale: in no ball
+  for (std::size_t i = 0; i < spreads; ++i)
+  {
+    const std::uint32_t c = s.spreadCells[i];
+    const PackedCell& cell = cells[c];
+    const double rho = cell.inverseWidth;
+    const double a = cell.sample.halfWidth;
+    const double lo = s.cellMean[c] - a, hi = s.cellMean[c] + a;
+    const int top = hi < r2 ? firstScaleHolding(b, hi) : S;
+    addSpreadEvent(bins[s.cellShell[c]], s.ramps[s.cellShell[c]], cell.sample, rho, lo);
+    addSpreadEvent(top < S ? bins[top] : beyond, s.ramps[top], cell.sample, -rho, hi);
+  }
+  rampsIntoBins(b, s.ramps.data(), bins);
 }
 
 /// Adds the packed samples of p's ball: the cells, each spread over the shells it meets (addCellSample), and the
 /// points inside it, binned by their distance from p.
 GLS_ALWAYS_INLINE void addPackedSamples(const Vec3& p, const ScaleBinning& b, double r2,
-  const MultiresolutionScratch& s, AggregateMoments* bins)
+  MultiresolutionScratch& s, AggregateMoments* bins)
 {
-  addPackedCells(p, b, r2, s.packedCells, bins);
+  addPackedCells(p, b, r2, s, bins);
   const std::vector<PackedPoint>& points = s.packedPoints;
   kernel::addInsideBall(
     p, b, r2, std::size_t(0), points.size(), [](std::size_t c) { return c; },

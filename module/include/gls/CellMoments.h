@@ -163,14 +163,28 @@ GLS_INLINE void makeCellSample(const PyramidCell& cell, const Vec3& origin, cons
   s.halfWidth = variance > 0.0 ? squareRoot(3.0 * variance) : 0.0;
 }
 
+/// A spread narrower than this fraction of its upper end is not split: the sample goes whole to the shell of its
+/// mean (its points' weights and their t-derivatives vanish on a scale's sphere, so the misplaced part is of the
+/// order of this fraction), and the CPU kernel's threshold events, which subtract powers of the spread's ends,
+/// lose at most about 1e-16 / kNarrowestSpread of a sample to rounding.
+constexpr double kNarrowestSpread = 1e-4;
+
 /// Splits a sample whose squared distances from p are spread uniformly over [mean - half, mean + half] into the
 /// scale shells it meets below r2 (the largest squared scale): calls add(k, m0, m1, m2) with the shell's share of
 /// the points m0 and its mean moments m1 = E[s; shell], m2 = E[s^2; shell]. A sample within one shell (the common
-/// case, and every sample with half = 0) makes one call with m0 = 1.
+/// case), or narrower than kNarrowestSpread, makes one call with m0 = 1.
 template <typename Add>
 GLS_INLINE void forEachShellOfSpread(const ScaleBinning& b, double r2, double mean, double half, Add&& add)
 {
   const double lo = mean - half, hi = mean + half;
+  if (!(half > kNarrowestSpread * hi))
+  {
+    if (mean < r2)
+    {
+      add(firstScaleHolding(b, mean), 1.0, mean, mean * mean + half * half * (1.0 / 3.0));
+    }
+    return;
+  }
   if (!(lo < r2))
   {
     return;

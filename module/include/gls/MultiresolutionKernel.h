@@ -41,6 +41,16 @@ struct PackedCell
 {
   Vec3 centroid;
   CellSample sample;
+  double inverseWidth;  ///< 1 / (2 sample.halfWidth), or 0
+  double varianceThird; ///< sample.halfWidth^2 / 3: the variance of the spread
+};
+
+/// The ramp of one bin (MultiresolutionKernel.cpp, addSpreadEvent): sum of sign * rho * F and of sign * rho * H over
+/// the threshold events of the cells spread over several shells.
+struct CellRamp
+{
+  double f[kAggregateValues];
+  double h[kAggregateValues];
 };
 
 /// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points). It keeps the last walk
@@ -54,6 +64,10 @@ struct MultiresolutionScratch
   std::vector<AggregateMoments> bins;
   std::vector<PackedPoint> packedPoints;
   std::vector<PackedCell> packedCells;
+  std::vector<double> cellMean;
+  std::vector<int> cellShell;
+  std::vector<std::uint32_t> singleCells, spreadCells;
+  std::vector<CellRamp> ramps;
   bool walked = false;
   WalkKey walkedKey{};
 };
