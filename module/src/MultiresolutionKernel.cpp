@@ -88,6 +88,8 @@ void packWalk(const MultiresolutionView& v, const WalkRegion& region, Multiresol
     out.centroid = cell.centroid;
     makeCellSample(cell, o, cell.centroid - anchor, out.sample);
     const double a = out.sample.halfWidth;
+    out.spreadPerPoint = out.sample.spreadPerPoint;
+    out.halfWidth = a;
     out.inverseWidth = a > 0.0 ? 1.0 / (2.0 * a) : 0.0;
     out.varianceThird = a * a * (1.0 / 3.0);
   }
@@ -207,8 +209,8 @@ GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, doub
   for (std::size_t c = 0; c < n; ++c)
   {
     const PackedCell& cell = cells[c];
-    const double a = cell.sample.halfWidth;
-    const double mean = squaredNorm(cell.centroid - p) + cell.sample.spreadPerPoint;
+    const double a = cell.halfWidth;
+    const double mean = squaredNorm(cell.centroid - p) + cell.spreadPerPoint;
     const double lo = mean - a, hi = mean + a;
     int first = firstScaleHolding(b, lo > 0.0 ? lo : 0.0);
     // One shell: below the first shell's sphere; or a spread too narrow to split (forEachShellOfSpread).
@@ -244,7 +246,7 @@ GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, doub
     const std::uint32_t c = s.spreadCells[i];
     const PackedCell& cell = cells[c];
     const double rho = cell.inverseWidth;
-    const double a = cell.sample.halfWidth;
+    const double a = cell.halfWidth;
     const double lo = s.cellMean[c] - a, hi = s.cellMean[c] + a;
     const int top = hi < r2 ? firstScaleHolding(b, hi) : S;
     addSpreadEvent(bins[s.cellShell[c]], s.ramps[s.cellShell[c]], cell.sample, rho, lo);

@@ -35,14 +35,16 @@ struct PackedPoint
   double sums[kAggregateValues];
 };
 
-/// A cell of a walk as every point of its region reads it: its centroid and its CellSample about the region's
-/// corner.
-struct PackedCell
+/// A cell of a walk as every point of its region reads it: what places it in the shells (first cache line, all
+/// the first pass over the cells reads) and its CellSample about the region's corner.
+struct alignas(64) PackedCell
 {
   Vec3 centroid;
+  double spreadPerPoint; ///< sample.spreadPerPoint
+  double halfWidth;      ///< sample.halfWidth
+  double inverseWidth;   ///< 1 / (2 halfWidth), or 0
+  double varianceThird;  ///< halfWidth^2 / 3: the variance of the spread
   CellSample sample;
-  double inverseWidth;  ///< 1 / (2 sample.halfWidth), or 0
-  double varianceThird; ///< sample.halfWidth^2 / 3: the variance of the spread
 };
 
 /// The ramp of one bin (MultiresolutionKernel.cpp, addSpreadEvent): sum of sign * rho * F and of sign * rho * H over
