@@ -41,7 +41,7 @@ GLS_ALWAYS_INLINE void addPackedSums(AggregateMoments& a, const double* f, doubl
 }
 
 /// A cell's share of one shell (addCellShare in CellMoments.h, the same products and sums element by element).
-GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const CellSample& s, double m0, double m1, double m2)
+GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const CellSample& s, const ShellShare& share)
 {
 #if GLS_KERNEL_VECTORS
   using kernel::load4;
@@ -51,19 +51,17 @@ GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const CellSample&
   const kernel::Double4 g0 = load4(s.gradient);
   const kernel::Double4 g1 = load4(s.gradient + 4);
   const double f8 = s.sums[8], g8 = s.gradient[8];
-  const double g1m = 2.0 * m0, g2m = 4.0 * m1;
   double* m = a.m;
-  store4(m, load4(m) + m0 * f0);
-  store4(m + 4, load4(m + 4) + m0 * f1);
-  m[8] += m0 * f8;
-  store4(m + 9, load4(m + 9) + (m1 * f0 + g1m * g0));
-  store4(m + 13, load4(m + 13) + (m1 * f1 + g1m * g1));
-  m[17] += m1 * f8 + g1m * g8;
-  store4(m + 18, load4(m + 18) + (m2 * f0 + g2m * g0));
-  store4(m + 22, load4(m + 22) + (m2 * f1 + g2m * g1));
-  m[26] += m2 * f8 + g2m * g8;
+  for (int j = 0; j < 3; ++j)
+  {
+    const double mj = share.m[j], cj = share.c[j];
+    double* row = m + j * kAggregateValues;
+    store4(row, load4(row) + (mj * f0 + cj * g0));
+    store4(row + 4, load4(row + 4) + (mj * f1 + cj * g1));
+    row[8] += mj * f8 + cj * g8;
+  }
 #else
-  addCellShare(a, s, m0, m1, m2);
+  addCellShare(a, s, share);
 #endif
 }
 
@@ -112,109 +110,34 @@ void packWalk(const MultiresolutionView& v, const WalkRegion& region, Multiresol
   }
 }
 
-/// A threshold event of a cell spread over several shells (addPackedCells): from the first ball whose squared
-/// radius T exceeds c, the cell's shares gain sign * rho * (T^(j+1) - c^(j+1)) / (j + 1) in m_j (rho = 1 / (2 half)).
-/// The terms in c go into the bin as they are; those in T into the bin's ramp (ramps), which rampsIntoBins turns
-/// into every later ball's terms.
-GLS_ALWAYS_INLINE void addSpreadEvent(
-  AggregateMoments& a, CellRamp& ramp, const CellSample& s, double rho, double c)
-{
-#if GLS_KERNEL_VECTORS
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
-  using kernel::Double4;
-  using kernel::load4;
-  using kernel::store4;
-  const Double4 f0 = load4(s.sums), f1 = load4(s.sums + 4);
-  const Double4 g0 = load4(s.gradient), g1 = load4(s.gradient + 4);
-  const double f8 = s.sums[8], g8 = s.gradient[8];
-  store4(ramp.f, load4(ramp.f) + rho * f0);
-  store4(ramp.f + 4, load4(ramp.f + 4) + rho * f1);
-  ramp.f[8] += rho * f8;
-  store4(ramp.h, load4(ramp.h) + rho * g0);
-  store4(ramp.h + 4, load4(ramp.h + 4) + rho * g1);
-  ramp.h[8] += rho * g8;
-  const double q0 = -rho * c, q1 = -rho * c * c * 0.5, q2 = -rho * c * c * c * (1.0 / 3.0);
-  const double r1 = -2.0 * rho * c, r2 = -2.0 * rho * c * c;
-  double* m = a.m;
-  store4(m, load4(m) + q0 * f0);
-  store4(m + 4, load4(m + 4) + q0 * f1);
-  m[8] += q0 * f8;
-  store4(m + 9, load4(m + 9) + (q1 * f0 + r1 * g0));
-  store4(m + 13, load4(m + 13) + (q1 * f1 + r1 * g1));
-  m[17] += q1 * f8 + r1 * g8;
-  store4(m + 18, load4(m + 18) + (q2 * f0 + r2 * g0));
-  store4(m + 22, load4(m + 22) + (q2 * f1 + r2 * g1));
-  m[26] += q2 * f8 + r2 * g8;
-#pragma GCC diagnostic pop
-#else
-  const double q0 = -rho * c, q1 = -rho * c * c * 0.5, q2 = -rho * c * c * c * (1.0 / 3.0);
-  const double r1 = -2.0 * rho * c, r2 = -2.0 * rho * c * c;
-  for (int j = 0; j < kAggregateValues; ++j)
-  {
-    ramp.f[j] += rho * s.sums[j];
-    ramp.h[j] += rho * s.gradient[j];
-    a.m[j] += q0 * s.sums[j];
-    a.m[kAggregateValues + j] += q1 * s.sums[j] + r1 * s.gradient[j];
-    a.m[2 * kAggregateValues + j] += q2 * s.sums[j] + r2 * s.gradient[j];
-  }
-#endif
-}
-
-/// Turns the ramps into bins: ball k (squared radius T) gains T R_f in A_0, T^2 / 2 R_f + 2 T R_h in A_1 and
-/// T^3 / 3 R_f + 2 T^2 R_h in A_2, R the sum of the ramps of bins 0..k; bin k gains ball k's terms less ball
-/// k - 1's, so that the running sum over the bins gives them.
-GLS_ALWAYS_INLINE void rampsIntoBins(const ScaleBinning& b, const CellRamp* ramps, AggregateMoments* bins)
-{
-  double rf[kAggregateValues] = {}, rh[kAggregateValues] = {};
-  double before[3 * kAggregateValues] = {};
-  for (int k = 0; k < b.count; ++k)
-  {
-    const double T = b.squaredScales[k];
-    const double c1 = 0.5 * T * T, c2 = T * T * T * (1.0 / 3.0), h1 = 2.0 * T, h2 = 2.0 * T * T;
-    double* m = bins[k].m;
-    for (int j = 0; j < kAggregateValues; ++j)
-    {
-      rf[j] += ramps[k].f[j];
-      rh[j] += ramps[k].h[j];
-      const double e0 = T * rf[j];
-      const double e1 = c1 * rf[j] + h1 * rh[j];
-      const double e2 = c2 * rf[j] + h2 * rh[j];
-      m[j] += e0 - before[j];
-      m[kAggregateValues + j] += e1 - before[kAggregateValues + j];
-      m[2 * kAggregateValues + j] += e2 - before[2 * kAggregateValues + j];
-      before[j] = e0;
-      before[kAggregateValues + j] = e1;
-      before[2 * kAggregateValues + j] = e2;
-    }
-  }
-}
-
-/// Adds the packed cells for p. A cell within one shell (most cells near p) adds its sample there (m0 = 1,
-/// m1 = the mean, m2 = mean^2 + half^2 / 3, as forEachShellOfSpread gives them). A cell whose spread meets several
-/// shells adds the same pieces in another form, whatever their number: two threshold events, at the spread's ends
-/// (addSpreadEvent); the ramps they leave are turned into bins once per point (rampsIntoBins). Cells are first
-/// sorted into the two kinds without a branch, then each kind is added in a loop of its own.
+/// Adds the packed cells for p. A cell within one shell (most cells near p) adds its wholeShare there; a cell whose
+/// spread meets two or three shells adds three pieces (pieceShare; an empty one adds zeros), so that neither kind
+/// branches on the cell; the few cells that meet more shells go through forEachShellOfSpread. Cells are first sorted
+/// into these kinds without a branch, then each kind is added in a loop of its own; the shares and their order are
+/// forEachShellOfSpread's.
 GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, double r2, MultiresolutionScratch& s,
   AggregateMoments* bins)
 {
   const std::vector<PackedCell>& cells = s.packedCells;
   const int S = b.count;
+  const double* sq = b.squaredScales;
   const std::size_t n = cells.size();
   s.cellMean.resize(n);
   s.cellShell.resize(n);
   s.singleCells.resize(n);
   s.spreadCells.resize(n);
-  std::size_t singles = 0, spreads = 0;
+  s.wideCells.resize(n);
+  std::size_t singles = 0, spreads = 0, wides = 0;
   for (std::size_t c = 0; c < n; ++c)
   {
     const PackedCell& cell = cells[c];
     const double a = cell.halfWidth;
     const double mean = squaredNorm(cell.centroid - p) + cell.spreadPerPoint;
     const double lo = mean - a, hi = mean + a;
-    int first = firstScaleHolding(b, lo > 0.0 ? lo : 0.0);
+    // (A cell past the ball is looked up at 0: it is left out below, and the lookup stays in the table.)
+    int first = firstScaleHolding(b, lo > 0.0 && lo < r2 ? lo : 0.0);
     // One shell: below the first shell's sphere; or a spread too narrow to split (forEachShellOfSpread).
-    const bool within = hi < b.squaredScales[first];
+    const bool within = hi < sq[first];
     const bool narrow = !(a > kNarrowestSpread * hi);
     if (narrow && !within)
     {
@@ -222,37 +145,49 @@ GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, doub
     }
     const bool single = within || narrow;
     const bool inside = (single ? mean : lo) < r2;
+    // At most three shells: below the sphere of shell first + 2, or reaching past the last shell.
+    const bool few = first + 2 >= S || hi < sq[first + 2];
     s.cellMean[c] = mean;
     s.cellShell[c] = first;
     s.singleCells[singles] = static_cast<std::uint32_t>(c);
     singles += single && inside ? 1 : 0;
     s.spreadCells[spreads] = static_cast<std::uint32_t>(c);
-    spreads += !single && inside ? 1 : 0;
+    spreads += !single && few && inside ? 1 : 0;
+    s.wideCells[wides] = static_cast<std::uint32_t>(c);
+    wides += !single && !few && inside ? 1 : 0;
   }
   for (std::size_t i = 0; i < singles; ++i)
   {
     const std::uint32_t c = s.singleCells[i];
-    const double mean = s.cellMean[c];
-    addPackedCellShare(bins[s.cellShell[c]], cells[c].sample, 1.0, mean, mean * mean + cells[c].varianceThird);
+    addPackedCellShare(bins[s.cellShell[c]], cells[c].sample, wholeShare(s.cellMean[c], cells[c].halfWidth));
   }
-  if (spreads == 0)
-  {
-    return;
-  }
-  s.ramps.assign(static_cast<std::size_t>(S) + 1, CellRamp{});
-  AggregateMoments beyond; // the bin of the events at or past the largest scale: in no ball
   for (std::size_t i = 0; i < spreads; ++i)
   {
+    // Pieces [lo, sq[k]], [sq[k], sq[k + 1]], [sq[k + 1], sq[k + 2]], each cut to [lo, min(hi, r2)]; shells past
+    // the last one are clamped to it, with an empty piece.
     const std::uint32_t c = s.spreadCells[i];
     const PackedCell& cell = cells[c];
-    const double rho = cell.inverseWidth;
-    const double a = cell.halfWidth;
-    const double lo = s.cellMean[c] - a, hi = s.cellMean[c] + a;
-    const int top = hi < r2 ? firstScaleHolding(b, hi) : S;
-    addSpreadEvent(bins[s.cellShell[c]], s.ramps[s.cellShell[c]], cell.sample, rho, lo);
-    addSpreadEvent(top < S ? bins[top] : beyond, s.ramps[top], cell.sample, -rho, hi);
+    const double mean = s.cellMean[c], a = cell.halfWidth;
+    const double lo = mean - a, top = mean + a < r2 ? mean + a : r2;
+    const int k = s.cellShell[c];
+    double u = lo;
+    for (int j = 0; j < 3; ++j)
+    {
+      const int shell = k + j < S ? k + j : S - 1;
+      const double edge = k + j < S ? sq[k + j] : r2;
+      const double w = edge < top ? edge : top;
+      const double v = w > u ? w : u;
+      addPackedCellShare(bins[shell], cell.sample, pieceShare(mean, a, u, v));
+      u = v;
+    }
   }
-  rampsIntoBins(b, s.ramps.data(), bins);
+  for (std::size_t i = 0; i < wides; ++i)
+  {
+    const std::uint32_t c = s.wideCells[i];
+    const PackedCell& cell = cells[c];
+    forEachShellOfSpread(b, r2, s.cellMean[c], cell.halfWidth,
+      [&](int k, const ShellShare& share) { addPackedCellShare(bins[k], cell.sample, share); });
+  }
 }
 
 /// Adds the packed samples of p's ball: the cells, each spread over the shells it meets (addCellSample), and the

@@ -165,14 +165,49 @@ GLS_INLINE void makeCellSample(const PyramidCell& cell, const Vec3& origin, cons
 
 /// A spread narrower than this fraction of its upper end is not split: the sample goes whole to the shell of its
 /// mean (its points' weights and their t-derivatives vanish on a scale's sphere, so the misplaced part is of the
-/// order of this fraction), and the CPU kernel's threshold events, which subtract powers of the spread's ends,
-/// lose at most about 1e-16 / kNarrowestSpread of a sample to rounding.
+/// order of this fraction).
 constexpr double kNarrowestSpread = 1e-4;
 
+/// A cell's share of one scale shell: A_j += m[j] F + c[j] H (j = 0, 1, 2).
+struct ShellShare
+{
+  double m[3]; ///< the share's moments of s = |q - p|^2: E[1; shell], E[s; shell], E[s^2; shell] over the points
+  double c[3]; ///< the gradient's: E[s^j (s - mean); shell] / (2 sigma^2), sigma^2 = Var(a . y) = V / 4
+};
+
+/// The share of a whole cell, within one shell: m = (1, mean, mean^2 + V), c = (0, 2, 4 mean), V = half^2 / 3.
+/// (sum (W + 2 w'(mean) a . y_i) f_i for the weight w = 1 + c1 s + c2 s^2: exact to the first order in y.)
+GLS_INLINE ShellShare wholeShare(double mean, double half)
+{
+  const double variance = half * half * (1.0 / 3.0);
+  return { { 1.0, mean, mean * mean + variance }, { 0.0, 2.0, 4.0 * mean } };
+}
+
+/// The share of the part [u, w] of a spread [mean - half, mean + half] (half > 0): its points are those whose
+/// a . y = (s - mean) / 2 lies there, so their f regresses on a . y as F / m + (a . y) H / (m sigma^2); integrated
+/// over the uniform spread in d = s - mean.
+GLS_INLINE ShellShare pieceShare(double mean, double half, double u, double w)
+{
+  const double rho = 1.0 / (2.0 * half);
+  const double gradientScale = 3.0 / (half * half * half); // rho / (2 sigma^2), 2 sigma^2 = half^2 / 6
+  const double d0 = u - mean, d1 = w - mean;
+  const double width = w - u;
+  const double i1 = width * (d1 + d0) * 0.5;                          // int d
+  const double i2 = width * (d1 * d1 + d1 * d0 + d0 * d0) * (1.0 / 3.0); // int d^2
+  const double i3 = width * (d1 + d0) * (d1 * d1 + d0 * d0) * 0.25;    // int d^3
+  ShellShare share;
+  share.m[0] = width * rho;
+  share.m[1] = width * (w + u) * 0.5 * rho;
+  share.m[2] = width * (w * w + w * u + u * u) * (1.0 / 3.0) * rho;
+  share.c[0] = gradientScale * i1;
+  share.c[1] = gradientScale * (i2 + mean * i1);
+  share.c[2] = gradientScale * (i3 + 2.0 * mean * i2 + mean * mean * i1);
+  return share;
+}
+
 /// Splits a sample whose squared distances from p are spread uniformly over [mean - half, mean + half] into the
-/// scale shells it meets below r2 (the largest squared scale): calls add(k, m0, m1, m2) with the shell's share of
-/// the points m0 and its mean moments m1 = E[s; shell], m2 = E[s^2; shell]. A sample within one shell (the common
-/// case), or narrower than kNarrowestSpread, makes one call with m0 = 1.
+/// scale shells it meets below r2 (the largest squared scale): calls add(k, share) for each. A sample within one
+/// shell (the common case), or narrower than kNarrowestSpread, makes one call with its wholeShare.
 template <typename Add>
 GLS_INLINE void forEachShellOfSpread(const ScaleBinning& b, double r2, double mean, double half, Add&& add)
 {
@@ -181,7 +216,7 @@ GLS_INLINE void forEachShellOfSpread(const ScaleBinning& b, double r2, double me
   {
     if (mean < r2)
     {
-      add(firstScaleHolding(b, mean), 1.0, mean, mean * mean + half * half * (1.0 / 3.0));
+      add(firstScaleHolding(b, mean), wholeShare(mean, half));
     }
     return;
   }
@@ -193,32 +228,28 @@ GLS_INLINE void forEachShellOfSpread(const ScaleBinning& b, double r2, double me
   const int last = hi < r2 ? firstScaleHolding(b, hi) : b.count - 1;
   if (first == last && hi < r2)
   {
-    add(first, 1.0, mean, mean * mean + half * half * (1.0 / 3.0));
+    add(first, wholeShare(mean, half));
     return;
   }
-  // Here half > 0: the interval meets two shells, or reaches r2 while starting below it.
-  const double inverse = 1.0 / (2.0 * half);
   for (int k = first; k <= last; ++k)
   {
     const double u = k == first ? lo : b.squaredScales[k - 1];
     const double w = k == last && hi < b.squaredScales[k] ? hi : b.squaredScales[k];
     if (w > u)
     {
-      const double width = w - u;
-      add(k, width * inverse, width * (w + u) * 0.5 * inverse, width * (w * w + w * u + u * u) * (1.0 / 3.0) * inverse);
+      add(k, pieceShare(mean, half, u, w));
     }
   }
 }
 
-/// Adds a cell's share of one shell: A_0 += m0 F, A_1 += m1 F + 2 m0 H, A_2 += m2 F + 4 m1 H (the sums of the
-/// points weighted by the linear field; docs/math.md).
-GLS_INLINE void addCellShare(AggregateMoments& a, const CellSample& s, double m0, double m1, double m2)
+/// Adds a cell's share of one shell: A_j += m_j F + c_j H (docs/math.md).
+GLS_INLINE void addCellShare(AggregateMoments& a, const CellSample& s, const ShellShare& share)
 {
   for (int j = 0; j < kAggregateValues; ++j)
   {
-    a.m[j] += m0 * s.sums[j];
-    a.m[kAggregateValues + j] += m1 * s.sums[j] + 2.0 * m0 * s.gradient[j];
-    a.m[2 * kAggregateValues + j] += m2 * s.sums[j] + 4.0 * m1 * s.gradient[j];
+    a.m[j] += share.m[0] * s.sums[j] + share.c[0] * s.gradient[j];
+    a.m[kAggregateValues + j] += share.m[1] * s.sums[j] + share.c[1] * s.gradient[j];
+    a.m[2 * kAggregateValues + j] += share.m[2] * s.sums[j] + share.c[2] * s.gradient[j];
   }
 }
 
@@ -226,8 +257,8 @@ GLS_INLINE void addCellShare(AggregateMoments& a, const CellSample& s, double m0
 GLS_INLINE void addCellSample(
   AggregateMoments* bins, const ScaleBinning& b, double r2, const CellSample& s, double d2)
 {
-  forEachShellOfSpread(b, r2, d2 + s.spreadPerPoint, s.halfWidth,
-    [&](int k, double m0, double m1, double m2) { addCellShare(bins[k], s, m0, m1, m2); });
+  forEachShellOfSpread(
+    b, r2, d2 + s.spreadPerPoint, s.halfWidth, [&](int k, const ShellShare& share) { addCellShare(bins[k], s, share); });
 }
 
 } // namespace gls

@@ -15,7 +15,7 @@ enum class Evaluation
 };
 
 /// The default Accuracy (epsilon) of the multi-resolution evaluation (docs/math.md gives the measurements).
-constexpr double kDefaultAccuracy = 0.4;
+constexpr double kDefaultAccuracy = 0.5;
 
 /// Auto stays exact while the largest ball holds on average at most this many points.
 constexpr double kExactNeighborLimit = 5000.0;

@@ -47,14 +47,6 @@ struct alignas(64) PackedCell
   CellSample sample;
 };
 
-/// The ramp of one bin (MultiresolutionKernel.cpp, addSpreadEvent): sum of sign * rho * F and of sign * rho * H over
-/// the threshold events of the cells spread over several shells.
-struct CellRamp
-{
-  double f[kAggregateValues];
-  double h[kAggregateValues];
-};
-
 /// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points). It keeps the last walk
 /// (the samples of one walkRegion, shared by the points of that region: consecutive points in pyramid order
 /// mostly share it) with its key; a scratch reused for another pyramid at the same address with the same count and
@@ -68,8 +60,7 @@ struct MultiresolutionScratch
   std::vector<PackedCell> packedCells;
   std::vector<double> cellMean;
   std::vector<int> cellShell;
-  std::vector<std::uint32_t> singleCells, spreadCells;
-  std::vector<CellRamp> ramps;
+  std::vector<std::uint32_t> singleCells, spreadCells, wideCells;
   bool walked = false;
   WalkKey walkedKey{};
 };
