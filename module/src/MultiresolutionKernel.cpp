@@ -88,7 +88,7 @@ void packWalk(const MultiresolutionView& v, const WalkRegion& region, Multiresol
     const double a = out.sample.halfWidth;
     out.spreadPerPoint = out.sample.spreadPerPoint;
     out.halfWidth = a;
-    out.inverseWidth = a > 0.0 ? 1.0 / (2.0 * a) : 0.0;
+    out.density = a > 0.0 ? spreadDensity(a) : SpreadDensity{ 0.0, 0.0 };
     out.varianceThird = a * a * (1.0 / 3.0);
   }
   std::size_t n = 0;
@@ -110,9 +110,37 @@ void packWalk(const MultiresolutionView& v, const WalkRegion& region, Multiresol
   }
 }
 
+/// The cells `list[0, count)` whose spread meets at most `Pieces` shells from its first one (cellShell): each adds
+/// `Pieces` pieces [lo, sq[k]], [sq[k], sq[k + 1]], ..., cut to [lo, min(hi, r2)] (pieceShare; shells past the
+/// last one are clamped to it, with an empty piece, which adds zeros).
+template <int Pieces>
+GLS_ALWAYS_INLINE void addPieces(const ScaleBinning& b, double r2, const std::uint32_t* list, std::size_t count,
+  const MultiresolutionScratch& s, AggregateMoments* bins)
+{
+  const int S = b.count;
+  const double* sq = b.squaredScales;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const std::uint32_t c = list[i];
+    const PackedCell& cell = s.packedCells[c];
+    const double mean = s.cellMean[c], a = cell.halfWidth;
+    const double lo = mean - a, top = mean + a < r2 ? mean + a : r2;
+    const int k = s.cellShell[c];
+    double u = lo;
+    for (int j = 0; j < Pieces; ++j)
+    {
+      const int shell = k + j < S ? k + j : S - 1;
+      const double edge = k + j < S ? sq[k + j] : r2;
+      const double w = edge < top ? edge : top;
+      const double v = w > u ? w : u;
+      addPackedCellShare(bins[shell], cell.sample, pieceShare(mean, cell.density, u, v));
+      u = v;
+    }
+  }
+}
+
 /// Adds the packed cells for p. A cell within one shell (most cells near p) adds its wholeShare there; a cell whose
-/// spread meets two or three shells adds three pieces (pieceShare; an empty one adds zeros), so that neither kind
-/// branches on the cell; the few cells that meet more shells go through forEachShellOfSpread. Cells are first sorted
+/// spread meets two or three shells adds as many pieces (addPieces), so that no kind branches on the cell; the few cells that meet more shells go through forEachShellOfSpread. Cells are first sorted
 /// into these kinds without a branch, then each kind is added in a loop of its own; the shares and their order are
 /// forEachShellOfSpread's.
 GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, double r2, MultiresolutionScratch& s,
@@ -125,9 +153,10 @@ GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, doub
   s.cellMean.resize(n);
   s.cellShell.resize(n);
   s.singleCells.resize(n);
+  s.pairCells.resize(n);
   s.spreadCells.resize(n);
   s.wideCells.resize(n);
-  std::size_t singles = 0, spreads = 0, wides = 0;
+  std::size_t singles = 0, pairs = 0, spreads = 0, wides = 0;
   for (std::size_t c = 0; c < n; ++c)
   {
     const PackedCell& cell = cells[c];
@@ -145,48 +174,42 @@ GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, doub
     }
     const bool single = within || narrow;
     const bool inside = (single ? mean : lo) < r2;
-    // At most three shells: below the sphere of shell first + 2, or reaching past the last shell.
-    const bool few = first + 2 >= S || hi < sq[first + 2];
+    // Two shells at most: below the sphere of shell first + 1, or reaching past the last shell; three at most:
+    // below that of shell first + 2.
+    const bool two = first + 1 >= S || hi < sq[first + 1];
+    const bool three = first + 2 >= S || hi < sq[first + 2];
     s.cellMean[c] = mean;
     s.cellShell[c] = first;
     s.singleCells[singles] = static_cast<std::uint32_t>(c);
     singles += single && inside ? 1 : 0;
+    s.pairCells[pairs] = static_cast<std::uint32_t>(c);
+    pairs += !single && two && inside ? 1 : 0;
     s.spreadCells[spreads] = static_cast<std::uint32_t>(c);
-    spreads += !single && few && inside ? 1 : 0;
+    spreads += !single && !two && three && inside ? 1 : 0;
     s.wideCells[wides] = static_cast<std::uint32_t>(c);
-    wides += !single && !few && inside ? 1 : 0;
+    wides += !single && !three && inside ? 1 : 0;
   }
   for (std::size_t i = 0; i < singles; ++i)
   {
     const std::uint32_t c = s.singleCells[i];
     addPackedCellShare(bins[s.cellShell[c]], cells[c].sample, wholeShare(s.cellMean[c], cells[c].halfWidth));
   }
-  for (std::size_t i = 0; i < spreads; ++i)
-  {
-    // Pieces [lo, sq[k]], [sq[k], sq[k + 1]], [sq[k + 1], sq[k + 2]], each cut to [lo, min(hi, r2)]; shells past
-    // the last one are clamped to it, with an empty piece.
-    const std::uint32_t c = s.spreadCells[i];
-    const PackedCell& cell = cells[c];
-    const double mean = s.cellMean[c], a = cell.halfWidth;
-    const double lo = mean - a, top = mean + a < r2 ? mean + a : r2;
-    const int k = s.cellShell[c];
-    double u = lo;
-    for (int j = 0; j < 3; ++j)
-    {
-      const int shell = k + j < S ? k + j : S - 1;
-      const double edge = k + j < S ? sq[k + j] : r2;
-      const double w = edge < top ? edge : top;
-      const double v = w > u ? w : u;
-      addPackedCellShare(bins[shell], cell.sample, pieceShare(mean, a, u, v));
-      u = v;
-    }
-  }
+  addPieces<2>(b, r2, s.pairCells.data(), pairs, s, bins);
+  addPieces<3>(b, r2, s.spreadCells.data(), spreads, s, bins);
   for (std::size_t i = 0; i < wides; ++i)
   {
+    // More shells (past three, so below the last one): pieces up to the shell holding min(hi, r2).
     const std::uint32_t c = s.wideCells[i];
     const PackedCell& cell = cells[c];
-    forEachShellOfSpread(b, r2, s.cellMean[c], cell.halfWidth,
-      [&](int k, const ShellShare& share) { addPackedCellShare(bins[k], cell.sample, share); });
+    const double mean = s.cellMean[c], a = cell.halfWidth;
+    const double top = mean + a < r2 ? mean + a : r2;
+    double u = mean - a;
+    for (int k = s.cellShell[c]; k < S && u < top; ++k)
+    {
+      const double v = sq[k] < top ? sq[k] : top;
+      addPackedCellShare(bins[k], cell.sample, pieceShare(mean, cell.density, u, v));
+      u = v;
+    }
   }
 }
 

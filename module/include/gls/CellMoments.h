@@ -183,13 +183,25 @@ GLS_INLINE ShellShare wholeShare(double mean, double half)
   return { { 1.0, mean, mean * mean + variance }, { 0.0, 2.0, 4.0 * mean } };
 }
 
-/// The share of the part [u, w] of a spread [mean - half, mean + half] (half > 0): its points are those whose
-/// a . y = (s - mean) / 2 lies there, so their f regresses on a . y as F / m + (a . y) H / (m sigma^2); integrated
-/// over the uniform spread in d = s - mean.
-GLS_INLINE ShellShare pieceShare(double mean, double half, double u, double w)
+/// The constants of a spread's pieces: its density rho = 1 / (2 half) and rho / (2 sigma^2) = 3 / half^3
+/// (2 sigma^2 = V / 2 = half^2 / 6).
+struct SpreadDensity
 {
-  const double rho = 1.0 / (2.0 * half);
-  const double gradientScale = 3.0 / (half * half * half); // rho / (2 sigma^2), 2 sigma^2 = half^2 / 6
+  double rho, gradientScale;
+};
+
+GLS_INLINE SpreadDensity spreadDensity(double half)
+{
+  return { 1.0 / (2.0 * half), 3.0 / (half * half * half) };
+}
+
+/// The share of the part [u, w] of a spread [mean - half, mean + half] (half > 0, density `density`): its points are
+/// those whose a . y = (s - mean) / 2 lies there, so their f regresses on a . y as F / m + (a . y) H / (m sigma^2);
+/// integrated over the uniform spread in d = s - mean.
+GLS_INLINE ShellShare pieceShare(double mean, const SpreadDensity& density, double u, double w)
+{
+  const double rho = density.rho;
+  const double gradientScale = density.gradientScale;
   const double d0 = u - mean, d1 = w - mean;
   const double width = w - u;
   const double i1 = width * (d1 + d0) * 0.5;                          // int d
@@ -231,13 +243,14 @@ GLS_INLINE void forEachShellOfSpread(const ScaleBinning& b, double r2, double me
     add(first, wholeShare(mean, half));
     return;
   }
+  const SpreadDensity density = spreadDensity(half);
   for (int k = first; k <= last; ++k)
   {
     const double u = k == first ? lo : b.squaredScales[k - 1];
     const double w = k == last && hi < b.squaredScales[k] ? hi : b.squaredScales[k];
     if (w > u)
     {
-      add(k, pieceShare(mean, half, u, w));
+      add(k, pieceShare(mean, density, u, w));
     }
   }
 }

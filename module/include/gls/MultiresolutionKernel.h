@@ -42,7 +42,7 @@ struct alignas(64) PackedCell
   Vec3 centroid;
   double spreadPerPoint; ///< sample.spreadPerPoint
   double halfWidth;      ///< sample.halfWidth
-  double inverseWidth;   ///< 1 / (2 halfWidth), or 0
+  SpreadDensity density; ///< spreadDensity(halfWidth), or zeros
   double varianceThird;  ///< halfWidth^2 / 3: the variance of the spread
   CellSample sample;
 };
@@ -60,7 +60,7 @@ struct MultiresolutionScratch
   std::vector<PackedCell> packedCells;
   std::vector<double> cellMean;
   std::vector<int> cellShell;
-  std::vector<std::uint32_t> singleCells, spreadCells, wideCells;
+  std::vector<std::uint32_t> singleCells, pairCells, spreadCells, wideCells;
   bool walked = false;
   WalkKey walkedKey{};
 };
