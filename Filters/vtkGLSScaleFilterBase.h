@@ -129,9 +129,10 @@ public:
   ///@}
 
   ///@{
-  /// Epsilon of the multi-resolution evaluation (dimensionless, default 0.175): a cell is taken whole, all its points
-  /// weighted at its centroid, where its edge is at most Accuracy times its distance from the evaluated point.
-  /// Smaller is closer to exact and slower (the samples per point grow as 1 / Accuracy^2).
+  /// Epsilon of the multi-resolution evaluation (dimensionless, default 0.5): a cell is taken whole, its points
+  /// weighted from its sums up to the second order (docs/math.md), where its edge is at most Accuracy times its
+  /// distance from the evaluated point. Smaller is closer to exact and slower (the samples per point grow as
+  /// 1 / Accuracy^2).
   vtkSetClampMacro(Accuracy, double, 0.001, 1.0);
   vtkGetMacro(Accuracy, double);
   ///@}
