@@ -94,19 +94,10 @@ void mergeChildren(const PyramidCell* children, std::uint32_t count, const Vec3&
     offset = offset + children[k].count * (children[k].centroid - reference);
     normalSum = normalSum + children[k].normalSum;
   }
+  cell = PyramidCell{};
   cell.centroid = reference + (1.0 / m) * offset;
   cell.normalSum = normalSum;
   cell.count = m;
-  for (double& v : cell.offsetOffset)
-  {
-    v = 0.0;
-  }
-  for (double& v : cell.offsetNormal)
-  {
-    v = 0.0;
-  }
-  cell.offsetOffsetDotNormal = { 0.0, 0.0, 0.0 };
-  cell.offsetSquaredOffset = { 0.0, 0.0, 0.0 };
   for (std::uint32_t k = 0; k < count; ++k)
   {
     const PyramidCell& child = children[k];

@@ -89,7 +89,6 @@ void packWalk(const MultiresolutionView& v, const WalkRegion& region, Multiresol
     out.spreadPerPoint = out.sample.spreadPerPoint;
     out.halfWidth = a;
     out.density = a > 0.0 ? spreadDensity(a) : SpreadDensity{ 0.0, 0.0 };
-    out.varianceThird = a * a * (1.0 / 3.0);
   }
   std::size_t n = 0;
   for (std::uint32_t cell : s.read)
@@ -140,8 +139,10 @@ GLS_ALWAYS_INLINE void addPieces(const ScaleBinning& b, double r2, const std::ui
 }
 
 /// Adds the packed cells for p. A cell within one shell (most cells near p) adds its wholeShare there; a cell whose
-/// spread meets two or three shells adds as many pieces (addPieces), so that no kind branches on the cell; the few cells that meet more shells go through forEachShellOfSpread. Cells are first sorted
-/// into these kinds without a branch, then each kind is added in a loop of its own; the shares and their order are
+/// spread meets two or three shells adds as many pieces (addPieces), so that no kind branches on the cell; the few
+/// cells that meet more shells add theirs in a loop of their own (calling forEachShellOfSpread there instead measured
+/// 20% slower on the bunny at 300k points: 4.7 s against 3.7-3.9 s). Cells are first sorted into these kinds
+/// without a branch, then each kind is added in a loop of its own; the shares and their order are
 /// forEachShellOfSpread's.
 GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, double r2, MultiresolutionScratch& s,
   AggregateMoments* bins)

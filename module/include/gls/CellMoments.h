@@ -81,19 +81,10 @@ GLS_INLINE void momentsOfPoints(const Vec3* points, const Vec3* normals, std::ui
     offset = offset + (points[i] - reference);
     normalSum = normalSum + normals[i];
   }
+  cell = PyramidCell{};
   cell.centroid = reference + (1.0 / count) * offset;
   cell.normalSum = normalSum;
   cell.count = count;
-  for (int k = 0; k < 6; ++k)
-  {
-    cell.offsetOffset[k] = 0.0;
-  }
-  for (int k = 0; k < 9; ++k)
-  {
-    cell.offsetNormal[k] = 0.0;
-  }
-  cell.offsetOffsetDotNormal = { 0.0, 0.0, 0.0 };
-  cell.offsetSquaredOffset = { 0.0, 0.0, 0.0 };
   for (std::uint32_t i = first; i < last; ++i)
   {
     const Vec3 y = points[i] - cell.centroid;
@@ -176,7 +167,8 @@ struct ShellShare
 };
 
 /// The share of a whole cell, within one shell: m = (1, mean, mean^2 + V), c = (0, 2, 4 mean), V = half^2 / 3.
-/// (sum (W + 2 w'(mean) a . y_i) f_i for the weight w = 1 + c1 s + c2 s^2: exact to the first order in y.)
+/// (E[w] F + 2 w'(mean) H for the weight w = 1 + c1 s + c2 s^2, E[w] its mean over the spread: the sums of
+/// (w(mean) + 2 w'(mean) a . y_i) f_i, exact to the first order in y.)
 GLS_INLINE ShellShare wholeShare(double mean, double half)
 {
   const double variance = half * half * (1.0 / 3.0);

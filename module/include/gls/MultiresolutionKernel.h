@@ -43,8 +43,7 @@ struct alignas(64) PackedCell
   double spreadPerPoint; ///< sample.spreadPerPoint
   double halfWidth;      ///< sample.halfWidth
   SpreadDensity density; ///< spreadDensity(halfWidth), or zeros
-  double varianceThird;  ///< halfWidth^2 / 3: the variance of the spread
-  CellSample sample;
+  alignas(64) CellSample sample;
 };
 
 /// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points). It keeps the last walk

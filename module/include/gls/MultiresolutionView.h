@@ -227,9 +227,9 @@ GLS_INLINE Vec3 regionCentre(const WalkRegion& a)
   return { a.corner.x + h, a.corner.y + h, a.corner.z + h };
 }
 
-/// Calls sample(node, level) for every cell taken whole (takenWhole, with `smallest` the smallest scale) and point(i) for
-/// every point read one by one, for the ball of radius r around p: every point of the ball is in exactly one of
-/// them (points of a cell taken whole may lie outside the ball; the caller weights them at the cell's centroid).
+/// Calls sample(node, level) for every cell taken whole (takenWhole, with `smallest` the smallest scale) and point(i)
+/// for every point read one by one, for the ball of radius r around p: every point of the ball is in exactly one of
+/// them (points of a cell taken whole may lie outside the ball; the caller bins them by its CellSample's spread).
 /// Distances are measured from p's walkRegion, so the samples and their order are fixed by the pyramid and that
 /// region alone.
 template <typename CellVisit, typename PointVisit>
