@@ -46,6 +46,31 @@ struct alignas(64) PackedCell
   alignas(64) CellSample sample;
 };
 
+/// What places each packed cell in the shells for a point, one array per value (the loop that classifies every cell
+/// for every point reads these, four cells at a time in the AVX2 build): the centroid, sample.spreadPerPoint and
+/// sample.halfWidth, in packedCells' order.
+struct CellPlacements
+{
+  std::vector<double> x, y, z, spreadPerPoint, halfWidth;
+
+  void resize(std::size_t n)
+  {
+    for (std::vector<double>* v : { &x, &y, &z, &spreadPerPoint, &halfWidth })
+    {
+      v->resize(n);
+    }
+  }
+
+  void set(std::size_t i, const Vec3& centroid, double spread, double half)
+  {
+    x[i] = centroid.x;
+    y[i] = centroid.y;
+    z[i] = centroid.z;
+    spreadPerPoint[i] = spread;
+    halfWidth[i] = half;
+  }
+};
+
 /// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points). It keeps the last walk
 /// (the samples of one walkRegion, shared by the points of that region: consecutive points in pyramid order
 /// mostly share it) with its key; a scratch reused for another pyramid at the same address with the same count and
@@ -57,6 +82,7 @@ struct MultiresolutionScratch
   std::vector<AggregateMoments> bins;
   std::vector<PackedPoint> packedPoints;
   std::vector<PackedCell> packedCells;
+  CellPlacements placements;
   std::vector<double> cellMean;
   std::vector<int> cellShell;
   std::vector<std::uint32_t> singleCells, pairCells, spreadCells, wideCells;
