@@ -210,6 +210,39 @@ GLS_ALWAYS_INLINE void classifyCells(const Vec3& p, const ScaleBinning& b, doubl
 }
 
 #if GLS_KERNEL_DISPATCH
+/// Appends the lanes of `indices` selected by the 4-bit `mask` to list[count...], in lane order, and advances count
+/// (writes 4 entries: the list must have room for 4 past its end).
+__attribute__((target("avx2,fma"))) inline void appendPacked(
+  std::uint32_t* list, std::size_t& count, __m128i indices, int mask)
+{
+  // Byte shuffles that move the selected 32-bit lanes to the front, one per mask (0x80: a zero byte).
+  alignas(16) static const std::uint8_t kPack[16][16] = {
+#define GLS_LANE(l) (4 * (l)), (4 * (l) + 1), (4 * (l) + 2), (4 * (l) + 3)
+#define GLS_NONE 0x80, 0x80, 0x80, 0x80
+    { GLS_NONE, GLS_NONE, GLS_NONE, GLS_NONE },
+    { GLS_LANE(0), GLS_NONE, GLS_NONE, GLS_NONE },
+    { GLS_LANE(1), GLS_NONE, GLS_NONE, GLS_NONE },
+    { GLS_LANE(0), GLS_LANE(1), GLS_NONE, GLS_NONE },
+    { GLS_LANE(2), GLS_NONE, GLS_NONE, GLS_NONE },
+    { GLS_LANE(0), GLS_LANE(2), GLS_NONE, GLS_NONE },
+    { GLS_LANE(1), GLS_LANE(2), GLS_NONE, GLS_NONE },
+    { GLS_LANE(0), GLS_LANE(1), GLS_LANE(2), GLS_NONE },
+    { GLS_LANE(3), GLS_NONE, GLS_NONE, GLS_NONE },
+    { GLS_LANE(0), GLS_LANE(3), GLS_NONE, GLS_NONE },
+    { GLS_LANE(1), GLS_LANE(3), GLS_NONE, GLS_NONE },
+    { GLS_LANE(0), GLS_LANE(1), GLS_LANE(3), GLS_NONE },
+    { GLS_LANE(2), GLS_LANE(3), GLS_NONE, GLS_NONE },
+    { GLS_LANE(0), GLS_LANE(2), GLS_LANE(3), GLS_NONE },
+    { GLS_LANE(1), GLS_LANE(2), GLS_LANE(3), GLS_NONE },
+    { GLS_LANE(0), GLS_LANE(1), GLS_LANE(2), GLS_LANE(3) },
+#undef GLS_LANE
+#undef GLS_NONE
+  };
+  const __m128i shuffle = _mm_load_si128(reinterpret_cast<const __m128i*>(kPack[mask & 0xF]));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(list + count), _mm_shuffle_epi8(indices, shuffle));
+  count += static_cast<std::size_t>(__builtin_popcount(static_cast<unsigned>(mask & 0xF)));
+}
+
 /// classifyCells four cells at a time (AVX2): the same operations in the same order (the squared distance as the
 /// AVX2 build of squaredNorm contracts it: y y, then x x and z z fused), the table lookup by gathers. Four cells
 /// whose lookup would leave the table's fast path (firstScaleHolding's search) go through classifyCells. Returns the
@@ -274,15 +307,16 @@ __attribute__((target("avx2,fma"))) std::size_t classifyCellsAvx2(const Vec3& p,
     const int meanInside = _mm256_movemask_pd(_mm256_cmp_pd(mean, vr2, _CMP_LT_OQ));
     const int lowInside = _mm256_movemask_pd(_mm256_cmp_pd(lo, vr2, _CMP_LT_OQ));
     const int insideBits = (singleBits & meanInside) | (~singleBits & lowInside);
-    alignas(32) double means[4];
-    alignas(16) int shells[4];
-    _mm256_store_pd(means, mean);
-    _mm_store_si128(reinterpret_cast<__m128i*>(shells), first);
-    for (int j = 0; j < 4; ++j)
-    {
-      kinds.record(c + static_cast<std::size_t>(j), means[j], shells[j], (singleBits >> j) & 1, (twoBits >> j) & 1,
-        (threeBits >> j) & 1, (insideBits >> j) & 1);
-    }
+    _mm256_storeu_pd(kinds.mean + c, mean);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(kinds.shell + c), first);
+    // Each kind's cells of the four appended to its list in order: their indices packed to the front (a byte
+    // shuffle per mask) and stored whole; the list's end advances by their count (the lists have room for 4 more).
+    const int spreadBits = ~singleBits & insideBits;
+    const __m128i indices = _mm_add_epi32(_mm_set1_epi32(static_cast<int>(c)), _mm_setr_epi32(0, 1, 2, 3));
+    appendPacked(kinds.single, kinds.singles, indices, singleBits & insideBits);
+    appendPacked(kinds.pair, kinds.pairs, indices, spreadBits & twoBits);
+    appendPacked(kinds.triple, kinds.triples, indices, spreadBits & ~twoBits & threeBits);
+    appendPacked(kinds.wide, kinds.wides, indices, spreadBits & ~threeBits);
   }
   return c;
 }
@@ -304,10 +338,10 @@ GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, doub
   const std::size_t n = cells.size();
   s.cellMean.resize(n);
   s.cellShell.resize(n);
-  s.singleCells.resize(n);
-  s.pairCells.resize(n);
-  s.spreadCells.resize(n);
-  s.wideCells.resize(n);
+  s.singleCells.resize(n + 4); // room for classifyCellsAvx2's whole-vector stores past the end
+  s.pairCells.resize(n + 4);
+  s.spreadCells.resize(n + 4);
+  s.wideCells.resize(n + 4);
   CellKinds kinds{ s.cellMean.data(), s.cellShell.data(), s.singleCells.data(), s.pairCells.data(),
     s.spreadCells.data(), s.wideCells.data() };
   std::size_t classified = 0;
