@@ -260,8 +260,8 @@ __attribute__((target("avx2,fma"))) std::size_t classifyCellsAvx2(const Vec3& p,
   const __m128i lastShell = _mm_set1_epi32(last), one = _mm_set1_epi32(1), two = _mm_set1_epi32(2);
   const double* edges = &b.table[0].edge;
   const int* bases = &b.table[0].base;
-  constexpr int kCellInts = static_cast<int>(sizeof(BinningCell) / sizeof(int)); // a table cell's stride in ints
-  static_assert(sizeof(BinningCell) == 16, "the gathers below step 16 bytes per table cell");
+  constexpr int kCellIntsShift = 2; // a table cell's stride in ints is 4 = 1 << 2
+  static_assert(sizeof(BinningCell) == 4 * sizeof(int), "the gathers below step 16 bytes per table cell");
   std::size_t c = 0;
   for (; c + 4 <= n; c += 4)
   {
@@ -284,7 +284,7 @@ __attribute__((target("avx2,fma"))) std::size_t classifyCellsAvx2(const Vec3& p,
       continue;
     }
     const __m128i cell = _mm256_cvttpd_epi32(u);
-    const __m128i base = _mm_i32gather_epi32(bases, _mm_mullo_epi32(cell, _mm_set1_epi32(kCellInts)), 4);
+    const __m128i base = _mm_i32gather_epi32(bases, _mm_slli_epi32(cell, kCellIntsShift), 4);
     if (_mm_movemask_ps(_mm_castsi128_ps(base)) != 0)
     {
       classifyCells(p, b, r2, cells, c, c + 4, kinds); // a cell holding several scales: the search
