@@ -519,10 +519,10 @@ __attribute__((target("avx2,fma"))) void evaluateAvx2(const MultiresolutionView&
 } // namespace
 
 void evaluateAllScalesMultiresolutionOnCpu(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
-  double minNeighbors, MultiresolutionScratch& s, ScaleSample* out)
+  double minNeighbors, MultiresolutionScratch& s, ScaleSample* out, CpuKernelBuild build)
 {
 #if GLS_KERNEL_DISPATCH
-  if (kernel::hasAvx2())
+  if (build == CpuKernelBuild::Fastest && kernel::hasAvx2())
   {
     evaluateAvx2(v, p, b, minNeighbors, s, out);
     return;

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "gls/MultiresolutionView.h"
+#include "gls/OnePassKernel.h"
 
 #include <cstdint>
 #include <vector>
@@ -92,6 +93,7 @@ struct MultiresolutionScratch
 
 /// Fits every scale of the evaluation point p, as evaluateAllScalesMultiresolution; out: S samples.
 void evaluateAllScalesMultiresolutionOnCpu(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
-  double minNeighbors, MultiresolutionScratch& scratch, ScaleSample* out);
+  double minNeighbors, MultiresolutionScratch& scratch, ScaleSample* out,
+  CpuKernelBuild build = CpuKernelBuild::Fastest);
 
 } // namespace gls
