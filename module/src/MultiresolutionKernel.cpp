@@ -88,13 +88,11 @@ void packWalk(const MultiresolutionView& v, const WalkRegion& region, Multiresol
     PyramidCell cell;
     cellMoments(v, s.taken[k], s.takenLevel[k], cell);
     PackedCell& out = s.packedCells[k];
-    out.centroid = cell.centroid;
     makeCellSample(cell, o, cell.centroid - anchor, out.sample);
     const double a = out.sample.halfWidth;
-    out.spreadPerPoint = out.sample.spreadPerPoint;
     out.halfWidth = a;
     out.density = a > 0.0 ? spreadDensity(a) : SpreadDensity{ 0.0, 0.0 };
-    s.placements.set(k, out.centroid, out.spreadPerPoint, a);
+    s.placements.set(k, cell.centroid, out.sample.spreadPerPoint, a);
   }
   std::size_t n = 0;
   for (std::uint32_t cell : s.read)
@@ -144,6 +142,24 @@ GLS_ALWAYS_INLINE void addPieces(const ScaleBinning& b, double r2, const std::ui
   }
 }
 
+/// A cell's kind as bit flags: single (within one shell), pair, triple (its spread meets two or three shells) or
+/// wide (more), each set only for a cell inside the ball.
+struct KindFlags
+{
+  int single, pair, triple, wide;
+};
+
+/// The kinds from the classification's flags, bit by bit (so one bit per cell in classifyCells, four in
+/// classifyCellsAvx2): withinOne (one shell or narrow), withinTwo / withinThree (the spread ends below the sphere of
+/// the first shell + 1 / + 2, or past the last shell), meanInside / lowInside (the spread's mean / lower end is
+/// inside the ball: a cell within one shell enters by its mean, a split one by its lower end).
+GLS_ALWAYS_INLINE KindFlags kindsOf(int withinOne, int withinTwo, int withinThree, int meanInside, int lowInside)
+{
+  const int inside = (withinOne & meanInside) | (~withinOne & lowInside);
+  const int spread = ~withinOne & inside;
+  return { withinOne & inside, spread & withinTwo, spread & ~withinTwo & withinThree, spread & ~withinThree };
+}
+
 /// Where the classification of the cells for one point writes (addPackedCells): each cell's mean squared distance and
 /// first shell, and the lists of the cells of each kind (within one shell, two, three, more) with their counts.
 struct CellKinds
@@ -156,21 +172,20 @@ struct CellKinds
   std::uint32_t* wide;
   std::size_t singles = 0, pairs = 0, triples = 0, wides = 0;
 
-  /// Records cell c (its kind from the flags, each 0 or 1). The lists are written without a branch: the index is
-  /// written at the current end, which advances only for the cell's own kind.
-  GLS_ALWAYS_INLINE void record(std::size_t c, double m, int first, int isSingle, int two, int three, int inside)
+  /// Records cell c (its kind from kindsOf's flags, each 0 or 1). The lists are written without a branch: the index
+  /// is written at the current end, which advances only for the cell's own kind.
+  GLS_ALWAYS_INLINE void record(std::size_t c, double m, int first, const KindFlags& kind)
   {
-    const int spread = (isSingle ^ 1) & inside;
     this->mean[c] = m;
     this->shell[c] = first;
     this->single[this->singles] = static_cast<std::uint32_t>(c);
-    this->singles += static_cast<std::size_t>(isSingle & inside);
+    this->singles += static_cast<std::size_t>(kind.single);
     this->pair[this->pairs] = static_cast<std::uint32_t>(c);
-    this->pairs += static_cast<std::size_t>(spread & two);
+    this->pairs += static_cast<std::size_t>(kind.pair);
     this->triple[this->triples] = static_cast<std::uint32_t>(c);
-    this->triples += static_cast<std::size_t>(spread & (two ^ 1) & three);
+    this->triples += static_cast<std::size_t>(kind.triple);
     this->wide[this->wides] = static_cast<std::uint32_t>(c);
-    this->wides += static_cast<std::size_t>(spread & (three ^ 1));
+    this->wides += static_cast<std::size_t>(kind.wide);
   }
 };
 
@@ -204,8 +219,8 @@ GLS_ALWAYS_INLINE void classifyCells(const Vec3& p, const ScaleBinning& b, doubl
     const int single = narrow | static_cast<int>(hi < sq[first]);
     const int two = static_cast<int>(first + 1 > last) | static_cast<int>(hi < sq[second]);
     const int three = static_cast<int>(first + 2 > last) | static_cast<int>(hi < sq[third]);
-    const int inside = (single & static_cast<int>(mean < r2)) | ((single ^ 1) & static_cast<int>(lo < r2));
-    kinds.record(c, mean, first, single, two, three, inside);
+    kinds.record(
+      c, mean, first, kindsOf(single, two, three, static_cast<int>(mean < r2), static_cast<int>(lo < r2)));
   }
 }
 
@@ -306,17 +321,16 @@ __attribute__((target("avx2,fma"))) std::size_t classifyCellsAvx2(const Vec3& p,
     const int threeBits = pastThird | _mm256_movemask_pd(_mm256_cmp_pd(hi, sqThird, _CMP_LT_OQ));
     const int meanInside = _mm256_movemask_pd(_mm256_cmp_pd(mean, vr2, _CMP_LT_OQ));
     const int lowInside = _mm256_movemask_pd(_mm256_cmp_pd(lo, vr2, _CMP_LT_OQ));
-    const int insideBits = (singleBits & meanInside) | (~singleBits & lowInside);
     _mm256_storeu_pd(kinds.mean + c, mean);
     _mm_storeu_si128(reinterpret_cast<__m128i*>(kinds.shell + c), first);
     // Each kind's cells of the four appended to its list in order: their indices packed to the front (a byte
     // shuffle per mask) and stored whole; the list's end advances by their count (the lists have room for 4 more).
-    const int spreadBits = ~singleBits & insideBits;
+    const KindFlags kind = kindsOf(singleBits, twoBits, threeBits, meanInside, lowInside);
     const __m128i indices = _mm_add_epi32(_mm_set1_epi32(static_cast<int>(c)), _mm_setr_epi32(0, 1, 2, 3));
-    appendPacked(kinds.single, kinds.singles, indices, singleBits & insideBits);
-    appendPacked(kinds.pair, kinds.pairs, indices, spreadBits & twoBits);
-    appendPacked(kinds.triple, kinds.triples, indices, spreadBits & ~twoBits & threeBits);
-    appendPacked(kinds.wide, kinds.wides, indices, spreadBits & ~threeBits);
+    appendPacked(kinds.single, kinds.singles, indices, kind.single);
+    appendPacked(kinds.pair, kinds.pairs, indices, kind.pair);
+    appendPacked(kinds.triple, kinds.triples, indices, kind.triple);
+    appendPacked(kinds.wide, kinds.wides, indices, kind.wide);
   }
   return c;
 }

@@ -36,12 +36,11 @@ struct PackedPoint
   double sums[kAggregateValues];
 };
 
-/// A cell of a walk as every point of its region reads it: what places it in the shells (first cache line, all
-/// the first pass over the cells reads) and its CellSample about the region's corner.
+/// A cell of a walk as every point of its region reads it once the cell is classified (its placement is in
+/// CellPlacements): what splits its spread into shell pieces (first cache line) and its CellSample about the
+/// region's corner.
 struct alignas(64) PackedCell
 {
-  Vec3 centroid;
-  double spreadPerPoint; ///< sample.spreadPerPoint
   double halfWidth;      ///< sample.halfWidth
   SpreadDensity density; ///< spreadDensity(halfWidth), or zeros
   alignas(64) CellSample sample;
