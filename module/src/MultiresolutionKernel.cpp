@@ -6,6 +6,7 @@
 #if GLS_KERNEL_DISPATCH
 #include <immintrin.h>
 #endif
+#include <cmath>
 #include <cstring>
 
 namespace gls
@@ -89,10 +90,7 @@ void packWalk(const MultiresolutionView& v, const WalkRegion& region, Multiresol
     cellMoments(v, s.taken[k], s.takenLevel[k], cell);
     PackedCell& out = s.packedCells[k];
     makeCellSample(cell, o, cell.centroid - anchor, out.sample);
-    const double a = out.sample.halfWidth;
-    out.halfWidth = a;
-    out.density = a > 0.0 ? spreadDensity(a) : SpreadDensity{ 0.0, 0.0 };
-    s.placements.set(k, cell.centroid, out.sample.spreadPerPoint, a);
+    s.placements.set(k, cell.centroid, out.sample.spreadPerPoint, out.sample.halfWidth);
   }
   std::size_t n = 0;
   for (std::uint32_t cell : s.read)
@@ -125,8 +123,9 @@ GLS_ALWAYS_INLINE void addPieces(const ScaleBinning& b, double r2, const std::ui
   for (std::size_t i = 0; i < count; ++i)
   {
     const std::uint32_t c = list[i];
-    const PackedCell& cell = s.packedCells[c];
-    const double mean = s.cellMean[c], a = cell.halfWidth;
+    const CellSample& sample = s.packedCells[c].sample;
+    const double mean = s.cellMean[c], a = s.placements.halfWidth[c];
+    const SpreadDensity density = s.placements.density(c);
     const double lo = mean - a, top = mean + a < r2 ? mean + a : r2;
     const int k = s.cellShell[c];
     double u = lo;
@@ -136,11 +135,96 @@ GLS_ALWAYS_INLINE void addPieces(const ScaleBinning& b, double r2, const std::ui
       const double edge = k + j < S ? sq[k + j] : r2;
       const double w = edge < top ? edge : top;
       const double v = w > u ? w : u;
-      addPackedCellShare(bins[shell], cell.sample, pieceShare(mean, cell.density, u, v));
+      addPackedCellShare(bins[shell], sample, pieceShare(mean, density, u, v));
       u = v;
     }
   }
 }
+
+#if GLS_KERNEL_DISPATCH
+/// addPieces four cells at a time (AVX2): the pieces' bounds and their shares (pieceShare's arithmetic, lane by lane,
+/// with multiply-adds) formed for four cells in vector registers, then each cell's pieces added to its shells. The
+/// spread density is formed in the lanes from the half-width (spreadDensity's divisions). The tail of fewer than
+/// four cells goes through addPieces.
+template <int Pieces>
+__attribute__((target("avx2,fma"))) void addPiecesAvx2(const ScaleBinning& b, double r2,
+  const std::uint32_t* list, std::size_t count, const MultiresolutionScratch& s, AggregateMoments* bins)
+{
+  const int S = b.count;
+  const __m256d vr2 = _mm256_set1_pd(r2), half = _mm256_set1_pd(0.5), third = _mm256_set1_pd(1.0 / 3.0);
+  const __m256d quarter = _mm256_set1_pd(0.25);
+  const __m256d two = _mm256_set1_pd(2.0);
+  const __m128i lastShell = _mm_set1_epi32(S - 1);
+  alignas(32) double shares[Pieces][6][4];
+  alignas(16) int shells[Pieces][4];
+  std::size_t i = 0;
+  for (; i + 4 <= count; i += 4)
+  {
+    const __m128i index = _mm_loadu_si128(reinterpret_cast<const __m128i*>(list + i));
+    const __m256d mean = _mm256_i32gather_pd(s.cellMean.data(), index, 8);
+    const __m256d a = _mm256_i32gather_pd(s.placements.halfWidth.data(), index, 8);
+    const __m128i k = _mm_i32gather_epi32(s.cellShell.data(), index, 4);
+    const __m256d rho = _mm256_i32gather_pd(s.placements.rho.data(), index, 8);
+    const __m256d gradientScale = _mm256_i32gather_pd(s.placements.gradientScale.data(), index, 8);
+    const __m256d hi = _mm256_add_pd(mean, a);
+    const __m256d top = _mm256_min_pd(hi, vr2);
+    __m256d u = _mm256_sub_pd(mean, a);
+    for (int j = 0; j < Pieces; ++j)
+    {
+      const __m128i kj = _mm_add_epi32(k, _mm_set1_epi32(j));
+      const __m128i shell = _mm_min_epi32(kj, lastShell);
+      const __m256d past = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpgt_epi32(kj, lastShell)));
+      const __m256d edge = _mm256_blendv_pd(_mm256_i32gather_pd(b.squaredScales, shell, 8), vr2, past);
+      const __m256d w = _mm256_min_pd(edge, top);
+      const __m256d v = _mm256_max_pd(w, u);
+      // pieceShare(mean, density, u, v)
+      const __m256d d0 = _mm256_sub_pd(u, mean), d1 = _mm256_sub_pd(v, mean);
+      const __m256d width = _mm256_sub_pd(v, u);
+      const __m256d sum01 = _mm256_add_pd(d1, d0);
+      const __m256d i1 = _mm256_mul_pd(_mm256_mul_pd(width, sum01), half);
+      const __m256d q2 = _mm256_fmadd_pd(d1, d1, _mm256_fmadd_pd(d1, d0, _mm256_mul_pd(d0, d0)));
+      const __m256d i2 = _mm256_mul_pd(_mm256_mul_pd(width, q2), third);
+      const __m256d s2 = _mm256_fmadd_pd(d1, d1, _mm256_mul_pd(d0, d0));
+      const __m256d i3 = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(width, sum01), s2), quarter);
+      const __m256d wr = _mm256_mul_pd(width, rho);
+      const __m256d vu = _mm256_fmadd_pd(v, v, _mm256_fmadd_pd(v, u, _mm256_mul_pd(u, u)));
+      _mm256_store_pd(shares[j][0], wr);
+      _mm256_store_pd(shares[j][1], _mm256_mul_pd(_mm256_mul_pd(wr, _mm256_add_pd(v, u)), half));
+      _mm256_store_pd(shares[j][2], _mm256_mul_pd(_mm256_mul_pd(wr, vu), third));
+      _mm256_store_pd(shares[j][3], _mm256_mul_pd(gradientScale, i1));
+      _mm256_store_pd(shares[j][4], _mm256_mul_pd(gradientScale, _mm256_fmadd_pd(mean, i1, i2)));
+      const __m256d twoMean = _mm256_mul_pd(two, mean);
+      _mm256_store_pd(shares[j][5],
+        _mm256_mul_pd(gradientScale, _mm256_fmadd_pd(_mm256_mul_pd(mean, mean), i1, _mm256_fmadd_pd(twoMean, i2, i3))));
+      _mm_store_si128(reinterpret_cast<__m128i*>(shells[j]), shell);
+      u = v;
+    }
+    for (int lane = 0; lane < 4; ++lane)
+    {
+      // The cell's F and H loaded once for its pieces (addPackedCellShare's products and sums).
+      const CellSample& sample = s.packedCells[list[i + static_cast<std::size_t>(lane)]].sample;
+      const __m256d f0 = _mm256_loadu_pd(sample.sums), f1 = _mm256_loadu_pd(sample.sums + 4);
+      const __m256d g0 = _mm256_loadu_pd(sample.gradient), g1 = _mm256_loadu_pd(sample.gradient + 4);
+      const double f8 = sample.sums[8], g8 = sample.gradient[8];
+      for (int j = 0; j < Pieces; ++j)
+      {
+        double* m = bins[shells[j][lane]].m;
+        for (int row = 0; row < 3; ++row)
+        {
+          const double mj = shares[j][row][lane], cj = shares[j][3 + row][lane];
+          const __m256d vm = _mm256_set1_pd(mj), vc = _mm256_set1_pd(cj);
+          double* r = m + row * kAggregateValues;
+          _mm256_storeu_pd(r, _mm256_add_pd(_mm256_loadu_pd(r), _mm256_fmadd_pd(vc, g0, _mm256_mul_pd(vm, f0))));
+          _mm256_storeu_pd(
+            r + 4, _mm256_add_pd(_mm256_loadu_pd(r + 4), _mm256_fmadd_pd(vc, g1, _mm256_mul_pd(vm, f1))));
+          r[8] += std::fma(cj, g8, mj * f8);
+        }
+      }
+    }
+  }
+  addPieces<Pieces>(b, r2, list + i, count - i, s, bins);
+}
+#endif
 
 /// A cell's kind as bit flags: single (within one shell), pair, triple (its spread meets two or three shells) or
 /// wide (more), each set only for a cell inside the ball.
@@ -370,22 +454,33 @@ GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, doub
   for (std::size_t i = 0; i < singles; ++i)
   {
     const std::uint32_t c = s.singleCells[i];
-    addPackedCellShare(bins[s.cellShell[c]], cells[c].sample, wholeShare(s.cellMean[c], cells[c].halfWidth));
+    addPackedCellShare(bins[s.cellShell[c]], cells[c].sample, wholeShare(s.cellMean[c], s.placements.halfWidth[c]));
   }
-  addPieces<2>(b, r2, s.pairCells.data(), pairs, s, bins);
-  addPieces<3>(b, r2, s.spreadCells.data(), spreads, s, bins);
+#if GLS_KERNEL_DISPATCH
+  if constexpr (Avx2)
+  {
+    addPiecesAvx2<2>(b, r2, s.pairCells.data(), pairs, s, bins);
+    addPiecesAvx2<3>(b, r2, s.spreadCells.data(), spreads, s, bins);
+  }
+  else
+#endif
+  {
+    addPieces<2>(b, r2, s.pairCells.data(), pairs, s, bins);
+    addPieces<3>(b, r2, s.spreadCells.data(), spreads, s, bins);
+  }
   for (std::size_t i = 0; i < wides; ++i)
   {
     // More shells (past three, so below the last one): pieces up to the shell holding min(hi, r2).
     const std::uint32_t c = s.wideCells[i];
-    const PackedCell& cell = cells[c];
-    const double mean = s.cellMean[c], a = cell.halfWidth;
+    const CellSample& sample = cells[c].sample;
+    const double mean = s.cellMean[c], a = s.placements.halfWidth[c];
+    const SpreadDensity density = s.placements.density(c);
     const double top = mean + a < r2 ? mean + a : r2;
     double u = mean - a;
     for (int k = s.cellShell[c]; k < S && u < top; ++k)
     {
       const double v = sq[k] < top ? sq[k] : top;
-      addPackedCellShare(bins[k], cell.sample, pieceShare(mean, cell.density, u, v));
+      addPackedCellShare(bins[k], sample, pieceShare(mean, density, u, v));
       u = v;
     }
   }

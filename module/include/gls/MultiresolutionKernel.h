@@ -36,30 +36,31 @@ struct PackedPoint
   double sums[kAggregateValues];
 };
 
-/// A cell of a walk as every point of its region reads it once the cell is classified (its placement is in
-/// CellPlacements): what splits its spread into shell pieces (first cache line) and its CellSample about the
-/// region's corner.
+/// A cell of a walk as every point of its region reads it once the cell is classified (its placement and spread are
+/// in CellPlacements): its CellSample about the region's corner, on cache lines of its own.
 struct alignas(64) PackedCell
 {
-  double halfWidth;      ///< sample.halfWidth
-  SpreadDensity density; ///< spreadDensity(halfWidth), or zeros
-  alignas(64) CellSample sample;
+  CellSample sample;
 };
 
-/// What places each packed cell in the shells for a point, one array per value (the loop that classifies every cell
-/// for every point reads these, four cells at a time in the AVX2 build): the centroid, sample.spreadPerPoint and
-/// sample.halfWidth, in packedCells' order.
+/// What places each packed cell in the shells for a point and splits its spread into shell pieces, one array per
+/// value (the loops over every cell for every point read these, four cells at a time in the AVX2 build): the
+/// centroid, sample.spreadPerPoint, sample.halfWidth and spreadDensity(halfWidth) (zeros where the half-width is 0),
+/// in packedCells' order.
 struct CellPlacements
 {
-  std::vector<double> x, y, z, spreadPerPoint, halfWidth;
+  std::vector<double> x, y, z, spreadPerPoint, halfWidth, rho, gradientScale;
 
   void resize(std::size_t n)
   {
-    for (std::vector<double>* v : { &x, &y, &z, &spreadPerPoint, &halfWidth })
+    for (std::vector<double>* v : { &x, &y, &z, &spreadPerPoint, &halfWidth, &rho, &gradientScale })
     {
       v->resize(n);
     }
   }
+
+  /// The spread density of cell i.
+  SpreadDensity density(std::size_t i) const { return { rho[i], gradientScale[i] }; }
 
   void set(std::size_t i, const Vec3& centroid, double spread, double half)
   {
@@ -68,6 +69,9 @@ struct CellPlacements
     z[i] = centroid.z;
     spreadPerPoint[i] = spread;
     halfWidth[i] = half;
+    const SpreadDensity d = half > 0.0 ? spreadDensity(half) : SpreadDensity{ 0.0, 0.0 };
+    rho[i] = d.rho;
+    gradientScale[i] = d.gradientScale;
   }
 };
 
