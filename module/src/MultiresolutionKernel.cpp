@@ -142,88 +142,124 @@ GLS_ALWAYS_INLINE void addPieces(const ScaleBinning& b, double r2, const std::ui
 }
 
 #if GLS_KERNEL_DISPATCH
-/// addPieces four cells at a time (AVX2): the pieces' bounds and their shares (pieceShare's arithmetic, lane by lane,
-/// with multiply-adds) formed for four cells in vector registers, then each cell's pieces added to its shells. The
-/// spread density is formed in the lanes from the half-width (spreadDensity's divisions). The tail of fewer than
-/// four cells goes through addPieces.
+/// Four cells' spreads as the AVX2 piece loops read them (gathered from the classification's and the placements'
+/// arrays): mean squared distance, density, lower end, top (the upper end, at most r2) and first shell.
+struct SpreadLanes
+{
+  __m256d mean, rho, gradientScale, lo, top;
+  __m128i shell;
+};
+
+__attribute__((target("avx2,fma"))) GLS_ALWAYS_INLINE SpreadLanes gatherSpreads(
+  const MultiresolutionScratch& s, const std::uint32_t* cells, double r2)
+{
+  const __m128i index = _mm_loadu_si128(reinterpret_cast<const __m128i*>(cells));
+  SpreadLanes l;
+  l.mean = _mm256_i32gather_pd(s.cellMean.data(), index, 8);
+  const __m256d a = _mm256_i32gather_pd(s.placements.halfWidth.data(), index, 8);
+  l.rho = _mm256_i32gather_pd(s.placements.rho.data(), index, 8);
+  l.gradientScale = _mm256_i32gather_pd(s.placements.gradientScale.data(), index, 8);
+  l.shell = _mm_i32gather_epi32(s.cellShell.data(), index, 4);
+  l.lo = _mm256_sub_pd(l.mean, a);
+  l.top = _mm256_min_pd(_mm256_add_pd(l.mean, a), _mm256_set1_pd(r2));
+  return l;
+}
+
+/// pieceShare of the pieces [u, v] of four spreads (its arithmetic lane by lane, with multiply-adds), stored as
+/// share[0..2] = m, share[3..5] = c, one lane per cell.
+__attribute__((target("avx2,fma"))) GLS_ALWAYS_INLINE void pieceSharesAvx2(
+  const SpreadLanes& l, __m256d u, __m256d v, double (*share)[4])
+{
+  const __m256d half = _mm256_set1_pd(0.5), third = _mm256_set1_pd(1.0 / 3.0), quarter = _mm256_set1_pd(0.25);
+  const __m256d mean = l.mean;
+  const __m256d d0 = _mm256_sub_pd(u, mean), d1 = _mm256_sub_pd(v, mean);
+  const __m256d width = _mm256_sub_pd(v, u);
+  const __m256d sum01 = _mm256_add_pd(d1, d0);
+  const __m256d i1 = _mm256_mul_pd(_mm256_mul_pd(width, sum01), half);
+  const __m256d q2 = _mm256_fmadd_pd(d1, d1, _mm256_fmadd_pd(d1, d0, _mm256_mul_pd(d0, d0)));
+  const __m256d i2 = _mm256_mul_pd(_mm256_mul_pd(width, q2), third);
+  const __m256d s2 = _mm256_fmadd_pd(d1, d1, _mm256_mul_pd(d0, d0));
+  const __m256d i3 = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(width, sum01), s2), quarter);
+  const __m256d wr = _mm256_mul_pd(width, l.rho);
+  const __m256d vu = _mm256_fmadd_pd(v, v, _mm256_fmadd_pd(v, u, _mm256_mul_pd(u, u)));
+  const __m256d g = l.gradientScale;
+  _mm256_store_pd(share[0], wr);
+  _mm256_store_pd(share[1], _mm256_mul_pd(_mm256_mul_pd(wr, _mm256_add_pd(v, u)), half));
+  _mm256_store_pd(share[2], _mm256_mul_pd(_mm256_mul_pd(wr, vu), third));
+  _mm256_store_pd(share[3], _mm256_mul_pd(g, i1));
+  _mm256_store_pd(share[4], _mm256_mul_pd(g, _mm256_fmadd_pd(mean, i1, i2)));
+  const __m256d twoMean = _mm256_add_pd(mean, mean);
+  const __m256d cubic = _mm256_fmadd_pd(_mm256_mul_pd(mean, mean), i1, _mm256_fmadd_pd(twoMean, i2, i3));
+  _mm256_store_pd(share[5], _mm256_mul_pd(g, cubic));
+}
+
+/// One cell's F and H in registers, loaded once for all its pieces (addPackedCellShare's products and sums).
+struct SampleRegisters
+{
+  __m256d f0, f1, g0, g1;
+  double f8, g8;
+};
+
+__attribute__((target("avx2,fma"))) GLS_ALWAYS_INLINE SampleRegisters loadSample(const CellSample& sample)
+{
+  return { _mm256_loadu_pd(sample.sums), _mm256_loadu_pd(sample.sums + 4), _mm256_loadu_pd(sample.gradient),
+    _mm256_loadu_pd(sample.gradient + 4), sample.sums[8], sample.gradient[8] };
+}
+
+/// Adds lane `lane` of a piece's shares (pieceSharesAvx2) times the cell's F and H to one shell's bin.
+__attribute__((target("avx2,fma"))) GLS_ALWAYS_INLINE void addLaneShare(
+  AggregateMoments& bin, const SampleRegisters& f, const double (*share)[4], int lane)
+{
+  for (int row = 0; row < 3; ++row)
+  {
+    const double mj = share[row][lane], cj = share[3 + row][lane];
+    const __m256d vm = _mm256_set1_pd(mj), vc = _mm256_set1_pd(cj);
+    double* r = bin.m + row * kAggregateValues;
+    _mm256_storeu_pd(r, _mm256_add_pd(_mm256_loadu_pd(r), _mm256_fmadd_pd(vc, f.g0, _mm256_mul_pd(vm, f.f0))));
+    _mm256_storeu_pd(r + 4, _mm256_add_pd(_mm256_loadu_pd(r + 4), _mm256_fmadd_pd(vc, f.g1, _mm256_mul_pd(vm, f.f1))));
+    r[8] += std::fma(cj, f.g8, mj * f.f8);
+  }
+}
+
+/// addPieces four cells at a time (AVX2): the pieces' bounds and shares formed for four cells in vector registers,
+/// then each cell's pieces added to its shells. The tail of fewer than four cells goes through addPieces.
 template <int Pieces>
 __attribute__((target("avx2,fma"))) void addPiecesAvx2(const ScaleBinning& b, double r2,
   const std::uint32_t* list, std::size_t count, const MultiresolutionScratch& s, AggregateMoments* bins)
 {
-  const int S = b.count;
-  const __m256d vr2 = _mm256_set1_pd(r2), half = _mm256_set1_pd(0.5), third = _mm256_set1_pd(1.0 / 3.0);
-  const __m256d quarter = _mm256_set1_pd(0.25);
-  const __m256d two = _mm256_set1_pd(2.0);
-  const __m128i lastShell = _mm_set1_epi32(S - 1);
+  const __m256d vr2 = _mm256_set1_pd(r2);
+  const __m128i lastShell = _mm_set1_epi32(b.count - 1);
   alignas(32) double shares[Pieces][6][4];
   alignas(16) int shells[Pieces][4];
   std::size_t i = 0;
   for (; i + 4 <= count; i += 4)
   {
-    const __m128i index = _mm_loadu_si128(reinterpret_cast<const __m128i*>(list + i));
-    const __m256d mean = _mm256_i32gather_pd(s.cellMean.data(), index, 8);
-    const __m256d a = _mm256_i32gather_pd(s.placements.halfWidth.data(), index, 8);
-    const __m128i k = _mm_i32gather_epi32(s.cellShell.data(), index, 4);
-    const __m256d rho = _mm256_i32gather_pd(s.placements.rho.data(), index, 8);
-    const __m256d gradientScale = _mm256_i32gather_pd(s.placements.gradientScale.data(), index, 8);
-    const __m256d hi = _mm256_add_pd(mean, a);
-    const __m256d top = _mm256_min_pd(hi, vr2);
-    __m256d u = _mm256_sub_pd(mean, a);
+    const SpreadLanes l = gatherSpreads(s, list + i, r2);
+    __m256d u = l.lo;
     for (int j = 0; j < Pieces; ++j)
     {
-      const __m128i kj = _mm_add_epi32(k, _mm_set1_epi32(j));
+      // addPieces' bounds: shells past the last one clamped to it, with an empty piece.
+      const __m128i kj = _mm_add_epi32(l.shell, _mm_set1_epi32(j));
       const __m128i shell = _mm_min_epi32(kj, lastShell);
       const __m256d past = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpgt_epi32(kj, lastShell)));
       const __m256d edge = _mm256_blendv_pd(_mm256_i32gather_pd(b.squaredScales, shell, 8), vr2, past);
-      const __m256d w = _mm256_min_pd(edge, top);
-      const __m256d v = _mm256_max_pd(w, u);
-      // pieceShare(mean, density, u, v)
-      const __m256d d0 = _mm256_sub_pd(u, mean), d1 = _mm256_sub_pd(v, mean);
-      const __m256d width = _mm256_sub_pd(v, u);
-      const __m256d sum01 = _mm256_add_pd(d1, d0);
-      const __m256d i1 = _mm256_mul_pd(_mm256_mul_pd(width, sum01), half);
-      const __m256d q2 = _mm256_fmadd_pd(d1, d1, _mm256_fmadd_pd(d1, d0, _mm256_mul_pd(d0, d0)));
-      const __m256d i2 = _mm256_mul_pd(_mm256_mul_pd(width, q2), third);
-      const __m256d s2 = _mm256_fmadd_pd(d1, d1, _mm256_mul_pd(d0, d0));
-      const __m256d i3 = _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(width, sum01), s2), quarter);
-      const __m256d wr = _mm256_mul_pd(width, rho);
-      const __m256d vu = _mm256_fmadd_pd(v, v, _mm256_fmadd_pd(v, u, _mm256_mul_pd(u, u)));
-      _mm256_store_pd(shares[j][0], wr);
-      _mm256_store_pd(shares[j][1], _mm256_mul_pd(_mm256_mul_pd(wr, _mm256_add_pd(v, u)), half));
-      _mm256_store_pd(shares[j][2], _mm256_mul_pd(_mm256_mul_pd(wr, vu), third));
-      _mm256_store_pd(shares[j][3], _mm256_mul_pd(gradientScale, i1));
-      _mm256_store_pd(shares[j][4], _mm256_mul_pd(gradientScale, _mm256_fmadd_pd(mean, i1, i2)));
-      const __m256d twoMean = _mm256_mul_pd(two, mean);
-      _mm256_store_pd(shares[j][5],
-        _mm256_mul_pd(gradientScale, _mm256_fmadd_pd(_mm256_mul_pd(mean, mean), i1, _mm256_fmadd_pd(twoMean, i2, i3))));
+      const __m256d v = _mm256_max_pd(_mm256_min_pd(edge, l.top), u);
+      pieceSharesAvx2(l, u, v, shares[j]);
       _mm_store_si128(reinterpret_cast<__m128i*>(shells[j]), shell);
       u = v;
     }
     for (int lane = 0; lane < 4; ++lane)
     {
-      // The cell's F and H loaded once for its pieces (addPackedCellShare's products and sums).
-      const CellSample& sample = s.packedCells[list[i + static_cast<std::size_t>(lane)]].sample;
-      const __m256d f0 = _mm256_loadu_pd(sample.sums), f1 = _mm256_loadu_pd(sample.sums + 4);
-      const __m256d g0 = _mm256_loadu_pd(sample.gradient), g1 = _mm256_loadu_pd(sample.gradient + 4);
-      const double f8 = sample.sums[8], g8 = sample.gradient[8];
+      const SampleRegisters f = loadSample(s.packedCells[list[i + static_cast<std::size_t>(lane)]].sample);
       for (int j = 0; j < Pieces; ++j)
       {
-        double* m = bins[shells[j][lane]].m;
-        for (int row = 0; row < 3; ++row)
-        {
-          const double mj = shares[j][row][lane], cj = shares[j][3 + row][lane];
-          const __m256d vm = _mm256_set1_pd(mj), vc = _mm256_set1_pd(cj);
-          double* r = m + row * kAggregateValues;
-          _mm256_storeu_pd(r, _mm256_add_pd(_mm256_loadu_pd(r), _mm256_fmadd_pd(vc, g0, _mm256_mul_pd(vm, f0))));
-          _mm256_storeu_pd(
-            r + 4, _mm256_add_pd(_mm256_loadu_pd(r + 4), _mm256_fmadd_pd(vc, g1, _mm256_mul_pd(vm, f1))));
-          r[8] += std::fma(cj, g8, mj * f8);
-        }
+        addLaneShare(bins[shells[j][lane]], f, shares[j], lane);
       }
     }
   }
   addPieces<Pieces>(b, r2, list + i, count - i, s, bins);
 }
+
 #endif
 
 /// A cell's kind as bit flags: single (within one shell), pair, triple (its spread meets two or three shells) or
