@@ -248,9 +248,9 @@ TEST(Multiresolution, NoisySurfaceStaysWithinTheAccuracyTargets)
 TEST(Multiresolution, CpuKernelAgreesWithTheDeviceLoop)
 {
   // The CPU kernel (level by level, batched), in its portable build and in its fastest one (AVX2 where the processor
-  // has it: the cells classified four at a time), against evaluateAllScalesMultiresolution, the host/device loop
-  // the CUDA kernel runs: the same samples summed in another order. Both builds put every cell in the same first
-  // shell.
+  // has it: the cells classified four at a time, the shell pieces of four cells formed at once), against
+  // evaluateAllScalesMultiresolution, the host/device loop the CUDA kernel runs: the same samples summed in another
+  // order. Both builds put every cell in the same first shell.
   const Cloud c = paraboloid(150, 1.0, 0.7, 0.3, 0.01, 0.05, 4);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 12, gls::ScaleSampling::Quadratic);
   gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.15));

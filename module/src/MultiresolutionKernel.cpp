@@ -259,7 +259,6 @@ __attribute__((target("avx2,fma"))) void addPiecesAvx2(const ScaleBinning& b, do
   }
   addPieces<Pieces>(b, r2, list + i, count - i, s, bins);
 }
-
 #endif
 
 /// A cell's kind as bit flags: single (within one shell), pair, triple (its spread meets two or three shells) or
