@@ -2,55 +2,87 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
+#include <utility>
 
 namespace gls
 {
 
+namespace
+{
+
+/// The bits of a coordinate, -0 as +0 (so that equal coordinates have equal bits).
+std::uint64_t coordinateBits(double v)
+{
+  v += 0.0;
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &v, sizeof(bits));
+  return bits;
+}
+
+/// A well-mixed 64-bit value of one word (the finalizer of splitmix64).
+std::uint64_t mix(std::uint64_t z)
+{
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+/// A key of a position: equal positions have equal keys (different ones rarely do).
+std::uint64_t positionKey(const double* p)
+{
+  return mix(coordinateBits(p[0]) ^ mix(coordinateBits(p[1]) ^ mix(coordinateBits(p[2]))));
+}
+
+} // namespace
+
 CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n)
 {
   CoincidentPoints c;
-  std::vector<std::uint64_t> order(n);
-  std::iota(order.begin(), order.end(), std::uint64_t(0));
   const auto finite = [xyz](std::uint64_t i) {
     return std::isfinite(xyz[3 * i]) && std::isfinite(xyz[3 * i + 1]) && std::isfinite(xyz[3 * i + 2]);
   };
-  // Lexicographic order of the coordinates, the input order among equals (non-finite points last, never equal).
-  std::stable_sort(order.begin(), order.end(), [&](std::uint64_t a, std::uint64_t b) {
-    const bool fa = finite(a), fb = finite(b);
-    if (fa != fb)
-    {
-      return fa;
-    }
-    if (!fa)
-    {
-      return false;
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      if (xyz[3 * a + k] != xyz[3 * b + k])
-      {
-        return xyz[3 * a + k] < xyz[3 * b + k];
-      }
-    }
-    return false;
-  });
-  const auto same = [&](std::uint64_t a, std::uint64_t b) {
-    return finite(a) && finite(b) && xyz[3 * a] == xyz[3 * b] && xyz[3 * a + 1] == xyz[3 * b + 1] &&
-      xyz[3 * a + 2] == xyz[3 * b + 2];
+  const auto same = [xyz](std::uint64_t a, std::uint64_t b) {
+    return xyz[3 * a] == xyz[3 * b] && xyz[3 * a + 1] == xyz[3 * b + 1] && xyz[3 * a + 2] == xyz[3 * b + 2];
   };
-  // first[i]: the first point (input order) of i's group.
+  // The finite points sorted by (key of their position, index): equal positions are in one run of equal keys, in
+  // input order. Sorting keys rather than comparing coordinates through the indices keeps the sort in cache.
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> keyed;
+  keyed.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (finite(i))
+    {
+      keyed.emplace_back(positionKey(xyz + 3 * i), i);
+    }
+  }
+  std::sort(keyed.begin(), keyed.end());
+  // first[i]: the first point (input order) of i's group; a non-finite point is a group of its own.
   std::vector<std::uint64_t> first(n);
-  for (std::size_t s = 0; s < n;)
+  std::iota(first.begin(), first.end(), std::uint64_t(0));
+  std::vector<std::uint64_t> leaders;
+  for (std::size_t s = 0; s < keyed.size();)
   {
     std::size_t e = s + 1;
-    while (e < n && same(order[s], order[e]))
+    while (e < keyed.size() && keyed[e].first == keyed[s].first)
     {
       ++e;
     }
+    // Within a run (input order), each point joins the first earlier point at its position, if any.
+    leaders.clear();
     for (std::size_t k = s; k < e; ++k)
     {
-      first[order[k]] = order[s]; // stable: order[s] is the group's earliest point
+      const std::uint64_t i = keyed[k].second;
+      const auto leader = std::find_if(leaders.begin(), leaders.end(), [&](std::uint64_t l) { return same(l, i); });
+      if (leader == leaders.end())
+      {
+        leaders.push_back(i);
+      }
+      else
+      {
+        first[i] = *leader;
+      }
     }
     s = e;
   }
