@@ -6,7 +6,6 @@
 #if GLS_KERNEL_DISPATCH
 #include <immintrin.h>
 #endif
-#include <cmath>
 #include <cstring>
 
 namespace gls
@@ -45,26 +44,41 @@ GLS_ALWAYS_INLINE void addPackedSums(AggregateMoments& a, const double* f, doubl
 #endif
 }
 
-/// A cell's share of one shell (addCellShare in CellMoments.h, the same products and sums element by element).
-GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const CellSample& s, const ShellShare& share)
-{
 #if GLS_KERNEL_VECTORS
+/// A cell's F and H as the shell adds read them, loaded once for all the shells the cell meets.
+struct LoadedSample
+{
+  kernel::Double4 f0, f1, g0, g1;
+  double f8, g8;
+};
+
+GLS_ALWAYS_INLINE LoadedSample loadSample(const CellSample& s)
+{
+  using kernel::load4;
+  return { load4(s.sums), load4(s.sums + 4), load4(s.gradient), load4(s.gradient + 4), s.sums[8], s.gradient[8] };
+}
+
+/// A cell's share of one shell (addCellShare in CellMoments.h, the same products and sums element by element).
+GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const LoadedSample& f, const ShellShare& share)
+{
   using kernel::load4;
   using kernel::store4;
-  const kernel::Double4 f0 = load4(s.sums);
-  const kernel::Double4 f1 = load4(s.sums + 4);
-  const kernel::Double4 g0 = load4(s.gradient);
-  const kernel::Double4 g1 = load4(s.gradient + 4);
-  const double f8 = s.sums[8], g8 = s.gradient[8];
   double* m = a.m;
   for (int j = 0; j < 3; ++j)
   {
     const double mj = share.m[j], cj = share.c[j];
     double* row = m + j * kAggregateValues;
-    store4(row, load4(row) + (mj * f0 + cj * g0));
-    store4(row + 4, load4(row + 4) + (mj * f1 + cj * g1));
-    row[8] += mj * f8 + cj * g8;
+    store4(row, load4(row) + (mj * f.f0 + cj * f.g0));
+    store4(row + 4, load4(row + 4) + (mj * f.f1 + cj * f.g1));
+    row[8] += mj * f.f8 + cj * f.g8;
   }
+}
+#endif
+
+GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const CellSample& s, const ShellShare& share)
+{
+#if GLS_KERNEL_VECTORS
+  addPackedCellShare(a, loadSample(s), share);
 #else
   addCellShare(a, s, share);
 #endif
@@ -193,34 +207,6 @@ __attribute__((target("avx2,fma"))) GLS_ALWAYS_INLINE void pieceSharesAvx2(
   _mm256_store_pd(share[5], _mm256_mul_pd(g, cubic));
 }
 
-/// One cell's F and H in registers, loaded once for all its pieces (addPackedCellShare's products and sums).
-struct SampleRegisters
-{
-  __m256d f0, f1, g0, g1;
-  double f8, g8;
-};
-
-__attribute__((target("avx2,fma"))) GLS_ALWAYS_INLINE SampleRegisters loadSample(const CellSample& sample)
-{
-  return { _mm256_loadu_pd(sample.sums), _mm256_loadu_pd(sample.sums + 4), _mm256_loadu_pd(sample.gradient),
-    _mm256_loadu_pd(sample.gradient + 4), sample.sums[8], sample.gradient[8] };
-}
-
-/// Adds lane `lane` of a piece's shares (pieceSharesAvx2) times the cell's F and H to one shell's bin.
-__attribute__((target("avx2,fma"))) GLS_ALWAYS_INLINE void addLaneShare(
-  AggregateMoments& bin, const SampleRegisters& f, const double (*share)[4], int lane)
-{
-  for (int row = 0; row < 3; ++row)
-  {
-    const double mj = share[row][lane], cj = share[3 + row][lane];
-    const __m256d vm = _mm256_set1_pd(mj), vc = _mm256_set1_pd(cj);
-    double* r = bin.m + row * kAggregateValues;
-    _mm256_storeu_pd(r, _mm256_add_pd(_mm256_loadu_pd(r), _mm256_fmadd_pd(vc, f.g0, _mm256_mul_pd(vm, f.f0))));
-    _mm256_storeu_pd(r + 4, _mm256_add_pd(_mm256_loadu_pd(r + 4), _mm256_fmadd_pd(vc, f.g1, _mm256_mul_pd(vm, f.f1))));
-    r[8] += std::fma(cj, f.g8, mj * f.f8);
-  }
-}
-
 /// addPieces four cells at a time (AVX2): the pieces' bounds and shares formed for four cells in vector registers,
 /// then each cell's pieces added to its shells. The tail of fewer than four cells goes through addPieces.
 template <int Pieces>
@@ -250,10 +236,14 @@ __attribute__((target("avx2,fma"))) void addPiecesAvx2(const ScaleBinning& b, do
     }
     for (int lane = 0; lane < 4; ++lane)
     {
-      const SampleRegisters f = loadSample(s.packedCells[list[i + static_cast<std::size_t>(lane)]].sample);
+      // The cell's F and H loaded once for all its pieces.
+      const LoadedSample f = loadSample(s.packedCells[list[i + static_cast<std::size_t>(lane)]].sample);
       for (int j = 0; j < Pieces; ++j)
       {
-        addLaneShare(bins[shells[j][lane]], f, shares[j], lane);
+        const double(&share)[6][4] = shares[j];
+        addPackedCellShare(bins[shells[j][lane]], f,
+          ShellShare{ { share[0][lane], share[1][lane], share[2][lane] },
+            { share[3][lane], share[4][lane], share[5][lane] } });
       }
     }
   }
