@@ -50,17 +50,29 @@ CollectingSink runMultiresolution(const Cloud& c, const std::vector<double>& sca
 struct SampleCounts
 {
   long cells = 0, points = 0, straddling = 0;
+  double fewestInACell = 0.0; ///< the fewest points of a cell taken whole
+  long ballPointsMissed = 0;  ///< points of the largest ball in no sample
+  long pointsTwice = 0;       ///< points in more than one sample
 };
 
 SampleCounts countSamples(const gls::MultiresolutionView& v, const gls::Vec3& p, const std::vector<double>& scales)
 {
   SampleCounts n;
+  std::vector<int> visits(v.count, 0);
+  n.fewestInACell = static_cast<double>(v.count);
   gls::forEachMultiresolutionSample(
     v, p, scales.back(), scales.front(),
     [&](std::uint32_t node, int level) {
       ++n.cells;
       gls::PyramidCell c;
       gls::cellMoments(v, node, level, c);
+      n.fewestInACell = std::min(n.fewestInACell, c.count);
+      std::uint32_t first = 0, last = 0;
+      gls::pointRange(v.nodes, node, level, first, last);
+      for (std::uint32_t i = first; i < last; ++i)
+      {
+        ++visits[i];
+      }
       const gls::Vec3 x = c.centroid - p;
       const double d = std::sqrt(gls::squaredNorm(x));
       const double reach = std::sqrt(gls::spreadOf(c) / c.count) * 2.0; // its points lie about this far from c
@@ -73,7 +85,16 @@ SampleCounts countSamples(const gls::MultiresolutionView& v, const gls::Vec3& p,
         }
       }
     },
-    [&](std::uint32_t) { ++n.points; });
+    [&](std::uint32_t i) {
+      ++n.points;
+      ++visits[i];
+    });
+  const double r2 = scales.back() * scales.back();
+  for (std::size_t i = 0; i < visits.size(); ++i)
+  {
+    n.pointsTwice += visits[i] > 1 ? 1 : 0;
+    n.ballPointsMissed += visits[i] == 0 && gls::squaredNorm(v.points[i] - p) < r2 ? 1 : 0;
+  }
   return n;
 }
 
@@ -144,6 +165,10 @@ TEST(Multiresolution, CellsAreTakenWholeAndStraddleTheScales)
   EXPECT_GT(n.cells, 100);
   EXPECT_GT(n.straddling, 50);
   EXPECT_LT(n.cells + n.points, 60000 / 4);
+  // Every point of the ball enters once, and the cells too small for a sample enter point by point.
+  EXPECT_EQ(n.ballPointsMissed, 0);
+  EXPECT_EQ(n.pointsTwice, 0);
+  EXPECT_GE(n.fewestInACell, static_cast<double>(gls::kFewestPointsOfACellSample));
 }
 
 TEST(Multiresolution, PlaneIsExactAndOffsetPointsGetTheirDistance)

@@ -107,15 +107,15 @@ void packWalk(const MultiresolutionView& v, const WalkRegion& region, Multiresol
     s.placements.set(k, cell.centroid, out.sample.spreadPerPoint, out.sample.halfWidth);
   }
   std::size_t n = 0;
-  for (std::uint32_t cell : s.read)
+  for (const PointSpan& span : s.read)
   {
-    n += v.nodes[cell].last - v.nodes[cell].first;
+    n += span.last - span.first;
   }
   s.packedPoints.resize(n);
   PackedPoint* out = s.packedPoints.data();
-  for (std::uint32_t cell : s.read)
+  for (const PointSpan& span : s.read)
   {
-    for (std::uint32_t i = v.nodes[cell].first; i < v.nodes[cell].last; ++i)
+    for (std::uint32_t i = span.first; i < span.last; ++i)
     {
       const Vec3 x = v.points[i] - o;
       out->position = v.points[i];
@@ -547,10 +547,11 @@ GLS_ALWAYS_INLINE void shiftBins(const Vec3& u, int count, AggregateMoments* bin
   }
 }
 
-/// The walk of a region (walkRegion): the cells taken whole (s.taken) and the finest cells read point by point
-/// (s.read) for every point of the region, found level by level: each cell of the frontier is skipped (outside
-/// every ball of the region), taken whole, read point by point (level 0) or opened (its children make the next
-/// level's frontier); the writes only advance indices.
+/// The walk of a region (walkRegion): the cells taken whole (s.taken) and the points read one by one (s.read: those
+/// of the finest cells not taken whole, and of the cells taken whole that hold too few points for a sample) for
+/// every point of the region, found level by level: each cell of the frontier is skipped (outside every ball of the
+/// region), taken whole, read point by point (level 0) or opened (its children make the next level's frontier);
+/// the writes only advance indices.
 GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& region, double r, double smallest,
   MultiresolutionScratch& s)
 {
@@ -585,11 +586,30 @@ GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regi
       s.opened[opened] = c;
       opened += inside && !whole ? 1 : 0;
     }
-    s.taken.resize(taken);
-    s.takenLevel.resize(taken, level);
+    // The cells taken whole that hold too few points for a sample are read point by point (readPointByPoint).
+    std::size_t kept = takenBefore;
+    for (std::size_t i = takenBefore; i < taken; ++i)
+    {
+      const std::uint32_t c = s.taken[i];
+      PointSpan span{};
+      if (readPointByPoint(v.nodes, c, level, span.first, span.last))
+      {
+        s.read.push_back(span);
+      }
+      else
+      {
+        s.taken[kept++] = c;
+      }
+    }
+    s.taken.resize(kept);
+    s.takenLevel.resize(kept, level);
     if (level == 0)
     {
-      s.read.assign(s.opened.begin(), s.opened.begin() + static_cast<long>(opened));
+      for (std::size_t i = 0; i < opened; ++i)
+      {
+        const PyramidNode& node = v.nodes[s.opened[i]];
+        s.read.push_back({ node.first, node.last });
+      }
       break;
     }
     s.next.clear();

@@ -28,6 +28,12 @@ struct WalkKey
   WalkRegion region{};
 };
 
+/// The points [first, last) of the pyramid, read one by one by a walk.
+struct PointSpan
+{
+  std::uint32_t first, last;
+};
+
 /// A point of a walk as every point of its region reads it (packWalk in MultiresolutionKernel.cpp): its position
 /// and its nine sums (1, x, n, x.n, |x|^2) about the region's corner.
 struct PackedPoint
@@ -81,7 +87,8 @@ struct CellPlacements
 /// accuracy must be reset (`walked = false`).
 struct MultiresolutionScratch
 {
-  std::vector<std::uint32_t> frontier, next, opened, taken, read;
+  std::vector<std::uint32_t> frontier, next, opened, taken;
+  std::vector<PointSpan> read; ///< the points read one by one, as ranges [first, last) of the pyramid's points
   std::vector<int> takenLevel;
   std::vector<AggregateMoments> bins;
   std::vector<PackedPoint> packedPoints;

@@ -206,6 +206,21 @@ GLS_INLINE void pointRange(const PyramidNode* nodes, std::uint32_t node, int lev
   last = nodes[z].last;
 }
 
+/// A cell taken whole (takenWhole) that holds fewer points than this is read point by point instead: its points
+/// enter exactly, and one to three points cost less to bin one by one than a cell's sample, whose spread meets 2.1
+/// shells on average, each adding the cell's F and H (docs/performance.md, "Large scans": a quarter of the cells
+/// taken whole held three points or fewer).
+constexpr std::uint32_t kFewestPointsOfACellSample = 4;
+
+/// Where the walks (forEachMultiresolutionSample, and the CPU kernel's level by level) find the points [first,
+/// last) of a cell taken whole: true when they are too few for a cell sample (kFewestPointsOfACellSample).
+GLS_INLINE bool readPointByPoint(const PyramidNode* nodes, std::uint32_t node, int level, std::uint32_t& first,
+  std::uint32_t& last)
+{
+  pointRange(nodes, node, level, first, last);
+  return last - first < kFewestPointsOfACellSample;
+}
+
 /// The sums of the cell `node` of level `level`: stored, or formed from its points (momentsOfPoints about its
 /// corner, as the build forms those of level summedLevel).
 GLS_INLINE void cellMoments(const MultiresolutionView& v, std::uint32_t node, int level, PyramidCell& cell)
@@ -227,8 +242,8 @@ GLS_INLINE Vec3 regionCentre(const WalkRegion& a)
   return { a.corner.x + h, a.corner.y + h, a.corner.z + h };
 }
 
-/// Calls sample(node, level) for every cell taken whole (takenWhole, with `smallest` the smallest scale) and point(i)
-/// for every point read one by one, for the ball of radius r around p: every point of the ball is in exactly one of
+/// Calls sample(node, level) for every cell taken whole (takenWhole, with `smallest` the smallest scale; holding at
+/// least kFewestPointsOfACellSample points) and point(i) for every point read one by one, for the ball of radius r around p: every point of the ball is in exactly one of
 /// them (points of a cell taken whole may lie outside the ball; the caller bins them by its CellSample's spread).
 /// Distances are measured from p's walkRegion, so the samples and their order are fixed by the pyramid and that
 /// region alone.
@@ -273,13 +288,17 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
     {
       continue;
     }
-    if (takenWhole(edge * edge, box2, eps2, floor2))
+    // A cell taken whole enters as its sample, or point by point where it holds too few points; a level-0 cell not
+    // taken whole is read point by point.
+    const bool whole = takenWhole(edge * edge, box2, eps2, floor2);
+    std::uint32_t first = cell.first, last = cell.last;
+    if (whole && !readPointByPoint(v.nodes, stack[top], level, first, last))
     {
       sample(stack[top], level);
     }
-    else if (level == 0)
+    else if (whole || level == 0)
     {
-      for (std::uint32_t i = cell.first; i < cell.last; ++i)
+      for (std::uint32_t i = first; i < last; ++i)
       {
         point(i);
       }
