@@ -50,7 +50,7 @@ CollectingSink runMultiresolution(const Cloud& c, const std::vector<double>& sca
 struct SampleCounts
 {
   long cells = 0, points = 0, straddling = 0;
-  double fewestInACell = 0.0; ///< the fewest points of a cell taken whole
+  double fewestInACell = 0.0; ///< the fewest points of a cell taken whole below the summed levels
   long ballPointsMissed = 0;  ///< points of the largest ball in no sample
   long pointsTwice = 0;       ///< points in more than one sample
 };
@@ -66,7 +66,7 @@ SampleCounts countSamples(const gls::MultiresolutionView& v, const gls::Vec3& p,
       ++n.cells;
       gls::PyramidCell c;
       gls::cellMoments(v, node, level, c);
-      n.fewestInACell = std::min(n.fewestInACell, c.count);
+      n.fewestInACell = level < v.summedLevel ? std::min(n.fewestInACell, c.count) : n.fewestInACell;
       std::uint32_t first = 0, last = 0;
       gls::pointRange(v.nodes, node, level, first, last);
       for (std::uint32_t i = first; i < last; ++i)
@@ -165,7 +165,8 @@ TEST(Multiresolution, CellsAreTakenWholeAndStraddleTheScales)
   EXPECT_GT(n.cells, 100);
   EXPECT_GT(n.straddling, 50);
   EXPECT_LT(n.cells + n.points, 60000 / 4);
-  // Every point of the ball enters once, and the cells too small for a sample enter point by point.
+  // Every point of the ball enters once, and the cells too small for a sample (below the summed levels) enter point
+  // by point.
   EXPECT_EQ(n.ballPointsMissed, 0);
   EXPECT_EQ(n.pointsTwice, 0);
   EXPECT_GE(n.fewestInACell, static_cast<double>(gls::kFewestPointsOfACellSample));

@@ -592,7 +592,7 @@ GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regi
     {
       const std::uint32_t c = s.taken[i];
       PointSpan span{};
-      if (readPointByPoint(v.nodes, c, level, span.first, span.last))
+      if (readPointByPoint(v, c, level, span.first, span.last))
       {
         s.read.push_back(span);
       }

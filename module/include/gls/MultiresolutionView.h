@@ -206,18 +206,25 @@ GLS_INLINE void pointRange(const PyramidNode* nodes, std::uint32_t node, int lev
   last = nodes[z].last;
 }
 
-/// A cell taken whole (takenWhole) that holds fewer points than this is read point by point instead: its points
-/// enter exactly, and one to three points cost less to bin one by one than a cell's sample, whose spread meets 2.1
-/// shells on average, each adding the cell's F and H (docs/performance.md, "Large scans": a quarter of the cells
-/// taken whole held three points or fewer).
+/// A cell taken whole (takenWhole) below the pyramid's summed levels (whose sums a walk forms from its points) that
+/// holds fewer points than this is read point by point instead: its points enter exactly, and one to three points
+/// cost less to bin one by one than a cell's sample, whose spread meets 2.1 shells on average, each adding the
+/// cell's F and H (docs/performance.md, "The CPU kernel": a quarter of the cells taken whole at 1M points held three
+/// points or fewer, four fifths of them below the summed levels).
 constexpr std::uint32_t kFewestPointsOfACellSample = 4;
 
 /// Where the walks (forEachMultiresolutionSample, and the CPU kernel's level by level) find the points [first,
-/// last) of a cell taken whole: true when they are too few for a cell sample (kFewestPointsOfACellSample).
-GLS_INLINE bool readPointByPoint(const PyramidNode* nodes, std::uint32_t node, int level, std::uint32_t& first,
+/// last) of a cell taken whole: true when it is below the summed levels and holds too few points for a cell sample
+/// (kFewestPointsOfACellSample). The summed levels are left as they are: finding a cell's points there descends the
+/// pyramid, which cost more than it saved at 10M points.
+GLS_INLINE bool readPointByPoint(const MultiresolutionView& v, std::uint32_t node, int level, std::uint32_t& first,
   std::uint32_t& last)
 {
-  pointRange(nodes, node, level, first, last);
+  if (level >= v.summedLevel)
+  {
+    return false;
+  }
+  pointRange(v.nodes, node, level, first, last);
   return last - first < kFewestPointsOfACellSample;
 }
 
@@ -242,11 +249,11 @@ GLS_INLINE Vec3 regionCentre(const WalkRegion& a)
   return { a.corner.x + h, a.corner.y + h, a.corner.z + h };
 }
 
-/// Calls sample(node, level) for every cell taken whole (takenWhole, with `smallest` the smallest scale; holding at
-/// least kFewestPointsOfACellSample points) and point(i) for every point read one by one, for the ball of radius r around p: every point of the ball is in exactly one of
-/// them (points of a cell taken whole may lie outside the ball; the caller bins them by its CellSample's spread).
-/// Distances are measured from p's walkRegion, so the samples and their order are fixed by the pyramid and that
-/// region alone.
+/// Calls sample(node, level) for every cell taken whole (takenWhole, with `smallest` the smallest scale; not
+/// readPointByPoint) and point(i) for every point read one by one, for the ball of radius r around p: every point
+/// of the ball is in exactly one of them (points of a cell taken whole may lie outside the ball; the caller bins them
+/// by its CellSample's spread). Distances are measured from p's walkRegion, so the samples and their order are fixed
+/// by the pyramid and that region alone.
 template <typename CellVisit, typename PointVisit>
 GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const Vec3& p, double r, double smallest,
   CellVisit&& sample, PointVisit&& point)
@@ -292,7 +299,7 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
     // taken whole is read point by point.
     const bool whole = takenWhole(edge * edge, box2, eps2, floor2);
     std::uint32_t first = cell.first, last = cell.last;
-    if (whole && !readPointByPoint(v.nodes, stack[top], level, first, last))
+    if (whole && !readPointByPoint(v, stack[top], level, first, last))
     {
       sample(stack[top], level);
     }
