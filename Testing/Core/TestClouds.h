@@ -106,6 +106,12 @@ inline Cloud sinusoid2D(std::size_t n, double amplitude, double w, double x0, do
 /// The vertices of an OBJ file ("v x y z" lines); empty if the file cannot be read.
 std::vector<double> readObjVertices(const std::string& path);
 
+/// An OBJ file's surface sampled by area: n points uniform over its triangles (polygons fanned into triangles),
+/// each with the normal interpolated from the area-weighted vertex normals (its triangle's own normal where they
+/// cancel). Seeded, so that the same arguments give the same cloud. Empty if the file has no triangle. VTK-free, so
+/// that the core's tests and the GPU benchmark run on machines without VTK.
+Cloud sampleObjSurface(const std::string& path, std::size_t n, unsigned seed);
+
 /// Path of a file in Testing/Data (the build passes the source directory in GLS_TEST_DATA_DIR).
 std::string dataFile(const std::string& name);
 
