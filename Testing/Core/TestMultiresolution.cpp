@@ -275,8 +275,8 @@ TEST(Multiresolution, CpuKernelAgreesWithTheDeviceLoop)
 {
   // The CPU kernel (level by level, batched), in its portable build and in its fastest one (AVX2 where the processor
   // has it: the cells classified four at a time, the shell pieces of four cells formed at once), against
-  // evaluateAllScalesMultiresolution, the host/device loop the CUDA kernel runs: the same samples summed in another
-  // order. Both builds put every cell in the same first shell.
+  // evaluateAllScalesMultiresolution, the host/device loop whose windowed form (bitwise the same, tested below) the
+  // CUDA kernel runs: the same samples summed in another order. Both builds put every cell in the same first shell.
   const Cloud c = paraboloid(150, 1.0, 0.7, 0.3, 0.01, 0.05, 4);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 12, gls::ScaleSampling::Quadratic);
   gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.15));
@@ -324,6 +324,52 @@ TEST(Multiresolution, CpuKernelAgreesWithTheDeviceLoop)
   EXPECT_GT(taken, 20000); // cells were taken whole
   EXPECT_GT(shells, 20000);
   EXPECT_LT(worst, 1e-10);
+}
+
+namespace
+{
+
+/// evaluateAllScalesMultiresolutionByWindows<G> against evaluateAllScalesMultiresolution on every 11th point: the
+/// count of valid samples compared, or -1 at the first sample whose bits differ.
+template <int G>
+long multiresolutionWindowsAgainstTheOnePass(const Cloud& c, const gls::MultiresolutionView& v,
+  const gls::ScaleBinning& b)
+{
+  const std::size_t S = static_cast<std::size_t>(b.count);
+  std::vector<gls::AggregateMoments> bins(S);
+  std::vector<gls::ScaleSample> onePass(S), windows(S);
+  long compared = 0;
+  for (std::size_t i = 0; i < c.size(); i += 11)
+  {
+    const gls::Vec3 p = { c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] };
+    gls::evaluateAllScalesMultiresolution(v, p, b, 6.0, bins.data(), onePass.data());
+    gls::evaluateAllScalesMultiresolutionByWindows<G>(v, p, b, 6.0, windows.data());
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      if (!sameBits(onePass[k], windows[k]) || onePass[k].valid != windows[k].valid)
+      {
+        return -1;
+      }
+      compared += onePass[k].valid ? 1 : 0;
+    }
+  }
+  return compared;
+}
+
+} // namespace
+
+TEST(Multiresolution, WindowsOfScalesGiveTheDeviceLoopBitForBit)
+{
+  // The CUDA kernel's loop (the walk repeated per window of G scales, no scratch bins) against the host/device loop
+  // with its S bins: the same samples, shares and points enter each bin in the same order.
+  const Cloud c = paraboloid(150, 1.0, 0.7, 0.3, 0.01, 0.05, 6);
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 12, gls::ScaleSampling::Quadratic);
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.15));
+  const TestBinning binning(scales);
+  const gls::MultiresolutionView& v = engine.pyramid().view();
+  EXPECT_GT(multiresolutionWindowsAgainstTheOnePass<1>(c, v, binning.View), 15000);
+  EXPECT_GT(multiresolutionWindowsAgainstTheOnePass<2>(c, v, binning.View), 15000);
+  EXPECT_GT(multiresolutionWindowsAgainstTheOnePass<5>(c, v, binning.View), 15000);
 }
 
 TEST(Multiresolution, PointsOfOneRegionShareOneWalkWhateverTheOrder)

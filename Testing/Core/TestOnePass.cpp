@@ -93,8 +93,8 @@ TEST(OnePass, AgreesWithPerScaleEvaluationOnTheBunnyScan)
 
 TEST(OnePass, CpuKernelAgreesWithTheDeviceLoop)
 {
-  // The CPU kernel (batched, branch-free ball test and binning, vector sums) against evaluateAllScales, the loop the
-  // CUDA kernel runs, here compiled for the host: the portable build performs the same operations in the same order
+  // The CPU kernel (batched, branch-free ball test and binning, vector sums) against evaluateAllScales, whose windowed
+  // form (bitwise the same, tested below) the CUDA kernel runs, here compiled for the host: the portable build performs the same operations in the same order
   // (bitwise equal where the compiler cannot fuse multiply-adds), the AVX2 build fuses them (close).
   const Cloud c = paraboloid(70, 1.0, 0.7, 0.3, 0.02, 0.1, 11);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 20, gls::ScaleSampling::Quadratic);
@@ -139,6 +139,56 @@ TEST(OnePass, CpuKernelAgreesWithTheDeviceLoop)
   EXPECT_LT(worstFastest, 1e-10);
   std::printf("CPU kernel (%s) vs device loop: portable %.3g, fastest %.3g over %d samples\n",
     gls::onePassKernelBuild(), worstPortable, worstFastest, compared);
+}
+
+namespace
+{
+
+/// evaluateAllScalesByWindows<G> against evaluateAllScales on every 5th point of c (and points off the cloud):
+/// the count of samples compared, or -1 at the first sample whose bits differ.
+template <int G>
+long windowsAgainstTheOnePass(const Cloud& c, const gls::GridView& g, const gls::ScaleBinning& b)
+{
+  const std::size_t S = static_cast<std::size_t>(b.count);
+  std::vector<gls::Moments> bins(S);
+  std::vector<gls::ScaleSample> onePass(S), windows(S);
+  long compared = 0;
+  for (std::size_t i = 0; i < c.size(); i += 5)
+  {
+    const gls::Vec3 p = { c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] + (i % 2 ? 0.0 : 0.05) };
+    gls::evaluateAllScales(g, p, b, 6.0, bins.data(), onePass.data());
+    gls::evaluateAllScalesByWindows<G>(g, p, b, 6.0, windows.data());
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      if (!sameBits(onePass[k], windows[k]) || onePass[k].valid != windows[k].valid)
+      {
+        return -1;
+      }
+      compared += onePass[k].valid ? 1 : 0;
+    }
+  }
+  return compared;
+}
+
+} // namespace
+
+TEST(OnePass, WindowsOfScalesGiveTheOnePassBitForBit)
+{
+  // The CUDA kernel's loop (the scales G at a time, no scratch bins) against the one pass with its S bins: every
+  // bin receives the same neighbours in the same order, so the samples hold the same bits, whatever G (3 leaves a
+  // last window of two scales).
+  const Cloud c = paraboloid(70, 1.0, 0.7, 0.3, 0.02, 0.1, 12);
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 20, gls::ScaleSampling::Quadratic);
+  const TestBinning binning(scales);
+  std::vector<double> unitNormals;
+  std::vector<unsigned char> admit;
+  gls::normalizeAndAdmit(c.points.data(), c.normals.data(), c.size(), unitNormals, admit);
+  gls::NeighborGrid grid;
+  grid.build(c.points.data(), unitNormals.data(), c.size(), 0.25 * scales.back(), admit.data());
+  EXPECT_GT(windowsAgainstTheOnePass<1>(c, grid.view(), binning.View), 10000);
+  EXPECT_GT(windowsAgainstTheOnePass<2>(c, grid.view(), binning.View), 10000);
+  EXPECT_GT(windowsAgainstTheOnePass<3>(c, grid.view(), binning.View), 10000);
+  EXPECT_GT(windowsAgainstTheOnePass<4>(c, grid.view(), binning.View), 10000);
 }
 
 TEST(OnePass, ResultsAreBitwiseIdenticalForAnyThreadCount)

@@ -51,7 +51,8 @@ public:
 
   /// The multi-resolution evaluation instead: uploads the pyramid as built on the host (its nodeCount nodes, its
   /// cellCount summed cells, top keys, points and normals in pyramid order), the scales and the binning table;
-  /// evaluate() then runs evaluateAllScalesMultiresolution, the loop the CPU engine runs.
+  /// evaluate() then runs evaluateAllScalesMultiresolutionByWindows (bitwise evaluateAllScalesMultiresolution, the
+  /// host/device loop the CPU engine's kernel is tested against).
   bool prepare(const MultiresolutionView& pyramid, std::size_t nodeCount, std::size_t cellCount,
     const ScaleBinning& binning, double minNeighbors, std::string& error);
 
@@ -62,8 +63,8 @@ public:
   bool evaluate(const Vec3* positions, std::size_t count, ScaleSample* out, std::string& error);
 
 private:
-  /// Uploads the scales and binning table and sizes the chunks for bins of `binBytes`.
-  bool prepareBinning(const ScaleBinning& binning, double minNeighbors, std::size_t binBytes, std::string& error);
+  /// Uploads the scales and binning table and sizes the chunks.
+  bool prepareBinning(const ScaleBinning& binning, double minNeighbors, std::string& error);
 
   struct Device;
   std::unique_ptr<Device> State;

@@ -361,4 +361,48 @@ GLS_INLINE void evaluateAllScalesMultiresolution(const MultiresolutionView& v, c
   fitAllScalesFromBins(b, minNeighbors, bins, out);
 }
 
+/// evaluateAllScalesMultiresolution, bit for bit, with the scales taken G at a time (fitAllScalesByWindows): the
+/// walk of the largest ball is repeated per window (the same samples in the same order), and each sample adds only
+/// its shares of the window's shells. No scratch bins: the CUDA kernel's loop, where S bins per thread in memory are
+/// read and written scattered.
+template <int G>
+GLS_INLINE void evaluateAllScalesMultiresolutionByWindows(const MultiresolutionView& v, const Vec3& p,
+  const ScaleBinning& b, double minNeighbors, ScaleSample* out)
+{
+  if (b.count <= 0)
+  {
+    return;
+  }
+  const double r = b.scales[b.count - 1];
+  const double r2 = r * r;
+  const Vec3 anchor = regionCentre(walkRegion(v, p));
+  fitAllScalesByWindows<G, AggregateMoments>(b, minNeighbors,
+    [&](int k0, int top, AggregateMoments* window) {
+      const double below = k0 > 0 ? b.squaredScales[k0 - 1] : 0.0;
+      const double above = b.squaredScales[top];
+      forEachMultiresolutionSample(
+        v, p, r, b.scales[0],
+        [&](std::uint32_t node, int level) {
+          PyramidCell cell;
+          cellMoments(v, node, level, cell);
+          CellSample s;
+          makeCellSample(cell, p, cell.centroid - anchor, s);
+          forEachShellOfSpread(b, r2, squaredNorm(cell.centroid - p) + s.spreadPerPoint, s.halfWidth,
+            [&](int k, const ShellShare& share) {
+              addToWindowSlot<G>(window, k - k0, [&](AggregateMoments& m) { addCellShare(m, s, share); });
+            });
+        },
+        [&](std::uint32_t i) {
+          const Vec3 x = v.points[i] - p;
+          const double d2 = squaredNorm(x);
+          if (d2 >= below && d2 < above)
+          {
+            addToWindowSlot<G>(
+              window, firstScaleHolding(b, d2) - k0, [&](AggregateMoments& m) { addPoint(m, x, d2, v.normals[i]); });
+          }
+        });
+    },
+    out);
+}
+
 } // namespace gls

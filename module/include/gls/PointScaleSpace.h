@@ -90,9 +90,93 @@ GLS_INLINE void fitAllScalesFromBins(
   }
 }
 
+/// Calls add(window[slot]) when 0 <= slot < G: a window's bins are indexed by constants only, so that a GPU keeps
+/// them in registers (an index known at run time would put them in local memory).
+template <int G, typename MomentSet, typename Add>
+GLS_INLINE void addToWindowSlot(MomentSet* window, int slot, Add&& add)
+{
+#if defined(__CUDACC__)
+#pragma unroll
+#endif
+  for (int w = 0; w < G; ++w)
+  {
+    if (w == slot)
+    {
+      add(window[w]);
+    }
+  }
+}
+
+/// fitAllScalesFromBins with the scales taken G at a time, without S scratch bins in memory: for each window of
+/// scales [k0, top], gather(k0, top, window) adds to window[k - k0] exactly what the one pass adds to bins[k] (the
+/// same terms in the same order), and the window's scales are fitted from the running sum before the next window.
+/// The samples are bitwise those of fitAllScalesFromBins. The CUDA kernels' form: a GPU thread has no room for S
+/// bins in registers, and S bins per thread in global memory are read and written scattered (docs/performance.md).
+template <int G, typename MomentSet, typename Gather>
+GLS_INLINE void fitAllScalesByWindows(const ScaleBinning& b, double minNeighbors, Gather&& gather, ScaleSample* out)
+{
+  MomentSet ball;
+  clearMoments(ball);
+  for (int k0 = 0; k0 < b.count; k0 += G)
+  {
+    const int top = (k0 + G < b.count ? k0 + G : b.count) - 1;
+    MomentSet window[G];
+#if defined(__CUDACC__)
+#pragma unroll
+#endif
+    for (int w = 0; w < G; ++w)
+    {
+      clearMoments(window[w]);
+    }
+    gather(k0, top, window);
+#if defined(__CUDACC__)
+#pragma unroll
+#endif
+    for (int w = 0; w < G; ++w)
+    {
+      const int k = k0 + w;
+      if (k <= top)
+      {
+        addMoments(ball, window[w]);
+        WeightedSums s, ds;
+        weightedSumsFromMoments(ball, b.scales[k], s, ds);
+        out[k] = fitOrientedSphere(s, ds, neighborCount(ball), minNeighbors);
+      }
+    }
+  }
+}
+
+/// evaluateAllScales, bit for bit, with the scales taken G at a time (fitAllScalesByWindows): one ball query of the
+/// window's largest scale per window, keeping the neighbours whose first scale is in the window. The ball of a
+/// smaller radius is walked in the same order (rows by z, then y, points in grid order), so each bin receives the
+/// same neighbours in the same order. About sum_k (t_k / t_max)^2 / G times the neighbours of one largest ball are
+/// visited (each a distance test), against one ball with S bins in memory. No scratch: the CUDA kernel's loop.
+template <int G>
+GLS_INLINE void evaluateAllScalesByWindows(
+  const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors, ScaleSample* out)
+{
+  if (b.count <= 0)
+  {
+    return;
+  }
+  fitAllScalesByWindows<G, Moments>(b, minNeighbors,
+    [&](int k0, int top, Moments* window) {
+      const double below = k0 > 0 ? b.squaredScales[k0 - 1] : 0.0; // nearer neighbours are an earlier window's
+      forEachInBall(g, p, b.scales[top], [&](std::uint64_t i, const Vec3& x, double d2) {
+        if (d2 >= below)
+        {
+          addToWindowSlot<G>(window, firstScaleHolding(b, d2) - k0,
+            [&](Moments& m) { addToMoments(m, x, d2, g.normals[i]); });
+        }
+      });
+    },
+    out);
+}
+
 /// Fits every scale of the evaluation point p (any position; normally a data point) in one pass.
 /// b: the S increasing scales and their binning table; bins: S scratch moment sets; out: S samples.
-/// This is the CUDA kernel's loop; the CPU engine runs the batched form of the same arithmetic (OnePassKernel.h).
+/// The reference host/device loop: the CUDA kernel runs its windowed form (evaluateAllScalesByWindows, bitwise the
+/// same samples); the CPU engine runs the batched form of the same arithmetic (OnePassKernel.h).
 GLS_INLINE void evaluateAllScales(
   const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors, Moments* bins, ScaleSample* out)
 {

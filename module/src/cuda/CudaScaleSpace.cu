@@ -1,7 +1,8 @@
 // The CUDA backend: the device sorts the grid points by cell (thrust), then one thread per evaluation point runs
-// evaluateAllScales in double precision: the host/device loop whose binning, moment sums and fits the CPU kernel
-// (OnePassKernel.h) shares, and which the core tests run on the host against it. Inputs larger than the
-// device's free memory allows are processed in chunks. Every CUDA call is checked and turned into an error message.
+// evaluateAllScalesByWindows (or its multi-resolution form) in double precision: the host/device loop, bitwise
+// equal to evaluateAllScales, whose binning, moment sums and fits the CPU kernel (OnePassKernel.h) shares, and which
+// the core tests run on the host against it. Inputs larger than the device's free memory allows are processed in
+// chunks. Every CUDA call is checked and turned into an error message.
 #include "gls/Backend.h"
 
 #include <cuda_runtime.h>
@@ -115,8 +116,9 @@ __device__ bool evaluationPoint(const Vec3* positions, std::uint64_t i, int S, S
   return false;
 }
 
-__global__ void evaluateKernel(GridView grid, ScaleBinning binning, double minNeighbors, const Vec3* positions,
-  std::uint64_t count, Moments* bins, ScaleSample* out)
+template <int G>
+__global__ void evaluateByWindowsKernel(GridView grid, ScaleBinning binning, double minNeighbors,
+  const Vec3* positions, std::uint64_t count, ScaleSample* out)
 {
   const std::uint64_t i = blockIdx.x * static_cast<std::uint64_t>(blockDim.x) + threadIdx.x;
   const int S = binning.count;
@@ -125,11 +127,12 @@ __global__ void evaluateKernel(GridView grid, ScaleBinning binning, double minNe
   {
     return;
   }
-  evaluateAllScales(grid, p, binning, minNeighbors, bins + i * S, out + i * S);
+  evaluateAllScalesByWindows<G>(grid, p, binning, minNeighbors, out + i * S);
 }
 
-__global__ void evaluateMultiresolutionKernel(MultiresolutionView pyramid, ScaleBinning binning, double minNeighbors,
-  const Vec3* positions, std::uint64_t count, AggregateMoments* bins, ScaleSample* out)
+template <int G>
+__global__ void evaluateMultiresolutionByWindowsKernel(MultiresolutionView pyramid, ScaleBinning binning,
+  double minNeighbors, const Vec3* positions, std::uint64_t count, ScaleSample* out)
 {
   const std::uint64_t i = blockIdx.x * static_cast<std::uint64_t>(blockDim.x) + threadIdx.x;
   const int S = binning.count;
@@ -138,8 +141,14 @@ __global__ void evaluateMultiresolutionKernel(MultiresolutionView pyramid, Scale
   {
     return;
   }
-  evaluateAllScalesMultiresolution(pyramid, p, binning, minNeighbors, bins + i * S, out + i * S);
+  evaluateAllScalesMultiresolutionByWindows<G>(pyramid, p, binning, minNeighbors, out + i * S);
 }
+
+/// Scales per window of the device loops (evaluateAllScalesByWindows, evaluateAllScalesMultiresolutionByWindows).
+/// Measured on an H200 (docs/performance.md, "Backends: CPU and CUDA"; bunny, 20 scales, fused features), against
+/// S bins per thread in global memory: exact 1M points 2.5 s (4 scales per window), 3.0 s (3), 3.2 s (2), 4.2 s (1),
+/// 10.7 s (bins in memory); multi-resolution 10M points 12.7 s (4), 14.0 s (2), 17.6 s (1), 15.5 s (bins in memory).
+constexpr int kScalesPerWindow = 4;
 
 unsigned blocksFor(std::uint64_t n, unsigned threads)
 {
@@ -200,20 +209,17 @@ struct CudaScaleSpace::Device
   DeviceArray<double> Scales, SquaredScales;
   DeviceArray<BinningCell> Table;
   DeviceArray<Vec3> Positions;
-  DeviceArray<Moments> Bins;
   DeviceArray<ScaleSample> Out;
-  // The multi-resolution evaluation (Multiresolution true): the pyramid and its own bins.
+  // The multi-resolution evaluation (Multiresolution true): the pyramid.
   bool Multiresolution = false;
   MultiresolutionView Pyramid;
   DeviceArray<PyramidNode> Nodes;
   DeviceArray<PyramidCell> Cells;
   DeviceArray<std::uint64_t> TopKeys;
-  DeviceArray<AggregateMoments> AggregateBins;
 };
 
-/// Chunk size: half the free memory for positions, moment bins and samples (`binBytes` per bin).
-bool CudaScaleSpace::prepareBinning(
-  const ScaleBinning& binning, double minNeighbors, std::size_t binBytes, std::string& error)
+/// Chunk size: half the free memory for positions and samples (the kernels keep their moments in registers).
+bool CudaScaleSpace::prepareBinning(const ScaleBinning& binning, double minNeighbors, std::string& error)
 {
   Device& d = *this->State;
   const int S = binning.count;
@@ -232,7 +238,7 @@ bool CudaScaleSpace::prepareBinning(
   {
     return false;
   }
-  const std::size_t perPoint = sizeof(Vec3) + static_cast<std::size_t>(S) * (binBytes + sizeof(ScaleSample));
+  const std::size_t perPoint = sizeof(Vec3) + static_cast<std::size_t>(S) * sizeof(ScaleSample);
   d.Capacity = std::max<std::size_t>(1, std::min<std::size_t>(freeBytes / 2 / perPoint, std::size_t(1) << 22));
   return d.Positions.allocate(d.Capacity, error) && d.Out.allocate(d.Capacity * S, error);
 }
@@ -246,7 +252,6 @@ bool CudaScaleSpace::prepare(
   this->State = std::make_unique<Device>();
   Device& d = *this->State;
   const std::uint64_t n = geometry.count;
-  const int S = binning.count;
   const std::size_t cells = static_cast<std::size_t>(geometry.dims[0] * geometry.dims[1] * geometry.dims[2]);
   try
   {
@@ -306,8 +311,7 @@ bool CudaScaleSpace::prepare(
   d.Grid.normals = d.Normals.get();
   d.Grid.ids = d.Ids.get();
   d.Grid.cellStart = d.CellStart.get();
-  return this->prepareBinning(binning, minNeighbors, sizeof(Moments), error) &&
-    d.Bins.allocate(d.Capacity * S, error);
+  return this->prepareBinning(binning, minNeighbors, error);
 }
 
 bool CudaScaleSpace::prepare(const MultiresolutionView& pyramid, std::size_t nodeCount, std::size_t cellCount,
@@ -329,8 +333,7 @@ bool CudaScaleSpace::prepare(const MultiresolutionView& pyramid, std::size_t nod
   d.Pyramid.topKeys = d.TopKeys.get();
   d.Pyramid.points = d.Points.get();
   d.Pyramid.normals = d.Normals.get();
-  return this->prepareBinning(binning, minNeighbors, sizeof(AggregateMoments), error) &&
-    d.AggregateBins.allocate(d.Capacity * binning.count, error);
+  return this->prepareBinning(binning, minNeighbors, error);
 }
 
 std::size_t CudaScaleSpace::chunkCapacity() const
@@ -356,15 +359,16 @@ bool CudaScaleSpace::evaluate(const Vec3* positions, std::size_t count, ScaleSam
   {
     return false;
   }
+  const unsigned blocks = blocksFor(count, threads);
   if (d.Multiresolution)
   {
-    evaluateMultiresolutionKernel<<<blocksFor(count, threads), threads>>>(
-      d.Pyramid, d.Binning, d.MinNeighbors, d.Positions.get(), count, d.AggregateBins.get(), d.Out.get());
+    evaluateMultiresolutionByWindowsKernel<kScalesPerWindow><<<blocks, threads>>>(
+      d.Pyramid, d.Binning, d.MinNeighbors, d.Positions.get(), count, d.Out.get());
   }
   else
   {
-    evaluateKernel<<<blocksFor(count, threads), threads>>>(
-      d.Grid, d.Binning, d.MinNeighbors, d.Positions.get(), count, d.Bins.get(), d.Out.get());
+    evaluateByWindowsKernel<kScalesPerWindow><<<blocks, threads>>>(
+      d.Grid, d.Binning, d.MinNeighbors, d.Positions.get(), count, d.Out.get());
   }
   return check(cudaGetLastError(), "evaluate kernel launch", error) &&
     check(cudaDeviceSynchronize(), "evaluate kernel", error) &&
