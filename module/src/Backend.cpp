@@ -55,7 +55,7 @@ bool CudaScaleSpace::prepare(
   return false;
 }
 
-bool CudaScaleSpace::prepareBinning(const ScaleBinning&, double, std::size_t, std::string& error)
+bool CudaScaleSpace::prepareBinning(const ScaleBinning&, double, std::string& error)
 {
   error = kNotBuilt;
   return false;
