@@ -1,6 +1,6 @@
 // Real scan sizes: the multi-resolution evaluation against the exact one pass (docs/performance.md, "Large scans").
 //
-//   glsLargeScanBenchmark [--case L1|L2|L3|accuracy|all (all)] [--models bunny,rocker-arm] [--threads T (2)]
+//   glsLargeScanBenchmark [--case L1|L2|L3|normals|accuracy|all (all)] [--models bunny,rocker-arm] [--threads T (2)]
 //                         [--points N (L1: 10000000; L2 and accuracy: 1000000)] [--sizes a,b,... (L3)]
 //                         [--accuracies e1,e2,... (0.1,0.2,0.3)]
 //
@@ -10,6 +10,9 @@
 //       so the peak is its own; it includes the sampled cloud). Target: under 60 s and 4 GiB.
 //   L2: N = 1M, Exact and Auto in the same process: the speed-up (target: at least 10).
 //   L3: Auto at 0.3M, 1M, 3M, 10M points (and Exact at 0.3M; L2 has it at 1M): time per point.
+//   normals: N = 10M, the points alone through GLS Normal Estimation with its defaults (orientation included): wall
+//       time and peak memory (its own process; the peak includes the sampled cloud), and the share of the estimated
+//       normals within 5 degrees of the mesh's interpolated normals and pointing their way. Target: L1's budget.
 //   accuracy: N = 1M, the core engine exact and at each accuracy, every point and scale compared (p99 and max):
 //       |f - f_exact| (sigma of the exact run), |t kappa - t kappa_exact|, |tau - tau_exact| / t, the angle between
 //       eta and eta_exact (degrees), |phi - phi_exact|, |nu - nu_exact| / (nu_exact + median nu_exact), and the
@@ -19,11 +22,13 @@
 #include "MeshSampler.h"
 
 #include "vtkGLSContinuousFeatures.h"
+#include "vtkGLSNormalEstimation.h"
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStringArray.h"
 
@@ -140,6 +145,65 @@ int caseL1(const std::vector<std::string>& models, long long n, int threads, dou
       std::printf("%-12s %10.1f %12.0f %12s %s\n", model.c_str(), wall, peak, used.c_str(),
         wall >= 0.0 && wall < 60.0 && peak < 4096.0 ? "PASS" : "FAIL");
       return wall >= 0.0 ? 0 : 1;
+    });
+  }
+  return 0;
+}
+
+int caseNormals(const std::vector<std::string>& models, long long n, int threads)
+{
+  std::printf("\n== normals: %lld points, GLS Normal Estimation with its defaults, %d threads (target: < 60 s, "
+              "< 4 GiB)\n",
+    n, threads);
+  std::printf("%-12s %10s %12s %14s %14s %10s %s\n", "model", "wall s", "peak MiB", "within 5 deg", "wrong way",
+    "NaN", "verdict");
+  for (const std::string& model : models)
+  {
+    inChild([&] {
+      auto sampled = sampleMeshSurface(modelPath(model), n, 1);
+      if (!sampled)
+      {
+        return 1;
+      }
+      vtkNew<vtkPolyData> points;
+      points->SetPoints(sampled->GetPoints());
+      vtkNew<vtkGLSNormalEstimation> normals;
+      normals->SetInputData(points);
+      normals->SetNumberOfThreads(threads);
+      const double t0 = now();
+      normals->Update();
+      const double wall = now() - t0;
+      const double peak = peakMemoryMiB();
+      vtkDataArray* estimated = normals->GetOutput()->GetPointData()->GetNormals();
+      vtkDataArray* truth = sampled->GetPointData()->GetNormals();
+      if (!estimated || !truth)
+      {
+        std::printf("error: no normals\n");
+        return 1;
+      }
+      long long within = 0, wrong = 0, undefined = 0;
+      const double cos5 = std::cos(5.0 * 3.14159265358979323846 / 180.0);
+      for (vtkIdType i = 0; i < estimated->GetNumberOfTuples(); ++i)
+      {
+        double e[3], t[3];
+        estimated->GetTuple(i, e);
+        truth->GetTuple(i, t);
+        const double c = e[0] * t[0] + e[1] * t[1] + e[2] * t[2];
+        const double lengths =
+          std::sqrt((e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) * (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]));
+        if (!std::isfinite(c) || !(lengths > 0.0))
+        {
+          ++undefined;
+          continue;
+        }
+        within += std::abs(c) >= cos5 * lengths ? 1 : 0;
+        wrong += c < 0.0 ? 1 : 0;
+      }
+      const double N = static_cast<double>(estimated->GetNumberOfTuples());
+      std::printf("%-12s %10.1f %12.0f %13.2f%% %13.2f%% %9.3f%% %s\n", model.c_str(), wall, peak,
+        100.0 * within / N, 100.0 * wrong / N, 100.0 * undefined / N,
+        wall < 60.0 && peak < 4096.0 ? "PASS" : "FAIL");
+      return 0;
     });
   }
   return 0;
@@ -535,7 +599,7 @@ int main(int argc, char* argv[])
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--case L1|L2|L3|accuracy|all] [--models a,b] [--threads T] [--points N] [--sizes a,b] "
+        "usage: %s [--case L1|L2|L3|normals|accuracy|all] [--models a,b] [--threads T] [--points N] [--sizes a,b] "
         "[--accuracies e1,e2]\n",
         argv[0]);
       return 2;
@@ -553,6 +617,10 @@ int main(int argc, char* argv[])
   if (which == "L3" || which == "all")
   {
     caseL3(models, sizes, threads, accuracy);
+  }
+  if (which == "normals" || which == "all")
+  {
+    caseNormals(models, points > 0 ? points : 10000000, threads);
   }
   if (which == "accuracy" || which == "all")
   {

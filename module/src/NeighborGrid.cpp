@@ -122,7 +122,6 @@ void NeighborGrid::build(
   {
     this->CellStart[c + 1] += this->CellStart[c];
   }
-  std::vector<std::uint64_t> fill(this->CellStart.begin(), this->CellStart.end() - 1);
   this->Points.resize(admittedCount);
   this->Ids.resize(admittedCount);
   this->Normals.resize(normals ? admittedCount : 0);
@@ -132,7 +131,7 @@ void NeighborGrid::build(
     {
       continue;
     }
-    const std::uint64_t slot = fill[cellOf[i]]++;
+    const std::uint64_t slot = this->CellStart[cellOf[i]]++; // the cell's next slot
     this->Points[slot] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
     this->Ids[slot] = i;
     if (normals)
@@ -140,6 +139,13 @@ void NeighborGrid::build(
       this->Normals[slot] = { normals[3 * i], normals[3 * i + 1], normals[3 * i + 2] };
     }
   }
+  // Each cell's next slot is now where it ends, the start of the next cell: shifted back by one cell (no second
+  // array of the grid's size).
+  for (std::size_t c = cellCount; c > 0; --c)
+  {
+    this->CellStart[c] = this->CellStart[c - 1];
+  }
+  this->CellStart[0] = 0;
   v.cellStart = this->CellStart.data();
   v.points = this->Points.data();
   v.normals = normals ? this->Normals.data() : nullptr;

@@ -320,6 +320,7 @@ bool estimateNormals(
     return false;
   }
 
+  grid = NeighborGrid(); // the estimate's grid is not needed by the orientation, which builds its own
   double* normals = result.normals.data();
   switch (settings.orientation)
   {
@@ -480,6 +481,272 @@ double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOpti
   return std::sqrt(*std::max_element(reach.begin(), reach.end()));
 }
 
+namespace
+{
+
+/// orientByMinimumSpanningTree with the graph's nodes numbered in the grid's order (Index: 32 bits where they fit),
+/// so that a node's neighbours lie near it in memory. Every choice (the components' seeds, the order in which a
+/// component is collected, the queue's order) is still made on the points' original indices, so the orientation is
+/// the one of the original numbering, bit for bit.
+template <typename Index>
+bool orientInGridOrder(NeighborGrid& grid, std::size_t n, int graphNeighbors, double* normals,
+  const ParallelOptions& parallel, std::size_t& components, const int* degrees)
+{
+  const GridView& g = grid.view();
+  const std::size_t count = g.count;
+  const Index none = std::numeric_limits<Index>::max();
+
+  // Each node's out-degree (graphNeighbors, or its own larger count) and its slots in `nearest`.
+  std::vector<std::size_t> slot(count + 1, 0);
+  for (std::size_t s = 0; s < count; ++s)
+  {
+    const int d = degrees ? std::max(graphNeighbors, degrees[g.ids[s]]) : graphNeighbors;
+    slot[s + 1] = slot[s] + static_cast<std::size_t>(std::max(d, 1));
+  }
+  std::vector<Index> nearest(slot[count], none); // the nearest other nodes of each node
+  const int threads = resolveThreadCount(parallel.threads);
+  std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
+  const bool queried = parallelFor(count, progressStage(parallel, 0.0, 0.4), [&](std::size_t begin, std::size_t end, int t) {
+    for (std::size_t s = begin; s < end; ++s)
+    {
+      const std::size_t k = slot[s + 1] - slot[s];
+      grid.kNearest(g.points[s], static_cast<int>(k) + 1, knn[t]);
+      std::size_t j = 0;
+      for (const auto& c : knn[t])
+      {
+        if (c.second != s && j < k)
+        {
+          nearest[slot[s] + j++] = static_cast<Index>(c.second);
+        }
+      }
+    }
+  });
+  if (!queried)
+  {
+    return false;
+  }
+  // The grid's cells are no longer needed: keep its nodes' positions and original indices, and the normals in the
+  // same order.
+  std::vector<Vec3> position(g.points, g.points + count);
+  std::vector<std::uint64_t> original(g.ids, g.ids + count);
+  grid = NeighborGrid();
+  std::vector<Vec3> normal(count);
+  for (std::size_t s = 0; s < count; ++s)
+  {
+    const double* ni = normals + 3 * original[s];
+    normal[s] = { ni[0], ni[1], ni[2] };
+  }
+
+  // Symmetric adjacency in CSR form, each list sorted by original index and without repeats.
+  std::vector<std::size_t> start(count + 1, 0);
+  for (std::size_t s = 0; s < count; ++s)
+  {
+    for (std::size_t j = slot[s]; j < slot[s + 1] && nearest[j] != none; ++j)
+    {
+      ++start[s + 1];
+      ++start[static_cast<std::size_t>(nearest[j]) + 1];
+    }
+  }
+  for (std::size_t s = 0; s < count; ++s)
+  {
+    start[s + 1] += start[s];
+  }
+  if (parallel.progress && parallel.progress(0.4))
+  {
+    return false;
+  }
+  std::vector<Index> adjacency(start[count]);
+  for (std::size_t s = 0; s < count; ++s)
+  {
+    for (std::size_t j = slot[s]; j < slot[s + 1] && nearest[j] != none; ++j)
+    {
+      const Index v = nearest[j];
+      adjacency[start[s]++] = v;
+      adjacency[start[v]++] = static_cast<Index>(s);
+    }
+  }
+  // start[s] is now where list s ends, the start of list s + 1: shifted back by one list.
+  for (std::size_t s = count; s > 0; --s)
+  {
+    start[s] = start[s - 1];
+  }
+  start[0] = 0;
+  std::vector<Index>().swap(nearest);
+  std::vector<std::size_t>().swap(slot);
+  std::vector<Index> kept(count, 0);
+  ParallelOptions sortOptions = progressStage(parallel, 0.4, 0.5);
+  sortOptions.chunk = 4096;
+  const auto byOriginal = [&original](Index a, Index b) { return original[a] < original[b]; };
+  const bool sorted = parallelFor(count, sortOptions, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t u = begin; u < end; ++u)
+    {
+      auto first = adjacency.begin() + static_cast<std::ptrdiff_t>(start[u]);
+      auto last = adjacency.begin() + static_cast<std::ptrdiff_t>(start[u + 1]);
+      std::sort(first, last, byOriginal);
+      kept[u] = static_cast<Index>(std::unique(first, last) - first);
+    }
+  });
+  if (!sorted)
+  {
+    return false;
+  }
+  std::size_t write = 0;
+  for (std::size_t u = 0; u < count; ++u)
+  {
+    const std::size_t from = start[u];
+    start[u] = write;
+    std::copy(adjacency.begin() + static_cast<std::ptrdiff_t>(from),
+      adjacency.begin() + static_cast<std::ptrdiff_t>(from + kept[u]),
+      adjacency.begin() + static_cast<std::ptrdiff_t>(write));
+    write += kept[u];
+  }
+  start[count] = write;
+  adjacency.resize(write);
+  adjacency.shrink_to_fit();
+  std::vector<Index>().swap(kept);
+
+  // The node of each original index (none for the points left out of the graph).
+  std::vector<Index> nodeOf(n, none);
+  for (std::size_t s = 0; s < count; ++s)
+  {
+    nodeOf[original[s]] = static_cast<Index>(s);
+  }
+  auto agreement = [&](Index a, Index b) {
+    const Vec3& na = normal[a];
+    const Vec3& nb = normal[b];
+    return na.x * nb.x + na.y * nb.y + na.z * nb.z;
+  };
+  auto cost = [&](Index a, Index b) { return 1.0 - std::abs(agreement(a, b)); };
+  auto flip = [&](Index a, double sign) {
+    if (sign < 0.0)
+    {
+      normal[a] = { -normal[a].x, -normal[a].y, -normal[a].z };
+    }
+  };
+
+  // A queue entry: cost, then the node's and its parent's original indices (the order of the original numbering),
+  // then their nodes.
+  struct Entry
+  {
+    double cost;
+    std::uint64_t node, parent;
+    Index nodeIndex, parentIndex;
+    bool operator>(const Entry& o) const
+    {
+      return std::tie(cost, node, parent) > std::tie(o.cost, o.node, o.parent);
+    }
+  };
+  std::vector<unsigned char> visited(count, 0);
+  std::vector<Index> component;
+  std::size_t oriented = 0, popped = 0;
+  for (std::size_t seed = 0; seed < n; ++seed)
+  {
+    const Index root0 = nodeOf[seed];
+    if (root0 == none || visited[root0])
+    {
+      continue;
+    }
+    // Collect the component (breadth first) and pick its root: the point farthest from its centroid.
+    component.assign(1, root0);
+    visited[root0] = 1;
+    for (std::size_t head = 0; head < component.size(); ++head)
+    {
+      const Index u = component[head];
+      for (std::size_t e = start[u]; e < start[u + 1]; ++e)
+      {
+        const Index v = adjacency[e];
+        if (!visited[v])
+        {
+          visited[v] = 1;
+          component.push_back(v);
+        }
+      }
+    }
+    double centroid[3] = { 0, 0, 0 };
+    for (Index u : component)
+    {
+      const double p[3] = { position[u].x, position[u].y, position[u].z };
+      for (int a = 0; a < 3; ++a)
+      {
+        centroid[a] += p[a] / static_cast<double>(component.size());
+      }
+    }
+    Index root = component[0];
+    double farthest = -1.0;
+    for (Index u : component)
+    {
+      const double p[3] = { position[u].x, position[u].y, position[u].z };
+      double d2 = 0.0;
+      for (int a = 0; a < 3; ++a)
+      {
+        d2 += (p[a] - centroid[a]) * (p[a] - centroid[a]);
+      }
+      if (d2 > farthest)
+      {
+        farthest = d2;
+        root = u;
+      }
+    }
+    const double r[3] = { position[root].x, position[root].y, position[root].z };
+    const double nr[3] = { normal[root].x, normal[root].y, normal[root].z };
+    double outward = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      outward += nr[a] * (r[a] - centroid[a]);
+    }
+    flip(root, outward);
+
+    // Prim's algorithm from the root; each node takes the orientation of the tree node that reached it.
+    for (Index u : component)
+    {
+      visited[u] = 0;
+    }
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> frontier;
+    frontier.push({ 0.0, original[root], original[root], root, root });
+    while (!frontier.empty())
+    {
+      const Entry top = frontier.top();
+      frontier.pop();
+      // Progress per 65536 entries taken from the queue (the stale ones after the last node included).
+      if (++popped % 65536 == 0 && parallel.progress &&
+        parallel.progress(0.5 + 0.5 * static_cast<double>(oriented) / static_cast<double>(count)))
+      {
+        return false;
+      }
+      const Index u = top.nodeIndex;
+      if (visited[u])
+      {
+        continue;
+      }
+      visited[u] = 1;
+      ++oriented;
+      if (u != top.parentIndex)
+      {
+        flip(u, agreement(top.parentIndex, u));
+      }
+      for (std::size_t e = start[u]; e < start[u + 1]; ++e)
+      {
+        const Index v = adjacency[e];
+        if (!visited[v])
+        {
+          frontier.push({ cost(u, v), original[v], original[u], v, u });
+        }
+      }
+    }
+    ++components;
+  }
+  for (std::size_t s = 0; s < count; ++s)
+  {
+    double* ni = normals + 3 * original[s];
+    ni[0] = normal[s].x;
+    ni[1] = normal[s].y;
+    ni[2] = normal[s].z;
+  }
+  return true;
+}
+
+} // namespace
+
 bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,
   const ParallelOptions& parallel, std::size_t& components, const int* degrees)
 {
@@ -492,208 +759,13 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
   }
   NeighborGrid grid;
   grid.build(xyz, nullptr, n, NeighborGrid::suggestCellSizeForKNearest(xyz, n, graphNeighbors + 1), usable.data());
-  const GridView& g = grid.view();
-
-  // Symmetric k-NN adjacency in CSR form (original ids, each list sorted and without repeats); the queries and the
-  // sorting run on all threads, each writing its own slots, with progress (no step of the graph is silent for long).
-  const std::uint64_t none = ~std::uint64_t(0);
-  // Each node's out-degree (graphNeighbors, or its own larger count) and its slots in `nearest`.
-  std::vector<std::size_t> slot(g.count + 1, 0);
-  for (std::size_t s = 0; s < g.count; ++s)
+  std::vector<unsigned char>().swap(usable);
+  // Node indices of 32 bits where every node and the "none" mark fit (half the graph's memory).
+  if (grid.view().count < std::numeric_limits<std::uint32_t>::max())
   {
-    const int d = degrees ? std::max(graphNeighbors, degrees[g.ids[s]]) : graphNeighbors;
-    slot[s + 1] = slot[s] + static_cast<std::size_t>(std::max(d, 1));
+    return orientInGridOrder<std::uint32_t>(grid, n, graphNeighbors, normals, parallel, components, degrees);
   }
-  std::vector<std::uint64_t> nearest(slot[g.count], none); // by grid index: the nearest others' original ids
-  const int threads = resolveThreadCount(parallel.threads);
-  std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
-  const bool queried = parallelFor(g.count, progressStage(parallel, 0.0, 0.4), [&](std::size_t begin, std::size_t end, int t) {
-    for (std::size_t s = begin; s < end; ++s)
-    {
-      const std::size_t k = slot[s + 1] - slot[s];
-      grid.kNearest(g.points[s], static_cast<int>(k) + 1, knn[t]);
-      std::size_t j = 0;
-      for (const auto& c : knn[t])
-      {
-        if (c.second != s && j < k)
-        {
-          nearest[slot[s] + j++] = g.ids[c.second];
-        }
-      }
-    }
-  });
-  if (!queried)
-  {
-    return false;
-  }
-  std::vector<std::size_t> start(n + 1, 0);
-  for (std::size_t s = 0; s < g.count; ++s)
-  {
-    for (std::size_t j = slot[s]; j < slot[s + 1] && nearest[j] != none; ++j)
-    {
-      ++start[g.ids[s] + 1];
-      ++start[nearest[j] + 1];
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    start[i + 1] += start[i];
-  }
-  if (parallel.progress && parallel.progress(0.4))
-  {
-    return false;
-  }
-  std::vector<std::uint64_t> adjacency(start[n]);
-  {
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t s = 0; s < g.count; ++s)
-    {
-      const std::uint64_t u = g.ids[s];
-      for (std::size_t j = slot[s]; j < slot[s + 1] && nearest[j] != none; ++j)
-      {
-        const std::uint64_t v = nearest[j];
-        adjacency[fill[u]++] = v;
-        adjacency[fill[v]++] = u;
-      }
-    }
-  }
-  std::vector<std::uint64_t>().swap(nearest);
-  std::vector<std::size_t> kept(n, 0);
-  ParallelOptions sortOptions = progressStage(parallel, 0.4, 0.5);
-  sortOptions.chunk = 4096;
-  const bool sorted = parallelFor(n, sortOptions, [&](std::size_t begin, std::size_t end, int) {
-    for (std::size_t u = begin; u < end; ++u)
-    {
-      auto first = adjacency.begin() + static_cast<std::ptrdiff_t>(start[u]);
-      auto last = adjacency.begin() + static_cast<std::ptrdiff_t>(start[u + 1]);
-      std::sort(first, last);
-      kept[u] = static_cast<std::size_t>(std::unique(first, last) - first);
-    }
-  });
-  if (!sorted)
-  {
-    return false;
-  }
-  std::size_t write = 0;
-  for (std::size_t u = 0; u < n; ++u)
-  {
-    const std::size_t from = start[u];
-    start[u] = write;
-    std::copy(adjacency.begin() + static_cast<std::ptrdiff_t>(from),
-      adjacency.begin() + static_cast<std::ptrdiff_t>(from + kept[u]),
-      adjacency.begin() + static_cast<std::ptrdiff_t>(write));
-    write += kept[u];
-  }
-  start[n] = write;
-  adjacency.resize(write);
-
-  auto normalOf = [normals](std::uint64_t i) { return normals + 3 * i; };
-  // Comparing a node's normal with its parent's. (Carrying the parent's normal along the edge, reflected in the
-  // plane bisecting it, keeps the two faces of a thin sheet apart, but noise along the normals of the order of the
-  // spacing turns it around: measured, a noisy sphere came out inward. Not used.)
-  auto agreement = [&](std::uint64_t a, std::uint64_t b) {
-    const double* na = normalOf(a);
-    const double* nb = normalOf(b);
-    return na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2];
-  };
-  auto cost = [&](std::uint64_t a, std::uint64_t b) { return 1.0 - std::abs(agreement(a, b)); };
-
-  std::vector<unsigned char> visited(n, 0);
-  std::vector<std::uint64_t> component;
-  std::size_t oriented = 0, popped = 0;
-  for (std::size_t seed = 0; seed < n; ++seed)
-  {
-    if (!usable[seed] || visited[seed])
-    {
-      continue;
-    }
-    // Collect the component (breadth first) and pick its root: the point farthest from its centroid.
-    component.assign(1, seed);
-    visited[seed] = 1;
-    for (std::size_t head = 0; head < component.size(); ++head)
-    {
-      const std::uint64_t u = component[head];
-      for (std::size_t e = start[u]; e < start[u + 1]; ++e)
-      {
-        const std::uint64_t v = adjacency[e];
-        if (!visited[v])
-        {
-          visited[v] = 1;
-          component.push_back(v);
-        }
-      }
-    }
-    double centroid[3] = { 0, 0, 0 };
-    for (std::uint64_t u : component)
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        centroid[a] += xyz[3 * u + a] / static_cast<double>(component.size());
-      }
-    }
-    std::uint64_t root = component[0];
-    double farthest = -1.0;
-    for (std::uint64_t u : component)
-    {
-      double d2 = 0.0;
-      for (int a = 0; a < 3; ++a)
-      {
-        d2 += (xyz[3 * u + a] - centroid[a]) * (xyz[3 * u + a] - centroid[a]);
-      }
-      if (d2 > farthest)
-      {
-        farthest = d2;
-        root = u;
-      }
-    }
-    double* nr = normalOf(root);
-    double outward = 0.0;
-    for (int a = 0; a < 3; ++a)
-    {
-      outward += nr[a] * (xyz[3 * root + a] - centroid[a]);
-    }
-    flipIfNegative(nr, outward);
-
-    // Prim's algorithm from the root; each node takes the orientation of the tree node that reached it.
-    for (std::uint64_t u : component)
-    {
-      visited[u] = 0;
-    }
-    using Entry = std::tuple<double, std::uint64_t, std::uint64_t>; // cost, node, parent
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> frontier;
-    frontier.emplace(0.0, root, root);
-    while (!frontier.empty())
-    {
-      const auto [c, u, parent] = frontier.top();
-      frontier.pop();
-      // Progress per 65536 entries taken from the queue (the stale ones after the last node included).
-      if (++popped % 65536 == 0 && parallel.progress &&
-        parallel.progress(0.5 + 0.5 * static_cast<double>(oriented) / static_cast<double>(g.count)))
-      {
-        return false;
-      }
-      if (visited[u])
-      {
-        continue;
-      }
-      visited[u] = 1;
-      ++oriented;
-      if (u != parent)
-      {
-        flipIfNegative(normalOf(u), agreement(parent, u));
-      }
-      for (std::size_t e = start[u]; e < start[u + 1]; ++e)
-      {
-        const std::uint64_t v = adjacency[e];
-        if (!visited[v])
-        {
-          frontier.emplace(cost(u, v), v, u);
-        }
-      }
-    }
-    ++components;
-  }
-  return true;
+  return orientInGridOrder<std::uint64_t>(grid, n, graphNeighbors, normals, parallel, components, degrees);
 }
 
 } // namespace gls
