@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # Runs the performance benchmarks P1-P5 (P5 in a process of its own, for its peak memory), then the normals and the
-# large-scan
-# benchmark, with the peer columns
-# when the peers are installed (CloudCompare in P1 adds 5 to 6 minutes here; docs/performance-peers.md).
+# large-scan benchmarks, with the peer columns when the peers are installed (CloudCompare in P1 adds 5 to 6 minutes
+# here; docs/performance-peers.md), then the GPU benchmark.
 #   Testing/Benchmarks/run-benchmarks.sh [build dir = build]
 set -euo pipefail
 bin="${1:-build}/bin/glsBenchmarks"
@@ -19,3 +18,6 @@ done
 # Real scan sizes: the multi-resolution evaluation, L1-L3 and the accuracy table (about 40 minutes on 2 cores;
 # docs/performance.md, "Large scans").
 "${1:-build}/bin/glsLargeScanBenchmark" --case all
+# The CUDA backend against the CPU engine (docs/performance.md, "Backends: CPU and CUDA"): without a usable device its
+# rows say why and only the CPU is timed.
+"${1:-build}/bin/glsCudaBenchmark" --points 1000000 --repeat 3
