@@ -29,7 +29,78 @@ std::vector<double> readObjVertices(const std::string& path)
   return xyz;
 }
 
-Cloud sampleObjSurface(const std::string& path, std::size_t n, unsigned seed)
+void sampleTrianglesByArea(const std::vector<double>& xyz, const std::vector<double>& vertexNormals,
+  const std::vector<std::array<std::size_t, 3>>& triangles, std::size_t count, std::uint64_t seed, double* points,
+  double* normals)
+{
+  if (triangles.empty())
+  {
+    return;
+  }
+  std::vector<double> cumulative(triangles.size());
+  double total = 0.0;
+  auto faceNormal = [&](std::size_t f, double* x) {
+    const double* a = &xyz[3 * triangles[f][0]];
+    const double* b = &xyz[3 * triangles[f][1]];
+    const double* c = &xyz[3 * triangles[f][2]];
+    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    x[0] = u[1] * v[2] - u[2] * v[1];
+    x[1] = u[2] * v[0] - u[0] * v[2];
+    x[2] = u[0] * v[1] - u[1] * v[0];
+  };
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+  {
+    double x[3];
+    faceNormal(f, x);
+    total += 0.5 * std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    cumulative[f] = total;
+  }
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const double r = uniform(rng) * total;
+    const std::size_t f = std::min<std::size_t>(
+      static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), r) - cumulative.begin()),
+      triangles.size() - 1);
+    double s = uniform(rng), w = uniform(rng);
+    if (s + w > 1.0)
+    {
+      s = 1.0 - s;
+      w = 1.0 - w;
+    }
+    const double bary[3] = { 1.0 - s - w, s, w };
+    double* p = points + 3 * i;
+    double* n = normals + 3 * i;
+    for (int a = 0; a < 3; ++a)
+    {
+      p[a] = 0.0;
+      n[a] = 0.0;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::size_t corner = triangles[f][static_cast<std::size_t>(k)];
+      for (int a = 0; a < 3; ++a)
+      {
+        p[a] += bary[k] * xyz[3 * corner + static_cast<std::size_t>(a)];
+        n[a] += bary[k] * vertexNormals[3 * corner + static_cast<std::size_t>(a)];
+      }
+    }
+    double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 1e-12))
+    {
+      faceNormal(f, n);
+      len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      n[a] /= len;
+    }
+  }
+}
+
+Cloud sampleObjSurface(const std::string& path, std::size_t n, std::uint64_t seed)
 {
   std::vector<double> v;
   std::vector<std::array<std::size_t, 3>> triangles;
@@ -75,65 +146,35 @@ Cloud sampleObjSurface(const std::string& path, std::size_t n, unsigned seed)
   {
     return c;
   }
-  // Area-weighted vertex normals (the cross products summed), and the triangles' cumulative areas.
-  std::vector<double> vn(v.size(), 0.0), faceNormal(3 * triangles.size()), cumulative(triangles.size());
-  double total = 0.0;
-  for (std::size_t f = 0; f < triangles.size(); ++f)
+  // Area-weighted vertex normals: the faces' cross products summed at their corners, then normalized.
+  std::vector<double> vn(v.size(), 0.0);
+  for (const std::array<std::size_t, 3>& t : triangles)
   {
-    const double* a = &v[3 * triangles[f][0]];
-    const double* b = &v[3 * triangles[f][1]];
-    const double* d = &v[3 * triangles[f][2]];
+    const double* a = &v[3 * t[0]];
+    const double* b = &v[3 * t[1]];
+    const double* d = &v[3 * t[2]];
     const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
     const double w[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
     const double x[3] = { u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0] };
-    for (std::size_t corner : triangles[f])
+    for (std::size_t corner : t)
     {
       for (int k = 0; k < 3; ++k)
       {
-        vn[3 * corner + k] += x[k];
+        vn[3 * corner + static_cast<std::size_t>(k)] += x[k];
       }
     }
-    std::copy(x, x + 3, &faceNormal[3 * f]);
-    total += 0.5 * std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-    cumulative[f] = total;
   }
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  c.points.reserve(3 * n);
-  c.normals.reserve(3 * n);
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < vertices; ++i)
   {
-    const double pick = uniform(rng) * total;
-    const std::size_t f = std::min<std::size_t>(
-      static_cast<std::size_t>(std::lower_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()),
-      triangles.size() - 1);
-    double r1 = uniform(rng), r2 = uniform(rng);
-    if (r1 + r2 > 1.0)
+    const double l = std::sqrt(vn[3 * i] * vn[3 * i] + vn[3 * i + 1] * vn[3 * i + 1] + vn[3 * i + 2] * vn[3 * i + 2]);
+    for (int k = 0; k < 3; ++k)
     {
-      r1 = 1.0 - r1;
-      r2 = 1.0 - r2;
+      vn[3 * i + static_cast<std::size_t>(k)] = l > 0.0 ? vn[3 * i + static_cast<std::size_t>(k)] / l : 0.0;
     }
-    const double weights[3] = { 1.0 - r1 - r2, r1, r2 };
-    double p[3] = { 0, 0, 0 }, nrm[3] = { 0, 0, 0 };
-    for (int corner = 0; corner < 3; ++corner)
-    {
-      const std::size_t id = triangles[f][static_cast<std::size_t>(corner)];
-      const double nl = std::sqrt(vn[3 * id] * vn[3 * id] + vn[3 * id + 1] * vn[3 * id + 1] +
-        vn[3 * id + 2] * vn[3 * id + 2]);
-      for (int k = 0; k < 3; ++k)
-      {
-        p[k] += weights[corner] * v[3 * id + k];
-        nrm[k] += nl > 0.0 ? weights[corner] * vn[3 * id + k] / nl : 0.0;
-      }
-    }
-    double l = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-    if (!(l > 1e-12))
-    {
-      std::copy(&faceNormal[3 * f], &faceNormal[3 * f] + 3, nrm);
-      l = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
-    }
-    c.add(p[0], p[1], p[2], nrm[0] / l, nrm[1] / l, nrm[2] / l);
   }
+  c.points.resize(3 * n);
+  c.normals.resize(3 * n);
+  sampleTrianglesByArea(v, vn, triangles, n, seed, c.points.data(), c.normals.data());
   return c;
 }
 

@@ -1,7 +1,9 @@
 // Analytic and seeded-random point clouds with exact normals for the core tests.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstddef>
 #include <random>
 #include <string>
@@ -106,11 +108,19 @@ inline Cloud sinusoid2D(std::size_t n, double amplitude, double w, double x0, do
 /// The vertices of an OBJ file ("v x y z" lines); empty if the file cannot be read.
 std::vector<double> readObjVertices(const std::string& path);
 
-/// An OBJ file's surface sampled by area: n points uniform over its triangles (polygons fanned into triangles),
-/// each with the normal interpolated from the area-weighted vertex normals (its triangle's own normal where they
-/// cancel). Seeded, so that the same arguments give the same cloud. Empty if the file has no triangle. VTK-free, so
-/// that the core's tests and the GPU benchmark run on machines without VTK.
-Cloud sampleObjSurface(const std::string& path, std::size_t n, unsigned seed);
+/// Triangles sampled by area: `count` points uniform over the triangles (corner indices into xyz), each with the
+/// normal interpolated (barycentric) from its corners' unit vertex normals and normalized (its triangle's own
+/// normal where they cancel), written to points and normals (3 count values each). Deterministic for a given seed.
+/// The one sampler of the test and benchmark clouds: sampleObjSurface reads an OBJ for it without VTK, the
+/// benchmarks' MeshSampler hands it VTK's meshes.
+void sampleTrianglesByArea(const std::vector<double>& xyz, const std::vector<double>& vertexNormals,
+  const std::vector<std::array<std::size_t, 3>>& triangles, std::size_t count, std::uint64_t seed, double* points,
+  double* normals);
+
+/// An OBJ file's surface sampled by area (sampleTrianglesByArea; polygons fanned into triangles, vertex normals
+/// area-weighted from the faces). Empty if the file has no triangle. VTK-free, so that the core's tests and the GPU
+/// benchmark run on machines without VTK.
+Cloud sampleObjSurface(const std::string& path, std::size_t n, std::uint64_t seed);
 
 /// Path of a file in Testing/Data (the build passes the source directory in GLS_TEST_DATA_DIR).
 std::string dataFile(const std::string& name);
