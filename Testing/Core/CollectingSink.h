@@ -42,6 +42,29 @@ inline bool sameBits(const gls::ScaleSample& a, const gls::ScaleSample& b)
   return std::memcmp(va, vb, sizeof(va)) == 0;
 }
 
+/// Two per-point loops that must agree bit for bit: for every stride-th point i below count, first(i, out) and
+/// second(i, out) each write S samples. The valid samples compared, or -1 when a sample's bits or validity differ.
+template <typename First, typename Second>
+long validSamplesIfSameBits(std::size_t count, std::size_t stride, std::size_t S, First&& first, Second&& second)
+{
+  std::vector<gls::ScaleSample> a(S), b(S);
+  long valid = 0;
+  for (std::size_t i = 0; i < count; i += stride)
+  {
+    first(i, a.data());
+    second(i, b.data());
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      if (!sameBits(a[k], b[k]) || a[k].valid != b[k].valid)
+      {
+        return -1;
+      }
+      valid += a[k].valid ? 1 : 0;
+    }
+  }
+  return valid;
+}
+
 /// Runs the engine over a cloud and returns every sample.
 inline CollectingSink runScaleSpace(const std::vector<double>& points, const std::vector<double>& normals,
   const std::vector<double>& scales, int threads = 0, double minNeighbors = 6.0,

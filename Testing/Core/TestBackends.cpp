@@ -192,8 +192,9 @@ TEST(CudaDevice, ChunkedRunsEqualOneChunkAndRunsAreDeterministic)
 TEST(CudaDevice, MultiresolutionMatchesTheCpu)
 {
   // The multi-resolution evaluation at the default scales (0.8% to 8% of the diagonal) on the bunny's surface
-  // sampled to 300,000 points: the device runs evaluateAllScalesMultiresolution, the CPU engine its own kernel (the
-  // same samples summed in another order, 1e-10 apart in TestMultiresolution), so the two agree to rounding; a
+  // sampled to 300,000 points: the device runs evaluateAllScalesMultiresolutionByWindows (bitwise the host/device
+  // loop), the CPU engine its own kernel (the same samples summed in another order, 1e-10 apart in
+  // TestMultiresolution), so the two agree to rounding; a
   // second device run and a run in chunks of 7,000 points give the same bits.
   GLS_REQUIRE_CUDA_DEVICE();
   std::vector<double> scales;

@@ -109,7 +109,8 @@ PatchErrors patchErrors(const Patch& patch, const gls::Vec3& p, double t)
   gls::clearMoments(bin);
   gls::CellSample sample;
   gls::makeCellSample(cell, p, cell.centroid - p, sample);
-  gls::addCellSample(&bin, binning.View, t * t, sample, dc2);
+  gls::forEachShellOfSpread(binning.View, t * t, dc2 + sample.spreadPerPoint, sample.halfWidth,
+    [&](int, const gls::ShellShare& share) { gls::addCellShare(bin, sample, share); }); // one scale: one bin
   gls::WeightedSums ms, mds;
   gls::weightedSumsFromMoments(bin, t, ms, mds);
   const double d = std::sqrt(dc2);

@@ -330,30 +330,21 @@ namespace
 {
 
 /// evaluateAllScalesMultiresolutionByWindows<G> against evaluateAllScalesMultiresolution on every 11th point: the
-/// count of valid samples compared, or -1 at the first sample whose bits differ.
+/// valid samples compared, or -1 when one differs in its bits.
 template <int G>
 long multiresolutionWindowsAgainstTheOnePass(const Cloud& c, const gls::MultiresolutionView& v,
   const gls::ScaleBinning& b)
 {
-  const std::size_t S = static_cast<std::size_t>(b.count);
-  std::vector<gls::AggregateMoments> bins(S);
-  std::vector<gls::ScaleSample> onePass(S), windows(S);
-  long compared = 0;
-  for (std::size_t i = 0; i < c.size(); i += 11)
-  {
-    const gls::Vec3 p = { c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] };
-    gls::evaluateAllScalesMultiresolution(v, p, b, 6.0, bins.data(), onePass.data());
-    gls::evaluateAllScalesMultiresolutionByWindows<G>(v, p, b, 6.0, windows.data());
-    for (std::size_t k = 0; k < S; ++k)
-    {
-      if (!sameBits(onePass[k], windows[k]) || onePass[k].valid != windows[k].valid)
-      {
-        return -1;
-      }
-      compared += onePass[k].valid ? 1 : 0;
-    }
-  }
-  return compared;
+  std::vector<gls::AggregateMoments> bins(static_cast<std::size_t>(b.count));
+  auto at = [&c](std::size_t i) { return gls::Vec3{ c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] }; };
+  return validSamplesIfSameBits(
+    c.size(), 11, bins.size(),
+    [&](std::size_t i, gls::ScaleSample* out) {
+      gls::evaluateAllScalesMultiresolution(v, at(i), b, 6.0, bins.data(), out);
+    },
+    [&](std::size_t i, gls::ScaleSample* out) {
+      gls::evaluateAllScalesMultiresolutionByWindows<G>(v, at(i), b, 6.0, out);
+    });
 }
 
 } // namespace

@@ -144,30 +144,19 @@ TEST(OnePass, CpuKernelAgreesWithTheDeviceLoop)
 namespace
 {
 
-/// evaluateAllScalesByWindows<G> against evaluateAllScales on every 5th point of c (and points off the cloud):
-/// the count of samples compared, or -1 at the first sample whose bits differ.
+/// evaluateAllScalesByWindows<G> against evaluateAllScales on every 5th point of c (half of them lifted off the
+/// cloud): the valid samples compared, or -1 when one differs in its bits.
 template <int G>
 long windowsAgainstTheOnePass(const Cloud& c, const gls::GridView& g, const gls::ScaleBinning& b)
 {
-  const std::size_t S = static_cast<std::size_t>(b.count);
-  std::vector<gls::Moments> bins(S);
-  std::vector<gls::ScaleSample> onePass(S), windows(S);
-  long compared = 0;
-  for (std::size_t i = 0; i < c.size(); i += 5)
-  {
-    const gls::Vec3 p = { c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] + (i % 2 ? 0.0 : 0.05) };
-    gls::evaluateAllScales(g, p, b, 6.0, bins.data(), onePass.data());
-    gls::evaluateAllScalesByWindows<G>(g, p, b, 6.0, windows.data());
-    for (std::size_t k = 0; k < S; ++k)
-    {
-      if (!sameBits(onePass[k], windows[k]) || onePass[k].valid != windows[k].valid)
-      {
-        return -1;
-      }
-      compared += onePass[k].valid ? 1 : 0;
-    }
-  }
-  return compared;
+  std::vector<gls::Moments> bins(static_cast<std::size_t>(b.count));
+  auto at = [&c](std::size_t i) {
+    return gls::Vec3{ c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] + (i % 2 ? 0.0 : 0.05) };
+  };
+  return validSamplesIfSameBits(
+    c.size(), 5, bins.size(),
+    [&](std::size_t i, gls::ScaleSample* out) { gls::evaluateAllScales(g, at(i), b, 6.0, bins.data(), out); },
+    [&](std::size_t i, gls::ScaleSample* out) { gls::evaluateAllScalesByWindows<G>(g, at(i), b, 6.0, out); });
 }
 
 } // namespace

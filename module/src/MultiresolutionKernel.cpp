@@ -511,7 +511,7 @@ GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, doub
   }
 }
 
-/// Adds the packed samples of p's ball: the cells, each spread over the shells it meets (addCellSample), and the
+/// Adds the packed samples of p's ball: the cells, each spread over the shells it meets (forEachShellOfSpread), and the
 /// points inside it, binned by their distance from p.
 template <bool Avx2>
 GLS_ALWAYS_INLINE void addPackedSamples(const Vec3& p, const ScaleBinning& b, double r2,

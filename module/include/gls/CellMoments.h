@@ -260,12 +260,4 @@ GLS_INLINE void addCellShare(AggregateMoments& a, const CellSample& s, const She
   }
 }
 
-/// Adds a cell's sample for p (its centroid at squared distance d2 from p) to the shells it meets below r2.
-GLS_INLINE void addCellSample(
-  AggregateMoments* bins, const ScaleBinning& b, double r2, const CellSample& s, double d2)
-{
-  forEachShellOfSpread(
-    b, r2, d2 + s.spreadPerPoint, s.halfWidth, [&](int k, const ShellShare& share) { addCellShare(bins[k], s, share); });
-}
-
 } // namespace gls

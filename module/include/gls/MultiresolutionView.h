@@ -323,10 +323,41 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
   }
 }
 
-/// Fits every scale of the evaluation point p from the multi-resolution samples of the ball of the largest scale:
-/// points inside the ball enter exactly, as in evaluateAllScales; a cell taken whole enters as its CellSample
-/// (its points weighted by a linear field, their squared distances spread over the shells they meet).
-/// b: the S increasing scales and their binning table; bins: S scratch moment sets; out: S samples.
+/// The terms of the ball of the largest scale around p, each with its bin k: cellShare(k, sample, share) for each
+/// shell a cell taken whole meets (its CellSample: its points weighted by a linear field, their squared distances
+/// spread over the shells), point(k, x, d2, normal) for each point read one by one inside the ball (x = its position
+/// - p, d2 = |x|^2). The walk (forEachMultiresolutionSample) fixes the terms and their order.
+template <typename CellShare, typename PointTerm>
+GLS_INLINE void forEachMultiresolutionTerm(
+  const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, CellShare&& cellShare, PointTerm&& point)
+{
+  const double r = b.scales[b.count - 1];
+  const double r2 = r * r;
+  const Vec3 anchor = regionCentre(walkRegion(v, p));
+  forEachMultiresolutionSample(
+    v, p, r, b.scales[0],
+    [&](std::uint32_t node, int level) {
+      PyramidCell cell;
+      cellMoments(v, node, level, cell);
+      CellSample s;
+      makeCellSample(cell, p, cell.centroid - anchor, s);
+      forEachShellOfSpread(b, r2, squaredNorm(cell.centroid - p) + s.spreadPerPoint, s.halfWidth,
+        [&](int k, const ShellShare& share) { cellShare(k, s, share); });
+    },
+    [&](std::uint32_t i) {
+      const Vec3 x = v.points[i] - p;
+      const double d2 = squaredNorm(x);
+      if (d2 < r2)
+      {
+        point(firstScaleHolding(b, d2), x, d2, v.normals[i]);
+      }
+    });
+}
+
+/// Fits every scale of the evaluation point p from the multi-resolution samples of the ball of the largest scale
+/// (forEachMultiresolutionTerm): points inside the ball enter exactly, as in evaluateAllScales; a cell taken whole
+/// enters as its CellSample. b: the S increasing scales and their binning table; bins: S scratch moment sets; out: S
+/// samples.
 GLS_INLINE void evaluateAllScalesMultiresolution(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
   double minNeighbors, AggregateMoments* bins, ScaleSample* out)
 {
@@ -338,33 +369,16 @@ GLS_INLINE void evaluateAllScalesMultiresolution(const MultiresolutionView& v, c
   {
     clearMoments(bins[k]);
   }
-  const double r = b.scales[b.count - 1];
-  const double r2 = r * r;
-  const Vec3 anchor = regionCentre(walkRegion(v, p));
-  forEachMultiresolutionSample(
-    v, p, r, b.scales[0],
-    [&](std::uint32_t node, int level) {
-      PyramidCell cell;
-      cellMoments(v, node, level, cell);
-      CellSample s;
-      makeCellSample(cell, p, cell.centroid - anchor, s);
-      addCellSample(bins, b, r2, s, squaredNorm(cell.centroid - p));
-    },
-    [&](std::uint32_t i) {
-      const Vec3 x = v.points[i] - p;
-      const double d2 = squaredNorm(x);
-      if (d2 < r2)
-      {
-        addPoint(bins[firstScaleHolding(b, d2)], x, d2, v.normals[i]);
-      }
-    });
+  forEachMultiresolutionTerm(
+    v, p, b, [&](int k, const CellSample& s, const ShellShare& share) { addCellShare(bins[k], s, share); },
+    [&](int k, const Vec3& x, double d2, const Vec3& n) { addPoint(bins[k], x, d2, n); });
   fitAllScalesFromBins(b, minNeighbors, bins, out);
 }
 
 /// evaluateAllScalesMultiresolution, bit for bit, with the scales taken G at a time (fitAllScalesByWindows): the
-/// walk of the largest ball is repeated per window (the same samples in the same order), and each sample adds only
-/// its shares of the window's shells. No scratch bins: the CUDA kernel's loop, where S bins per thread in memory are
-/// read and written scattered.
+/// walk of the largest ball is repeated per window (the same terms in the same order), and only the window's bins
+/// are added to. No scratch bins: the CUDA kernel's loop, where S bins per thread in memory are read and written
+/// scattered.
 template <int G>
 GLS_INLINE void evaluateAllScalesMultiresolutionByWindows(const MultiresolutionView& v, const Vec3& p,
   const ScaleBinning& b, double minNeighbors, ScaleSample* out)
@@ -373,33 +387,15 @@ GLS_INLINE void evaluateAllScalesMultiresolutionByWindows(const MultiresolutionV
   {
     return;
   }
-  const double r = b.scales[b.count - 1];
-  const double r2 = r * r;
-  const Vec3 anchor = regionCentre(walkRegion(v, p));
   fitAllScalesByWindows<G, AggregateMoments>(b, minNeighbors,
-    [&](int k0, int top, AggregateMoments* window) {
-      const double below = k0 > 0 ? b.squaredScales[k0 - 1] : 0.0;
-      const double above = b.squaredScales[top];
-      forEachMultiresolutionSample(
-        v, p, r, b.scales[0],
-        [&](std::uint32_t node, int level) {
-          PyramidCell cell;
-          cellMoments(v, node, level, cell);
-          CellSample s;
-          makeCellSample(cell, p, cell.centroid - anchor, s);
-          forEachShellOfSpread(b, r2, squaredNorm(cell.centroid - p) + s.spreadPerPoint, s.halfWidth,
-            [&](int k, const ShellShare& share) {
-              addToWindowSlot<G>(window, k - k0, [&](AggregateMoments& m) { addCellShare(m, s, share); });
-            });
+    [&](int k0, int, AggregateMoments* window) {
+      forEachMultiresolutionTerm(
+        v, p, b,
+        [&](int k, const CellSample& s, const ShellShare& share) {
+          addToWindowSlot<G>(window, k - k0, [&](AggregateMoments& m) { addCellShare(m, s, share); });
         },
-        [&](std::uint32_t i) {
-          const Vec3 x = v.points[i] - p;
-          const double d2 = squaredNorm(x);
-          if (d2 >= below && d2 < above)
-          {
-            addToWindowSlot<G>(
-              window, firstScaleHolding(b, d2) - k0, [&](AggregateMoments& m) { addPoint(m, x, d2, v.normals[i]); });
-          }
+        [&](int k, const Vec3& x, double d2, const Vec3& n) {
+          addToWindowSlot<G>(window, k - k0, [&](AggregateMoments& m) { addPoint(m, x, d2, n); });
         });
     },
     out);
