@@ -10,6 +10,7 @@
 // one CPU run, R CUDA runs (the first includes the device's set-up; the best is reported), the GPU/CPU speed-up of
 // the best run, and how far the GPU's features are from the CPU's (max |f_gpu - f_cpu|; features in [0, 1]) and
 // how many points are NaN on one side only. Without a usable device the CUDA column says why and the run goes on.
+#include "CommaList.h"
 #include "TestClouds.h"
 
 #include "gls/Backend.h"
@@ -25,7 +26,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -35,30 +35,6 @@ namespace
 double secondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-std::vector<long long> parseSizes(const char* text)
-{
-  std::vector<long long> sizes;
-  std::stringstream s(text);
-  std::string item;
-  while (std::getline(s, item, ','))
-  {
-    sizes.push_back(std::atoll(item.c_str()));
-  }
-  return sizes;
-}
-
-double boxDiagonal(const std::vector<double>& xyz)
-{
-  double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
-  for (std::size_t i = 0; i < xyz.size(); ++i)
-  {
-    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
-    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
-  }
-  return std::sqrt(
-    (hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
 }
 
 /// One fused run (scale space, nu and the continuous feature per point); seconds, or a negative value on abort.
@@ -97,7 +73,11 @@ int main(int argc, char* argv[])
     }
     else if (!std::strcmp(argv[i], "--points") && hasValue)
     {
-      sizes = parseSizes(argv[++i]);
+      sizes.clear();
+      for (const std::string& item : splitCommaList(argv[++i]))
+      {
+        sizes.push_back(std::atoll(item.c_str()));
+      }
     }
     else if (!std::strcmp(argv[i], "--threads") && hasValue)
     {
@@ -138,7 +118,7 @@ int main(int argc, char* argv[])
       std::fprintf(stderr, "error: cannot sample %s\n", model.c_str());
       return 1;
     }
-    const double diagonal = boxDiagonal(cloud.points);
+    const double diagonal = glstest::boxDiagonal(cloud.points);
     for (gls::Evaluation evaluation : { gls::Evaluation::Exact, gls::Evaluation::Multiresolution })
     {
       if (evaluation == gls::Evaluation::Exact && n > exactUpTo)

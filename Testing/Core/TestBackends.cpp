@@ -47,14 +47,7 @@ CollectingSink runWith(const Cloud& c, const std::vector<double>& scales, gls::B
 Cloud sampledBunny(std::size_t n, double low, double high, int count, std::vector<double>& scales)
 {
   Cloud c = sampleObjSurface(dataFile("stanford-bunny.obj"), n, 3);
-  double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
-  for (std::size_t i = 0; i < c.points.size(); ++i)
-  {
-    lo[i % 3] = std::min(lo[i % 3], c.points[i]);
-    hi[i % 3] = std::max(hi[i % 3], c.points[i]);
-  }
-  const double diagonal = std::sqrt(
-    (hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const double diagonal = boxDiagonal(c.points);
   scales = gls::sampleScales(low * diagonal, high * diagonal, count, gls::ScaleSampling::Quadratic);
   return c;
 }

@@ -178,6 +178,18 @@ Cloud sampleObjSurface(const std::string& path, std::size_t n, std::uint64_t see
   return c;
 }
 
+double boxDiagonal(const std::vector<double>& xyz)
+{
+  double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+  for (std::size_t i = 0; i < xyz.size(); ++i)
+  {
+    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+  }
+  return std::sqrt(
+    (hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
 std::string dataFile(const std::string& name)
 {
   return std::string(GLS_TEST_DATA_DIR) + "/" + name;

@@ -122,6 +122,9 @@ void sampleTrianglesByArea(const std::vector<double>& xyz, const std::vector<dou
 /// benchmark run on machines without VTK.
 Cloud sampleObjSurface(const std::string& path, std::size_t n, std::uint64_t seed);
 
+/// The diagonal of the bounding box of interleaved xyz triples (the length the relative scales are fractions of).
+double boxDiagonal(const std::vector<double>& xyz);
+
 /// Path of a file in Testing/Data (the build passes the source directory in GLS_TEST_DATA_DIR).
 std::string dataFile(const std::string& name);
 

@@ -139,13 +139,7 @@ void NeighborGrid::build(
       this->Normals[slot] = { normals[3 * i], normals[3 * i + 1], normals[3 * i + 2] };
     }
   }
-  // Each cell's next slot is now where it ends, the start of the next cell: shifted back by one cell (no second
-  // array of the grid's size).
-  for (std::size_t c = cellCount; c > 0; --c)
-  {
-    this->CellStart[c] = this->CellStart[c - 1];
-  }
-  this->CellStart[0] = 0;
+  restoreBucketStarts(this->CellStart);
   v.cellStart = this->CellStart.data();
   v.points = this->Points.data();
   v.normals = normals ? this->Normals.data() : nullptr;

@@ -565,12 +565,7 @@ bool orientInGridOrder(NeighborGrid& grid, std::size_t n, int graphNeighbors, do
       adjacency[start[v]++] = static_cast<Index>(s);
     }
   }
-  // start[s] is now where list s ends, the start of list s + 1: shifted back by one list.
-  for (std::size_t s = count; s > 0; --s)
-  {
-    start[s] = start[s - 1];
-  }
-  start[0] = 0;
+  restoreBucketStarts(start);
   std::vector<Index>().swap(nearest);
   std::vector<std::size_t>().swap(slot);
   std::vector<Index> kept(count, 0);
@@ -611,11 +606,7 @@ bool orientInGridOrder(NeighborGrid& grid, std::size_t n, int graphNeighbors, do
   {
     nodeOf[original[s]] = static_cast<Index>(s);
   }
-  auto agreement = [&](Index a, Index b) {
-    const Vec3& na = normal[a];
-    const Vec3& nb = normal[b];
-    return na.x * nb.x + na.y * nb.y + na.z * nb.z;
-  };
+  auto agreement = [&](Index a, Index b) { return dot(normal[a], normal[b]); };
   auto cost = [&](Index a, Index b) { return 1.0 - std::abs(agreement(a, b)); };
   auto flip = [&](Index a, double sign) {
     if (sign < 0.0)

@@ -71,6 +71,16 @@ GLS_INLINE int firstScaleHolding(const ScaleBinning& b, double d2)
   return k < b.count - 1 ? k : b.count - 1;
 }
 
+/// One step of the running sum over the bins: ball += bin, the ball of scale t, and its fit.
+template <typename MomentSet>
+GLS_INLINE ScaleSample addBinAndFit(MomentSet& ball, const MomentSet& bin, double t, double minNeighbors)
+{
+  addMoments(ball, bin);
+  WeightedSums s, ds;
+  weightedSumsFromMoments(ball, t, s, ds);
+  return fitOrientedSphere(s, ds, neighborCount(ball), minNeighbors);
+}
+
 /// Turns the S bins of one evaluation point into its S samples: a running sum over the bins gives the moments of
 /// the ball of each scales[k] (the bins are left as they are), and one fit per scale. MomentSet is Moments (the
 /// exact pass) or AggregateMoments (the multi-resolution pass): both give clearMoments, addMoments,
@@ -83,10 +93,7 @@ GLS_INLINE void fitAllScalesFromBins(
   clearMoments(ball);
   for (int k = 0; k < b.count; ++k)
   {
-    addMoments(ball, bins[k]);
-    WeightedSums s, ds;
-    weightedSumsFromMoments(ball, b.scales[k], s, ds);
-    out[k] = fitOrientedSphere(s, ds, neighborCount(ball), minNeighbors);
+    out[k] = addBinAndFit(ball, bins[k], b.scales[k], minNeighbors);
   }
 }
 
@@ -137,10 +144,7 @@ GLS_INLINE void fitAllScalesByWindows(const ScaleBinning& b, double minNeighbors
       const int k = k0 + w;
       if (k <= top)
       {
-        addMoments(ball, window[w]);
-        WeightedSums s, ds;
-        weightedSumsFromMoments(ball, b.scales[k], s, ds);
-        out[k] = fitOrientedSphere(s, ds, neighborCount(ball), minNeighbors);
+        out[k] = addBinAndFit(ball, window[w], b.scales[k], minNeighbors);
       }
     }
   }
