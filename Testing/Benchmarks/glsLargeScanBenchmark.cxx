@@ -516,7 +516,7 @@ int caseAccuracy(const std::vector<std::string>& models, long long n, int thread
         {
           gls::forEachMultiresolutionSample(
             v, { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] }, scales.back(), scales.front(),
-            [&](std::uint32_t, int) { samples += 1.0; }, [&](std::uint32_t) { samples += 1.0; });
+            [&](std::uint32_t, int, bool) { samples += 1.0; }, [&](std::uint32_t) { samples += 1.0; });
         }
         samples /= visited;
       }

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 using namespace glstest;
@@ -223,4 +224,67 @@ TEST(CellMoments, SampleAcrossAScaleKeepsTheDerivativeWeight)
   const PatchErrors e = patchErrors(patch, p, t);
   EXPECT_LT(e.modelDerivative, e.centroidDerivative / 10.0);
   EXPECT_LT(e.model, e.centroid / 10.0);
+}
+
+TEST(CellMoments, ShareExpansionsAreTheDerivativesOfTheShares)
+{
+  // The slope and curvature of a share with respect to the spread's mean (what a linearized far cell is moved by)
+  // against central differences of pieceShare and pieceShareSlope, for pieces whose ends are ends of the spread or
+  // scale spheres, and for a whole spread; and one wrong coefficient would be seen.
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worstSlope = 0.0, worstCurvature = 0.0;
+  long pieces = 0;
+  for (int trial = 0; trial < 4000; ++trial)
+  {
+    const double mean = 1.0 + unit(random), half = 0.1 + 0.4 * unit(random);
+    double e0 = mean - half + 2.0 * half * unit(random), e1 = mean - half + 2.0 * half * unit(random);
+    if (e0 > e1)
+    {
+      std::swap(e0, e1);
+    }
+    const bool lowFixed = (trial & 1) != 0, highFixed = (trial & 2) != 0;
+    const auto bounds = [&](double m, double& u, double& w) {
+      u = lowFixed ? e0 : m - half;
+      w = highFixed ? e1 : m + half;
+    };
+    const double h = 1e-5;
+    double u = 0.0, w = 0.0, u1 = 0.0, w1 = 0.0, u2 = 0.0, w2 = 0.0;
+    bounds(mean, u, w);
+    bounds(mean + h, u1, w1);
+    bounds(mean - h, u2, w2);
+    if (!(w2 > u2 && w1 > u1 && w > u))
+    {
+      continue;
+    }
+    ++pieces;
+    const gls::SpreadDensity d = gls::spreadDensity(half);
+    const gls::ShellShare slope = gls::pieceShareSlope(mean, d, u, w, lowFixed, highFixed);
+    const gls::ShellShare curvature = gls::pieceShareCurvature(mean, d, u, w, lowFixed, highFixed);
+    const gls::ShellShare a = gls::pieceShare(mean + h, d, u1, w1), b = gls::pieceShare(mean - h, d, u2, w2);
+    const gls::ShellShare sa = gls::pieceShareSlope(mean + h, d, u1, w1, lowFixed, highFixed);
+    const gls::ShellShare sb = gls::pieceShareSlope(mean - h, d, u2, w2, lowFixed, highFixed);
+    for (int j = 0; j < 3; ++j)
+    {
+      const double dm = (a.m[j] - b.m[j]) / (2.0 * h), dc = (a.c[j] - b.c[j]) / (2.0 * h);
+      const double ddm = (sa.m[j] - sb.m[j]) / (2.0 * h), ddc = (sa.c[j] - sb.c[j]) / (2.0 * h);
+      worstSlope = std::max({ worstSlope, std::abs(dm - slope.m[j]) / (1.0 + std::abs(dm)),
+        std::abs(dc - slope.c[j]) / (1.0 + std::abs(dc)) });
+      worstCurvature = std::max({ worstCurvature, std::abs(ddm - curvature.m[j]) / (1.0 + std::abs(ddm)),
+        std::abs(ddc - curvature.c[j]) / (1.0 + std::abs(ddc)) });
+    }
+  }
+  EXPECT_GT(pieces, 2000);
+  EXPECT_LT(worstSlope, 1e-6);
+  EXPECT_LT(worstCurvature, 1e-6);
+  // A whole spread: m = (1, mean, mean^2 + V), c = (0, 2, 4 mean).
+  const gls::ShellShareExpansion e = gls::wholeShareExpansion(1.3, 0.2);
+  const gls::ShellShare up = gls::wholeShare(1.3 + 1e-6, 0.2), down = gls::wholeShare(1.3 - 1e-6, 0.2);
+  for (int j = 0; j < 3; ++j)
+  {
+    EXPECT_NEAR(e.slope.m[j], (up.m[j] - down.m[j]) / 2e-6, 1e-8);
+    EXPECT_NEAR(e.slope.c[j], (up.c[j] - down.c[j]) / 2e-6, 1e-8);
+  }
+  EXPECT_EQ(e.curvature.m[2], 2.0);
+  EXPECT_EQ(e.curvature.c[2], 0.0);
 }

@@ -22,8 +22,12 @@ using namespace glstest;
 namespace
 {
 
-gls::ScaleSpaceSettings multiresolutionSettings(
-  const std::vector<double>& scales, double accuracy, int threads = 0, double minNeighbors = 6.0)
+/// Where far cells are linearized in the tests that force it (gls::kLinearizedDistance keeps them past the largest
+/// scale on these small clouds): 2 half-diagonals of the far region.
+constexpr double kNearLinearized = 2.0;
+
+gls::ScaleSpaceSettings multiresolutionSettings(const std::vector<double>& scales, double accuracy, int threads = 0,
+  double minNeighbors = 6.0, double linearized = gls::kLinearizedDistance)
 {
   gls::ScaleSpaceSettings settings;
   settings.scales = scales;
@@ -31,18 +35,30 @@ gls::ScaleSpaceSettings multiresolutionSettings(
   settings.parallel.threads = threads;
   settings.evaluation = gls::Evaluation::Multiresolution;
   settings.multiresolution.accuracy = accuracy;
+  settings.multiresolution.linearizedDistance = linearized;
   return settings;
 }
 
 CollectingSink runMultiresolution(const Cloud& c, const std::vector<double>& scales, double accuracy,
-  int threads = 0, double minNeighbors = 6.0)
+  int threads = 0, double minNeighbors = 6.0, double linearized = gls::kLinearizedDistance)
 {
-  const gls::ScaleSpaceSettings settings = multiresolutionSettings(scales, accuracy, threads, minNeighbors);
+  const gls::ScaleSpaceSettings settings =
+    multiresolutionSettings(scales, accuracy, threads, minNeighbors, linearized);
   gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
   EXPECT_EQ(engine.evaluation(), gls::Evaluation::Multiresolution);
   CollectingSink sink(c.size(), scales.size());
   EXPECT_TRUE(engine.run(sink));
   return sink;
+}
+
+/// The linearized cells of p's largest ball (forEachMultiresolutionSample's far part).
+long linearizedCells(const gls::MultiresolutionView& v, const gls::Vec3& p, const std::vector<double>& scales)
+{
+  long n = 0;
+  gls::forEachMultiresolutionSample(
+    v, p, scales.back(), scales.front(), [&](std::uint32_t, int, int part) { n += part > 0 ? 1 : 0; },
+    [](std::uint32_t) {});
+  return n;
 }
 
 /// Samples of p's largest ball: how many cells were taken whole, how many points one by one, and how many of the
@@ -62,7 +78,7 @@ SampleCounts countSamples(const gls::MultiresolutionView& v, const gls::Vec3& p,
   n.fewestInACell = static_cast<double>(v.count);
   gls::forEachMultiresolutionSample(
     v, p, scales.back(), scales.front(),
-    [&](std::uint32_t node, int level) {
+    [&](std::uint32_t node, int level, bool) {
       ++n.cells;
       gls::PyramidCell c;
       gls::cellMoments(v, node, level, c);
@@ -100,8 +116,10 @@ SampleCounts countSamples(const gls::MultiresolutionView& v, const gls::Vec3& p,
 
 /// Checks the analytic descriptors of an exact shape at every point and scale: kappa (times t) and tau / t to 1e-12
 /// of their expected values, phi = 1, and the derivatives 0.
-void expectAnalytic(const CollectingSink& s, const std::vector<double>& scales, double kappa, double tolerance)
+void expectAnalytic(const CollectingSink& s, const std::vector<double>& scales, double kappa, double tolerance,
+  double derivativeTolerance = 0.0)
 {
+  derivativeTolerance = derivativeTolerance > 0.0 ? derivativeTolerance : tolerance;
   long valid = 0;
   for (std::size_t i = 0; i < s.Samples.size() / scales.size(); ++i)
   {
@@ -117,8 +135,8 @@ void expectAnalytic(const CollectingSink& s, const std::vector<double>& scales, 
       ASSERT_NEAR(q.kappa * t, kappa * t, tolerance) << "point " << i << " scale " << t;
       ASSERT_NEAR(q.tau / t, 0.0, tolerance) << "point " << i << " scale " << t;
       ASSERT_NEAR(q.phi, 1.0, tolerance);
-      ASSERT_NEAR(q.dtau, 0.0, tolerance);
-      ASSERT_NEAR(q.dkappa * t * t, 0.0, tolerance);
+      ASSERT_NEAR(q.dtau, 0.0, derivativeTolerance);
+      ASSERT_NEAR(q.dkappa * t * t, 0.0, derivativeTolerance);
     }
   }
   EXPECT_GT(valid, static_cast<long>(s.Samples.size() * 9 / 10));
@@ -138,6 +156,16 @@ TEST(Multiresolution, SphereIsExactForEveryAccuracy)
   }
   // Inward normals: kappa = -1/r.
   expectAnalytic(runMultiresolution(sphere(30000, r, true), scales, 0.1), scales, -1.0 / r, 1e-12);
+  // With linearized far cells (their weights moved to each point by an expansion, still one weight per point; the
+  // derivatives, formed from differences of the expanded sums, to 1e-11).
+  const gls::ScaleSpaceEngine engine(
+    c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.1, 0, 6.0, kNearLinearized));
+  EXPECT_GT(linearizedCells(engine.pyramid().view(), { c.points[0], c.points[1], c.points[2] }, scales), 20);
+  for (double eps : { 0.1, 0.3 })
+  {
+    SCOPED_TRACE(eps);
+    expectAnalytic(runMultiresolution(c, scales, eps, 0, 6.0, kNearLinearized), scales, 1.0 / r, 1e-12, 1e-11);
+  }
 }
 
 TEST(Multiresolution, SphereFarFromTheOriginStaysExact)
@@ -203,6 +231,7 @@ TEST(Multiresolution, CircleIsExactIn2D)
   {
     SCOPED_TRACE(eps);
     expectAnalytic(runMultiresolution(c, scales, eps, 0, 3.0), scales, 1.0 / r, 1e-12);
+    expectAnalytic(runMultiresolution(c, scales, eps, 0, 3.0, kNearLinearized), scales, 1.0 / r, 1e-12, 1e-11);
   }
 }
 
@@ -271,21 +300,40 @@ TEST(Multiresolution, NoisySurfaceStaysWithinTheAccuracyTargets)
   EXPECT_GT(*std::max_element(kappa.begin(), kappa.end()), 1e-9);
 }
 
+namespace
+{
+void expectCpuKernelAgreesWithTheDeviceLoop(const Cloud& c, const std::vector<double>& scales, double linearized);
+} // namespace
+
 TEST(Multiresolution, CpuKernelAgreesWithTheDeviceLoop)
 {
   // The CPU kernel (level by level, batched), in its portable build and in its fastest one (AVX2 where the processor
   // has it: the cells classified four at a time, the shell pieces of four cells formed at once), against
   // evaluateAllScalesMultiresolution, the host/device loop whose windowed form (bitwise the same, tested below) the
   // CUDA kernel runs: the same samples summed in another order. Both builds put every cell in the same first shell.
+  // With linearized far cells too: the kernel sums them once per far region and moves the sums to each point.
   const Cloud c = paraboloid(150, 1.0, 0.7, 0.3, 0.01, 0.05, 4);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 12, gls::ScaleSampling::Quadratic);
-  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.15));
+  for (double linearized : { gls::kLinearizedDistance, kNearLinearized })
+  {
+    SCOPED_TRACE(linearized);
+    expectCpuKernelAgreesWithTheDeviceLoop(c, scales, linearized);
+  }
+}
+
+namespace
+{
+
+void expectCpuKernelAgreesWithTheDeviceLoop(const Cloud& c, const std::vector<double>& scales, double linearized)
+{
+  gls::ScaleSpaceEngine engine(
+    c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.15, 0, 6.0, linearized));
   const TestBinning binning(scales);
   const gls::ScaleBinning& b = binning.View;
   std::vector<gls::AggregateMoments> bins(scales.size());
   std::vector<gls::ScaleSample> device(scales.size());
   double worst = 0.0;
-  long taken = 0, shells = 0;
+  long taken = 0, shells = 0, farCells = 0;
   for (gls::CpuKernelBuild build : { gls::CpuKernelBuild::Portable, gls::CpuKernelBuild::Fastest })
   {
     std::vector<gls::ScaleSample> cpu(scales.size()), other(scales.size());
@@ -299,7 +347,8 @@ TEST(Multiresolution, CpuKernelAgreesWithTheDeviceLoop)
       gls::evaluateAllScalesMultiresolutionOnCpu(engine.pyramid().view(), p, b, 6.0, scratch, cpu.data(), build);
       gls::evaluateAllScalesMultiresolutionOnCpu(
         engine.pyramid().view(), p, b, 6.0, otherScratch, other.data(), otherBuild);
-      taken += static_cast<long>(scratch.taken.size());
+      taken += static_cast<long>(scratch.packedCells.size());
+      farCells += linearizedCells(engine.pyramid().view(), p, scales);
       ASSERT_EQ(scratch.packedCells.size(), otherScratch.packedCells.size());
       for (std::size_t k = 0; k < scratch.packedCells.size(); ++k)
       {
@@ -323,8 +372,14 @@ TEST(Multiresolution, CpuKernelAgreesWithTheDeviceLoop)
   }
   EXPECT_GT(taken, 20000); // cells were taken whole
   EXPECT_GT(shells, 20000);
+  if (linearized == kNearLinearized)
+  {
+    EXPECT_GT(farCells, 20000); // and linearized
+  }
   EXPECT_LT(worst, 1e-10);
 }
+
+} // namespace
 
 namespace
 {
@@ -355,12 +410,17 @@ TEST(Multiresolution, WindowsOfScalesGiveTheDeviceLoopBitForBit)
   // with its S bins: the same samples, shares and points enter each bin in the same order.
   const Cloud c = paraboloid(150, 1.0, 0.7, 0.3, 0.01, 0.05, 6);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 12, gls::ScaleSampling::Quadratic);
-  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.15));
-  const TestBinning binning(scales);
-  const gls::MultiresolutionView& v = engine.pyramid().view();
-  EXPECT_GT(multiresolutionWindowsAgainstTheOnePass<1>(c, v, binning.View), 15000);
-  EXPECT_GT(multiresolutionWindowsAgainstTheOnePass<2>(c, v, binning.View), 15000);
-  EXPECT_GT(multiresolutionWindowsAgainstTheOnePass<5>(c, v, binning.View), 15000);
+  for (double linearized : { gls::kLinearizedDistance, kNearLinearized })
+  {
+    SCOPED_TRACE(linearized);
+    gls::ScaleSpaceEngine engine(
+      c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.15, 0, 6.0, linearized));
+    const TestBinning binning(scales);
+    const gls::MultiresolutionView& v = engine.pyramid().view();
+    EXPECT_GT(multiresolutionWindowsAgainstTheOnePass<1>(c, v, binning.View), 15000);
+    EXPECT_GT(multiresolutionWindowsAgainstTheOnePass<2>(c, v, binning.View), 15000);
+    EXPECT_GT(multiresolutionWindowsAgainstTheOnePass<5>(c, v, binning.View), 15000);
+  }
 }
 
 TEST(Multiresolution, PointsOfOneRegionShareOneWalkWhateverTheOrder)
@@ -368,10 +428,13 @@ TEST(Multiresolution, PointsOfOneRegionShareOneWalkWhateverTheOrder)
   // The CPU kernel walks once per walkRegion and reuses the walk for the next point of the same region: evaluating
   // the points in a shuffled order with one scratch (walks reused and replaced) gives bitwise what a fresh scratch
   // per point gives; each region holds p, and regions hold several points each.
+  // With linearized far cells (kNearLinearized), whose sums the kernel also keeps per far region and reuses.
   const Cloud c = paraboloid(200, 1.0, 0.7, 0.3, 0.01, 0.05, 5);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.5, 8, gls::ScaleSampling::Quadratic);
-  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.15));
+  gls::ScaleSpaceEngine engine(
+    c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.15, 0, 6.0, kNearLinearized));
   const gls::MultiresolutionView& v = engine.pyramid().view();
+  EXPECT_GT(linearizedCells(v, { c.points[0], c.points[1], c.points[2] }, scales), 20);
   EXPECT_GE(v.walkLevel, 1); // 40,000 points: cubes of 2 or 4 finest cells, no larger than the smallest scale
   EXPECT_LE(v.walkLevel, 2);
   EXPECT_LE(v.levelSize[v.walkLevel], scales.front());
@@ -415,12 +478,13 @@ TEST(Multiresolution, PointsOfOneRegionShareOneWalkWhateverTheOrder)
 
 TEST(Multiresolution, ResultsAreBitwiseIdenticalForAnyThreadCount)
 {
+  // With linearized far cells, whose sums are kept per far region: the same bits whichever thread formed them.
   const Cloud c = paraboloid(200, 1.0, 0.7, 0.3, 0.02, 0.1, 3);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.5, 8, gls::ScaleSampling::Quadratic);
-  const CollectingSink one = runMultiresolution(c, scales, 0.1, 1);
+  const CollectingSink one = runMultiresolution(c, scales, 0.1, 1, 6.0, kNearLinearized);
   for (int threads : { 2, 3, 5 })
   {
-    const CollectingSink many = runMultiresolution(c, scales, 0.1, threads);
+    const CollectingSink many = runMultiresolution(c, scales, 0.1, threads, 6.0, kNearLinearized);
     for (std::size_t i = 0; i < one.Samples.size(); ++i)
     {
       const gls::ScaleSample& a = one.Samples[i];

@@ -354,6 +354,17 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
   v.origin = origin;
   v.accuracy = layout.accuracy;
   v.walkLevel = std::min(std::max(layout.walkLevel, 0), topLevel);
+  // Far regions of twice the walk region's edge (about 27 points each on a surface at 10M points: a linearized cell
+  // costs its region about 8 times what a packed cell costs a point), where their reach stays within the largest
+  // ball.
+  v.farLevel = std::min(v.walkLevel + 1, topLevel);
+  v.linearizedDistance = layout.linearizedDistance;
+  v.farLevelCount = 0;
+  while (v.farLevelCount < kMaxFarLevels && v.farLevel + v.farLevelCount <= topLevel &&
+    v.linearizedDistance * 0.8660254037844386 * v.levelSize[v.farLevel + v.farLevelCount] < layout.largestScale)
+  {
+    ++v.farLevelCount;
+  }
   v.points = this->Points.data();
   v.normals = this->Normals.data();
   v.count = this->Points.size();

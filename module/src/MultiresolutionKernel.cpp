@@ -88,13 +88,108 @@ GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const CellSample&
 #pragma GCC diagnostic pop
 #endif
 
-/// The samples of a walk, packed once for every point of its region, about the region's corner o (x = q - o): the
-/// points with their nine sums f = (1, x, n, x.n, |x|^2), the cells with their CellSample (direction from the
-/// region's centre), so that a point adds them as they are and moves the bins from o to itself once (shiftBins)
-/// instead of forming them for every sample.
-void packWalk(const MultiresolutionView& v, const WalkRegion& region, MultiresolutionScratch& s)
+/// sum += c * x over the 27 moments.
+GLS_ALWAYS_INLINE void addScaled(AggregateMoments& sum, double c, const AggregateMoments& x)
 {
-  const Vec3 o = region.corner;
+  for (int j = 0; j < 3 * kAggregateValues; ++j)
+  {
+    sum.m[j] += c * x.m[j];
+  }
+}
+
+/// Adds a linearized cell (FarRule) to its far region's LinearizedBins: its shares expanded at the region's centre
+/// (mean |a|^2 + its spread per point, a = c - the centre), its sample about the region's corner o.
+GLS_ALWAYS_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const PyramidCell& cell, const Vec3& o,
+  const Vec3& a, LinearizedBins& far)
+{
+  CellSample sample;
+  makeCellSample(cell, o, a, sample);
+  const double aa[6] = { a.x * a.x, a.x * a.y, a.x * a.z, a.y * a.y, a.y * a.z, a.z * a.z };
+  forEachShellOfSpreadExpanded(
+    b, r2, squaredNorm(a) + sample.spreadPerPoint, sample.halfWidth,
+    [&](int k, const ShellShareExpansion& e) GLS_ALWAYS_INLINE_LAMBDA {
+      const std::size_t shell = static_cast<std::size_t>(k);
+      far.firstShell = std::min(far.firstShell, k);
+      addCellShare(far.value[shell], sample, e.value);
+      AggregateMoments slope, curvature;
+      clearMoments(slope);
+      clearMoments(curvature);
+      addCellShare(slope, sample, e.slope);
+      addCellShare(curvature, sample, e.curvature);
+      addScaled(far.slope[shell], 1.0, slope);
+      addScaled(far.slopeA[0][shell], a.x, slope);
+      addScaled(far.slopeA[1][shell], a.y, slope);
+      addScaled(far.slopeA[2][shell], a.z, slope);
+      for (int i = 0; i < 6; ++i)
+      {
+        addScaled(far.curvatureAA[i][shell], aa[i], curvature);
+      }
+    });
+}
+
+/// The LinearizedBins of the far region F from the cells of its far walk (s.taken, s.takenLevel), their sums about o.
+/// Inlined into each build of the kernel (its loops vectorized there).
+GLS_ALWAYS_INLINE void packFarWalk(const MultiresolutionView& v, const WalkRegion& F, const Vec3& o,
+  const ScaleBinning& b, double r2, MultiresolutionScratch& s, LinearizedBins& far)
+{
+  const std::size_t S = static_cast<std::size_t>(b.count);
+  std::vector<AggregateMoments>* sets[] = { &far.value, &far.slope, &far.slopeA[0], &far.slopeA[1], &far.slopeA[2],
+    &far.curvatureAA[0], &far.curvatureAA[1], &far.curvatureAA[2], &far.curvatureAA[3], &far.curvatureAA[4],
+    &far.curvatureAA[5] };
+  for (std::vector<AggregateMoments>* bins : sets)
+  {
+    bins->resize(S);
+    std::memset(static_cast<void*>(bins->data()), 0, sizeof(AggregateMoments) * S); // all 0.0
+  }
+  far.cells = s.taken.size();
+  far.firstShell = b.count;
+  const Vec3 centre = regionCentre(F);
+  for (std::size_t k = 0; k < s.taken.size(); ++k)
+  {
+    PyramidCell cell;
+    cellMoments(v, s.taken[k], s.takenLevel[k], cell);
+    addLinearizedCell(b, r2, cell, o, cell.centroid - centre, far);
+  }
+}
+
+/// Adds a far region's linearized cells for p, u = p - (the region's centre) (LinearizedBins), from the first shell
+/// they reach.
+GLS_ALWAYS_INLINE void addLinearizedCells(const LinearizedBins& far, const Vec3& u, int count, AggregateMoments* bins)
+{
+  if (far.cells == 0)
+  {
+    return;
+  }
+  const double uu = squaredNorm(u);
+  const double ux = -2.0 * u.x, uy = -2.0 * u.y, uz = -2.0 * u.z;
+  // 2 u^T C u over the symmetric pairs: the diagonal twice, the off-diagonal four times.
+  const double q[6] = { 2.0 * u.x * u.x, 4.0 * u.x * u.y, 4.0 * u.x * u.z, 2.0 * u.y * u.y, 4.0 * u.y * u.z,
+    2.0 * u.z * u.z };
+  for (std::size_t k = static_cast<std::size_t>(far.firstShell); k < static_cast<std::size_t>(count); ++k)
+  {
+    const double* value = far.value[k].m;
+    const double* one = far.slope[k].m;
+    const double* x = far.slopeA[0][k].m;
+    const double* y = far.slopeA[1][k].m;
+    const double* z = far.slopeA[2][k].m;
+    const double* c[6] = { far.curvatureAA[0][k].m, far.curvatureAA[1][k].m, far.curvatureAA[2][k].m,
+      far.curvatureAA[3][k].m, far.curvatureAA[4][k].m, far.curvatureAA[5][k].m };
+    double* m = bins[k].m;
+    for (int j = 0; j < 3 * kAggregateValues; ++j)
+    {
+      const double second = q[0] * c[0][j] + q[1] * c[1][j] + q[2] * c[2][j] + q[3] * c[3][j] + q[4] * c[4][j] +
+        q[5] * c[5][j];
+      m[j] += value[j] + (uu * one[j] + (ux * x[j] + uy * y[j] + uz * z[j])) + second;
+    }
+  }
+}
+
+/// The samples of a walk, packed once for every point of its region, about an origin o near it (the corner of its far
+/// region, or its own; x = q - o): the points with their nine sums f = (1, x, n, x.n, |x|^2), the cells with their
+/// CellSample (direction from the region's centre), so that a point adds them as they are and moves the bins from o
+/// to itself once (shiftBins) instead of forming them for every sample.
+void packWalk(const MultiresolutionView& v, const WalkRegion& region, const Vec3& o, MultiresolutionScratch& s)
+{
   const Vec3 anchor = regionCentre(region);
   s.packedCells.resize(s.taken.size());
   s.placements.resize(s.taken.size());
@@ -547,16 +642,21 @@ GLS_ALWAYS_INLINE void shiftBins(const Vec3& u, int count, AggregateMoments* bin
   }
 }
 
-/// The walk of a region (walkRegion): the cells taken whole (s.taken) and the points read one by one (s.read: those
-/// of the finest cells not taken whole, and of the cells taken whole that hold too few points for a sample) for
-/// every point of the region, found level by level: each cell of the frontier is skipped (outside every ball of the
-/// region), taken whole, read point by point (level 0) or opened (its children make the next level's frontier);
-/// the writes only advance indices.
-GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& region, double r, double smallest,
-  MultiresolutionScratch& s)
+/// The walks of the CPU kernel (forEachMultiresolutionSample's rule, FarRule): a point's samples are those of its
+/// walk region's own walk (part 0: every sample but the linearized cells) and of each far part i's walk (part i + 1:
+/// its linearized cells, the same for every point of its far region).
+///
+/// A walk, level by level: each cell of the frontier is skipped (outside every ball of the region, or not this
+/// part's), taken whole (s.taken, s.takenLevel), read point by point (s.read, part 0 only: a level-0 cell not taken
+/// whole, or a near cell taken whole that holds too few points for a sample) or opened (its children make the next
+/// level's frontier); the writes only advance indices. A far part's walk goes through the cells of its part and of
+/// the larger ones only (a cell's part is at most its parent's).
+GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& region, const FarRule& far, int part,
+  double r, double smallest, MultiresolutionScratch& s)
 {
   s.taken.clear();
   s.takenLevel.clear();
+  s.takenFar.clear();
   s.read.clear();
   s.frontier.clear();
   const double r2 = r * r;
@@ -564,7 +664,7 @@ GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regi
   const double floor2 = smallest * smallest;
   if (v.topEnd > v.topBegin && r > 0.0)
   {
-    forEachTopCell(v, region, r, [&](std::uint32_t c) { s.frontier.push_back(c); });
+    forEachTopCell(v, outermostRegion(far, region), r, [&](std::uint32_t c) { s.frontier.push_back(c); });
   }
   for (int level = v.topLevel; level >= 0 && !s.frontier.empty(); --level)
   {
@@ -573,39 +673,46 @@ GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regi
     const std::size_t n = s.frontier.size();
     const std::size_t takenBefore = s.taken.size();
     s.taken.resize(takenBefore + n);
+    s.takenFar.resize(takenBefore + n);
     s.opened.resize(n);
     std::size_t taken = takenBefore, opened = 0;
     for (std::size_t i = 0; i < n; ++i)
     {
       const std::uint32_t c = s.frontier[i];
-      const double box2 = squaredDistanceToCube(region, v.nodes[c].corner, edge);
-      const bool inside = box2 < r2;
-      const bool whole = takenWhole(edge2, box2, eps2, floor2);
+      const CellPlace place = placeCell(far, region, v.nodes[c].corner, edge);
+      const bool mine = part == 0 || place.far >= part;
+      const bool inside = mine && place.box2 < r2;
+      const bool whole = takenWhole(edge2, place.box2, eps2, floor2);
+      const bool sample = place.linearized == part;
       s.taken[taken] = c;
-      taken += inside && whole ? 1 : 0;
+      s.takenFar[taken] = place.far > 0 ? 1 : 0;
+      taken += inside && whole && sample ? 1 : 0;
       s.opened[opened] = c;
       opened += inside && !whole ? 1 : 0;
     }
-    // The cells taken whole that hold too few points for a sample are read point by point (readPointByPoint).
+    // The near cells taken whole that hold too few points for a sample are read point by point (readPointByPoint).
     std::size_t kept = takenBefore;
     for (std::size_t i = takenBefore; i < taken; ++i)
     {
       const std::uint32_t c = s.taken[i];
       PointSpan span{};
-      if (readPointByPoint(v, c, level, span.first, span.last))
+      if (!s.takenFar[i] && readPointByPoint(v, c, level, span.first, span.last))
       {
         s.read.push_back(span);
       }
       else
       {
-        s.taken[kept++] = c;
+        s.taken[kept] = c;
+        s.takenFar[kept] = s.takenFar[i];
+        ++kept;
       }
     }
     s.taken.resize(kept);
+    s.takenFar.resize(kept);
     s.takenLevel.resize(kept, level);
     if (level == 0)
     {
-      for (std::size_t i = 0; i < opened; ++i)
+      for (std::size_t i = 0; i < opened && part == 0; ++i)
       {
         const PyramidNode& node = v.nodes[s.opened[i]];
         s.read.push_back({ node.first, node.last });
@@ -625,11 +732,22 @@ GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regi
   }
 }
 
-bool sameWalk(const WalkKey& a, const WalkKey& b)
+bool sameRegion(const WalkRegion& a, const WalkRegion& b)
+{
+  return a.edge == b.edge && a.corner.x == b.corner.x && a.corner.y == b.corner.y && a.corner.z == b.corner.z;
+}
+
+/// The same far walk: the same key but perhaps another walk region of the same far region.
+bool sameFarWalk(const WalkKey& a, const WalkKey& b)
 {
   return a.nodes == b.nodes && a.count == b.count && a.accuracy == b.accuracy && a.radius == b.radius &&
-    a.smallest == b.smallest && a.region.edge == b.region.edge && a.region.corner.x == b.region.corner.x &&
-    a.region.corner.y == b.region.corner.y && a.region.corner.z == b.region.corner.z;
+    a.smallest == b.smallest && a.linearizedDistance == b.linearizedDistance && a.squaredScales == b.squaredScales &&
+    a.scaleCount == b.scaleCount && sameRegion(a.farRegion, b.farRegion);
+}
+
+bool sameWalk(const WalkKey& a, const WalkKey& b)
+{
+  return sameFarWalk(a, b) && sameRegion(a.region, b.region);
 }
 
 template <bool Avx2>
@@ -643,16 +761,39 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
   s.bins.resize(static_cast<std::size_t>(b.count));
   std::memset(static_cast<void*>(s.bins.data()), 0, sizeof(AggregateMoments) * s.bins.size()); // all 0.0
   const double r = b.scales[b.count - 1];
-  const WalkKey key{ v.nodes, v.count, v.accuracy, r, b.scales[0], walkRegion(v, p) };
+  const FarRule far = farRule(v, p);
+  const WalkRegion region = walkRegion(v, p);
+  // Every sum about the largest far region's corner (the walk region's without a far part), moved to p at the end.
+  const Vec3 o = outermostRegion(far, region).corner;
+  for (int i = 0; i < far.count; ++i)
+  {
+    const WalkKey key{ v.nodes, v.count, v.accuracy, r, b.scales[0], v.linearizedDistance, region, far.region[i],
+      b.squaredScales, b.count };
+    if (!s.farWalked[i] || !sameFarWalk(s.farKey[i], key))
+    {
+      // A new far region: its part's walk, summed once for its points (it reuses the walk's lists, not its packed
+      // samples).
+      walk(v, region, far, i + 1, r, key.smallest, s);
+      packFarWalk(v, far.region[i], o, b, r * r, s, s.linearized[i]);
+      s.farWalked[i] = true;
+      s.farKey[i] = key;
+    }
+  }
+  const WalkKey key{ v.nodes, v.count, v.accuracy, r, b.scales[0], v.linearizedDistance, region,
+    outermostRegion(far, region), b.squaredScales, b.count };
   if (!s.walked || !sameWalk(s.walkedKey, key))
   {
-    walk(v, key.region, r, key.smallest, s);
-    packWalk(v, key.region, s);
+    walk(v, region, far, 0, r, key.smallest, s);
+    packWalk(v, region, o, s);
     s.walked = true;
     s.walkedKey = key;
   }
   addPackedSamples<Avx2>(p, b, r * r, s, s.bins.data());
-  shiftBins(key.region.corner - p, b.count, s.bins.data());
+  for (int i = 0; i < far.count; ++i)
+  {
+    addLinearizedCells(s.linearized[i], p - regionCentre(far.region[i]), b.count, s.bins.data());
+  }
+  shiftBins(o - p, b.count, s.bins.data());
   fitAllScalesFromBins(b, minNeighbors, s.bins.data(), out);
 }
 

@@ -76,7 +76,8 @@ void ScaleSpaceEngine::buildPyramid(
   const double largest = this->Settings.scales.back();
   const double spacing = m.spacing > 0.0 ? m.spacing : surfaceSpacingOfBox(low, high, admitted);
   const double smallest = this->Settings.scales.front();
-  const PyramidLayout layout = choosePyramidLayout(low, high, spacing, smallest, largest, m.accuracy);
+  PyramidLayout layout = choosePyramidLayout(low, high, spacing, smallest, largest, m.accuracy);
+  layout.linearizedDistance = m.linearizedDistance;
   this->BuildAborted = !this->Pyramid.build(points, unitNormals, count, admit, layout, this->Settings.parallel);
 }
 

@@ -211,18 +211,81 @@ GLS_INLINE ShellShare pieceShare(double mean, const SpreadDensity& density, doub
   return share;
 }
 
-/// Splits a sample whose squared distances from p are spread uniformly over [mean - half, mean + half] into the
-/// scale shells it meets below r2 (the largest squared scale): calls add(k, share) for each. A sample within one
-/// shell (the common case), or narrower than kNarrowestSpread, makes one call with its wholeShare.
-template <typename Add>
-GLS_INLINE void forEachShellOfSpread(const ScaleBinning& b, double r2, double mean, double half, Add&& add)
+/// How a share changes as the spread moves: the first and second derivatives of its m[j] and c[j] with respect to
+/// the spread's mean, its half-width held (the linearized cells of docs/math.md, "Linearized far cells").
+struct ShellShareExpansion
+{
+  ShellShare value, slope, curvature;
+};
+
+/// Within one shell: m' = (0, 1, 2 mean), c' = (0, 0, 4); m'' = (0, 0, 2), c'' = 0.
+GLS_INLINE ShellShareExpansion wholeShareExpansion(double mean, double half)
+{
+  return { wholeShare(mean, half), { { 0.0, 1.0, 2.0 * mean }, { 0.0, 0.0, 4.0 } },
+    { { 0.0, 0.0, 2.0 }, { 0.0, 0.0, 0.0 } } };
+}
+
+/// The derivative of pieceShare(mean, density, u, w) with respect to mean: an end of the piece that is an end of
+/// the spread moves with it, one that is a scale's sphere (lowFixed, highFixed) stays. With d0 = u - mean,
+/// d1 = w - mean and [.] = 1 for a fixed end: m0' = rho ([u] - [w]), m1' = rho (w - u - w [w] + u [u]),
+/// m2' = rho (w^2 - u^2 - w^2 [w] + u^2 [u]); c0' = g (d0 [u] - d1 [w]), c1' = g (int d - w d1 [w] + u d0 [u]),
+/// c2' = g (2 (int d^2 + mean int d) - w^2 d1 [w] + u^2 d0 [u]), g = density.gradientScale.
+GLS_INLINE ShellShare pieceShareSlope(
+  double mean, const SpreadDensity& density, double u, double w, bool lowFixed, bool highFixed)
+{
+  const double rho = density.rho;
+  const double g = density.gradientScale;
+  const double d0 = u - mean, d1 = w - mean;
+  const double width = w - u;
+  const double lu = lowFixed ? 1.0 : 0.0, hw = highFixed ? 1.0 : 0.0;
+  const double i1 = width * (d1 + d0) * 0.5;
+  const double i2 = width * (d1 * d1 + d1 * d0 + d0 * d0) * (1.0 / 3.0);
+  ShellShare slope;
+  slope.m[0] = rho * (lu - hw);
+  slope.m[1] = rho * (width - w * hw + u * lu);
+  slope.m[2] = rho * ((w * w - u * u) - w * w * hw + u * u * lu);
+  slope.c[0] = g * (d0 * lu - d1 * hw);
+  slope.c[1] = g * (i1 - w * d1 * hw + u * d0 * lu);
+  slope.c[2] = g * (2.0 * (i2 + mean * i1) - w * w * d1 * hw + u * u * d0 * lu);
+  return slope;
+}
+
+/// The second derivative of pieceShare with respect to mean (pieceShareSlope differentiated again; [.]' = 1 - [.]
+/// for an end that moves): m0'' = 0, m1'' = rho ([u] - [w]), m2'' = 2 rho (w [w]' - u [u]'); c0'' = g ([w] - [u]),
+/// c1'' = g (d1 [w]' - d0 [u]' - (w - u) + w [w] - u [u]), c2'' = g (2 (w d1 [w]' - u d0 [u]') - (w^2 - u^2) +
+/// w^2 [w] - u^2 [u]).
+GLS_INLINE ShellShare pieceShareCurvature(
+  double mean, const SpreadDensity& density, double u, double w, bool lowFixed, bool highFixed)
+{
+  const double rho = density.rho;
+  const double g = density.gradientScale;
+  const double d0 = u - mean, d1 = w - mean;
+  const double lu = lowFixed ? 1.0 : 0.0, hw = highFixed ? 1.0 : 0.0;
+  const double lm = 1.0 - lu, hm = 1.0 - hw;
+  ShellShare curvature;
+  curvature.m[0] = 0.0;
+  curvature.m[1] = rho * (lu - hw);
+  curvature.m[2] = 2.0 * rho * (w * hm - u * lm);
+  curvature.c[0] = g * (hw - lu);
+  curvature.c[1] = g * ((d1 * hm - d0 * lm) - (w - u) + w * hw - u * lu);
+  curvature.c[2] = g * (2.0 * (w * d1 * hm - u * d0 * lm) - (w * w - u * u) + w * w * hw - u * u * lu);
+  return curvature;
+}
+
+/// The pieces of a sample whose squared distances from p are spread uniformly over [mean - half, mean + half], cut
+/// by the scale shells below r2 (the largest squared scale): whole(k) for a spread within shell k or narrower than
+/// kNarrowestSpread (in the shell of its mean), else piece(k, density, u, w, lowFixed, highFixed) for each part
+/// [u, w] of shell k, lowFixed / highFixed where that end is a scale's sphere rather than an end of the spread.
+template <typename Whole, typename Piece>
+GLS_INLINE void forEachPieceOfSpread(
+  const ScaleBinning& b, double r2, double mean, double half, Whole&& whole, Piece&& piece)
 {
   const double lo = mean - half, hi = mean + half;
   if (!(half > kNarrowestSpread * hi))
   {
     if (mean < r2)
     {
-      add(firstScaleHolding(b, mean), wholeShare(mean, half));
+      whole(firstScaleHolding(b, mean));
     }
     return;
   }
@@ -234,19 +297,62 @@ GLS_INLINE void forEachShellOfSpread(const ScaleBinning& b, double r2, double me
   const int last = hi < r2 ? firstScaleHolding(b, hi) : b.count - 1;
   if (first == last && hi < r2)
   {
-    add(first, wholeShare(mean, half));
+    whole(first);
     return;
   }
   const SpreadDensity density = spreadDensity(half);
   for (int k = first; k <= last; ++k)
   {
-    const double u = k == first ? lo : b.squaredScales[k - 1];
-    const double w = k == last && hi < b.squaredScales[k] ? hi : b.squaredScales[k];
+    const bool lowFixed = k != first;
+    const bool highFixed = !(k == last && hi < b.squaredScales[k]);
+    const double u = lowFixed ? b.squaredScales[k - 1] : lo;
+    const double w = highFixed ? b.squaredScales[k] : hi;
     if (w > u)
     {
-      add(k, pieceShare(mean, density, u, w));
+      piece(k, density, u, w, lowFixed, highFixed);
     }
   }
+}
+
+/// Splits a sample whose squared distances from p are spread uniformly over [mean - half, mean + half] into the
+/// scale shells it meets below r2 (the largest squared scale): calls add(k, share) for each. A sample within one
+/// shell (the common case), or narrower than kNarrowestSpread, makes one call with its wholeShare.
+template <typename Add>
+GLS_INLINE void forEachShellOfSpread(const ScaleBinning& b, double r2, double mean, double half, Add&& add)
+{
+  forEachPieceOfSpread(
+    b, r2, mean, half, [&](int k) { add(k, wholeShare(mean, half)); },
+    [&](int k, const SpreadDensity& density, double u, double w, bool, bool) {
+      add(k, pieceShare(mean, density, u, w));
+    });
+}
+
+/// forEachShellOfSpread with each share's derivatives: add(k, expansion) (wholeShareExpansion, pieceShareSlope,
+/// pieceShareCurvature).
+template <typename Add>
+GLS_INLINE void forEachShellOfSpreadExpanded(const ScaleBinning& b, double r2, double mean, double half, Add&& add)
+{
+  forEachPieceOfSpread(
+    b, r2, mean, half, [&](int k) { add(k, wholeShareExpansion(mean, half)); },
+    [&](int k, const SpreadDensity& density, double u, double w, bool lowFixed, bool highFixed) {
+      add(k,
+        ShellShareExpansion{ pieceShare(mean, density, u, w),
+          pieceShareSlope(mean, density, u, w, lowFixed, highFixed),
+          pieceShareCurvature(mean, density, u, w, lowFixed, highFixed) });
+    });
+}
+
+/// The share of a spread moved from the mean it was expanded at: value + delta slope + quadratic curvature, with
+/// delta the move of the mean and quadratic (about delta^2 / 2) the second-order term the caller keeps.
+GLS_INLINE ShellShare movedShare(const ShellShareExpansion& e, double delta, double quadratic)
+{
+  ShellShare moved;
+  for (int j = 0; j < 3; ++j)
+  {
+    moved.m[j] = e.value.m[j] + delta * e.slope.m[j] + quadratic * e.curvature.m[j];
+    moved.c[j] = e.value.c[j] + delta * e.slope.c[j] + quadratic * e.curvature.c[j];
+  }
+  return moved;
 }
 
 /// Adds a cell's share of one shell: A_j += m_j F + c_j H (docs/math.md).

@@ -28,6 +28,7 @@ struct PyramidLayout
   Vec3 low{};                  ///< a corner below every point; the lattice origin is snapped below it
   double accuracy = 0.1;       ///< a cell is one sample where edge <= accuracy * distance
   int walkLevel = 0;           ///< the points of one cube of this level share a walk (MultiresolutionView)
+  double linearizedDistance = kLinearizedDistance; ///< where the far parts begin (MultiresolutionView, FarRule)
 };
 
 /// The layout for a cloud whose admitted points lie in [low, high]: h0 the power of two at or below twice `spacing`

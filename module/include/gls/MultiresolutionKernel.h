@@ -24,8 +24,23 @@ struct WalkKey
 {
   const PyramidNode* nodes = nullptr;
   std::uint64_t count = 0;
-  double accuracy = 0.0, radius = 0.0, smallest = 0.0;
-  WalkRegion region{};
+  double accuracy = 0.0, radius = 0.0, smallest = 0.0, linearizedDistance = 0.0;
+  WalkRegion region{};    ///< p's walk region
+  WalkRegion farRegion{}; ///< a far walk's region (FarRule); for the walk region's own walk, the largest one
+  const double* squaredScales = nullptr; ///< the shells the linearized cells were binned into
+  int scaleCount = 0;
+};
+
+/// The linearized cells of a far region F (FarRule), summed once for every point of F, their sums about F's corner:
+/// per shell, the terms of movedShare summed over the cells (each cell's share expansion times its F and H, with a
+/// = c - r its direction from F's centre r): `value`, `slope`, `slopeA[i]` (times a_i) and `curvatureAA[ij]` (times
+/// a_i a_j, i <= j: xx, xy, xz, yy, yz, zz). A point p, u = p - r, adds value + |u|^2 slope - 2 u . slopeA +
+/// 2 u^T curvatureAA u: each cell's mean moves by |u|^2 - 2 a . u, and the second-order term is 2 (a . u)^2.
+struct LinearizedBins
+{
+  std::vector<AggregateMoments> value, slope, slopeA[3], curvatureAA[6];
+  std::size_t cells = 0; ///< linearized cells of the far region (0: nothing to add)
+  int firstShell = 0;    ///< the lowest shell they reach (the bins below are zeros)
 };
 
 /// The points [first, last) of the pyramid, read one by one by a walk.
@@ -97,8 +112,10 @@ struct MultiresolutionScratch
   std::vector<double> cellMean;
   std::vector<int> cellShell;
   std::vector<std::uint32_t> singleCells, pairCells, spreadCells, wideCells;
-  bool walked = false;
-  WalkKey walkedKey{};
+  std::vector<std::uint8_t> takenFar; ///< per taken cell: decided by a far part's rule (never read point by point)
+  LinearizedBins linearized[kMaxFarLevels]; ///< of each far part's region (farKey[i].farRegion)
+  bool walked = false, farWalked[kMaxFarLevels] = {};
+  WalkKey walkedKey{}, farKey[kMaxFarLevels] = {};
 };
 
 /// Fits every scale of the evaluation point p, as evaluateAllScalesMultiresolution; out: S samples.

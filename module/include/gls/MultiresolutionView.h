@@ -45,6 +45,11 @@ struct MultiresolutionView
   Vec3 origin{};                       ///< lower corner of every level's cell (0, 0, 0)
   double accuracy = 0.1;               ///< a cell is one sample where edge <= accuracy * distance to its box
   int walkLevel = 0;                   ///< the points of one lattice cube of this level share one walk (walkRegion)
+  /// The far parts of a walk (FarRule): the level of the finest far regions, how many levels of them, and where
+  /// each begins, in half-diagonals of its region (0 or less: no far part).
+  int farLevel = 0;
+  int farLevelCount = 0;
+  double linearizedDistance = 0.0;
   const Vec3* points = nullptr;        ///< the points in pyramid order (the cells' points are contiguous)
   const Vec3* normals = nullptr;       ///< their unit normals
   std::uint64_t count = 0;
@@ -77,10 +82,11 @@ struct WalkRegion
   double edge; ///< edge (length unit; 0: the region is the point `corner`)
 };
 
-GLS_INLINE WalkRegion walkRegion(const MultiresolutionView& v, const Vec3& p)
+/// The lattice cube of level `level` that holds p, or p itself (edge 0) outside the lattice.
+GLS_INLINE WalkRegion latticeCube(const MultiresolutionView& v, const Vec3& p, int level)
 {
-  const double edge = v.levelSize[v.walkLevel];
-  const double cells = static_cast<double>(std::int64_t(1) << (kMortonBits - v.walkLevel));
+  const double edge = v.levelSize[level];
+  const double cells = static_cast<double>(std::int64_t(1) << (kMortonBits - level));
   const double cx = roundDown((p.x - v.origin.x) / edge);
   const double cy = roundDown((p.y - v.origin.y) / edge);
   const double cz = roundDown((p.z - v.origin.z) / edge);
@@ -89,6 +95,11 @@ GLS_INLINE WalkRegion walkRegion(const MultiresolutionView& v, const Vec3& p)
     return { p, 0.0 };
   }
   return { { v.origin.x + cx * edge, v.origin.y + cy * edge, v.origin.z + cz * edge }, edge };
+}
+
+GLS_INLINE WalkRegion walkRegion(const MultiresolutionView& v, const Vec3& p)
+{
+  return latticeCube(v, p, v.walkLevel);
 }
 
 /// Distance between the intervals [lo1, hi1] and [lo2, hi2] (0 where they overlap).
@@ -104,6 +115,21 @@ GLS_INLINE double squaredDistanceToCube(const WalkRegion& a, const Vec3& corner,
   const double dx = gapBetweenIntervals(a.corner.x, a.corner.x + a.edge, corner.x, corner.x + edge);
   const double dy = gapBetweenIntervals(a.corner.y, a.corner.y + a.edge, corner.y, corner.y + edge);
   const double dz = gapBetweenIntervals(a.corner.z, a.corner.z + a.edge, corner.z, corner.z + edge);
+  return dx * dx + dy * dy + dz * dz;
+}
+
+/// Squared distance from the region to the farthest point of the cube [corner, corner + edge]^3: per axis, how far
+/// the cube reaches past the region's interval.
+GLS_INLINE double squaredDistanceToFarthestCorner(const WalkRegion& a, const Vec3& corner, double edge)
+{
+  const auto reach = [](double lo, double hi, double alo, double ahi) {
+    const double below = alo - lo, above = hi - ahi;
+    const double r = below > above ? below : above;
+    return r > 0.0 ? r : 0.0;
+  };
+  const double dx = reach(corner.x, corner.x + edge, a.corner.x, a.corner.x + a.edge);
+  const double dy = reach(corner.y, corner.y + edge, a.corner.y, a.corner.y + a.edge);
+  const double dz = reach(corner.z, corner.z + edge, a.corner.z, a.corner.z + a.edge);
   return dx * dx + dy * dy + dz * dz;
 }
 
@@ -249,11 +275,95 @@ GLS_INLINE Vec3 regionCentre(const WalkRegion& a)
   return { a.corner.x + h, a.corner.y + h, a.corner.z + h };
 }
 
-/// Calls sample(node, level) for every cell taken whole (takenWhole, with `smallest` the smallest scale; not
-/// readPointByPoint) and point(i) for every point read one by one, for the ball of radius r around p: every point
+/// Where each far part of a walk begins, in half-diagonals of its far region (FarRule; docs/math.md, "Linearized
+/// far cells"): a far cell's shares are expanded to the second order in the move of p within its far region, so the
+/// error is of the third order in (half-diagonal / distance). Measured against the exact pass at 1M and 10M points
+/// (docs/performance.md, "Linearized far cells").
+constexpr double kLinearizedDistance = 10.0;
+
+/// At most this many levels of far regions (of edges 2, 4, ... times the walk region's, each part beginning where
+/// the previous one's reach doubles). One: measured at 10M points (bunny, 2 threads), three levels took 91.7 s
+/// against 84.3 s for one (a walk per level and region, and three expansions added per point, cost more than the
+/// larger sharing of the outer cells saved).
+constexpr int kMaxFarLevels = 1;
+
+/// The far parts of the walk of p: for each level i < count, the far region F_i (the lattice cube of level farLevel
+/// + i holding p; F_0 is p's walk region) and its reach (linearizedDistance half-diagonals of F_i, doubling with i).
+/// A cell whose cube reaches at least reach_i from F_i (farthest corner), for the largest such i, belongs to far part
+/// i: it is decided from F_i instead of p's walk region (taken whole or opened by its distance from F_i, never read
+/// point by point), so that every point of F_i finds the same such cells; those entirely beyond reach_i from F_i are
+/// F_i's linearized cells, whose shares are expanded at F_i's centre and moved to p to the second order
+/// (movedShare). Inactive (count 0) where the regions have no extent.
+struct FarRule
+{
+  WalkRegion region[kMaxFarLevels];
+  double reach2[kMaxFarLevels]; ///< reach squared
+  int count = 0;
+};
+
+GLS_INLINE FarRule farRule(const MultiresolutionView& v, const Vec3& p)
+{
+  FarRule f;
+  const int count = v.linearizedDistance > 0.0 ? v.farLevelCount : 0;
+  for (int i = 0; i < count && i < kMaxFarLevels; ++i)
+  {
+    f.region[i] = latticeCube(v, p, v.farLevel + i);
+    const double reach = v.linearizedDistance * 0.8660254037844386 * f.region[i].edge; // sqrt(3) / 2
+    f.reach2[i] = reach * reach;
+    f.count = f.region[i].edge > 0.0 ? i + 1 : 0;
+    if (f.count == 0)
+    {
+      break;
+    }
+  }
+  return f;
+}
+
+/// How a walk treats a cell of cube [corner, corner + edge]^3: it is decided from far region F_{far - 1} (0: from p's
+/// walk region), box2 its distance from there; if taken whole, it is a linearized cell of far part `linearized` - 1,
+/// the largest j <= far - 1 whose region it lies entirely beyond reach_j of (0: a near sample). Both depend only on
+/// F_j and the larger regions, so every point of F_j finds the same linearized cells of part j.
+struct CellPlace
+{
+  int far, linearized;
+  double box2;
+};
+
+GLS_INLINE CellPlace placeCell(const FarRule& f, const WalkRegion& region, const Vec3& corner, double edge)
+{
+  // Both tests hold for a prefix of the far parts (a larger region is nearer and its reach twice as long), so each
+  // stops at its first failure, and a near cell costs one test.
+  int far = 0;
+  while (far < f.count && squaredDistanceToFarthestCorner(f.region[far], corner, edge) >= f.reach2[far])
+  {
+    ++far;
+  }
+  if (far == 0)
+  {
+    return { 0, 0, squaredDistanceToCube(region, corner, edge) };
+  }
+  CellPlace c{ far, 0, squaredDistanceToCube(f.region[far - 1], corner, edge) };
+  while (c.linearized < far &&
+    (c.linearized == far - 1 ? c.box2 : squaredDistanceToCube(f.region[c.linearized], corner, edge)) >=
+      f.reach2[c.linearized])
+  {
+    ++c.linearized;
+  }
+  return c;
+}
+
+/// The region a walk's top cells are found from: the largest far region, or p's walk region.
+GLS_INLINE const WalkRegion& outermostRegion(const FarRule& f, const WalkRegion& region)
+{
+  return f.count > 0 ? f.region[f.count - 1] : region;
+}
+
+/// Calls sample(node, level, farPart) for every cell taken whole (takenWhole, with `smallest` the smallest scale;
+/// not readPointByPoint) and point(i) for every point read one by one, for the ball of radius r around p: every point
 /// of the ball is in exactly one of them (points of a cell taken whole may lie outside the ball; the caller bins them
-/// by its CellSample's spread). Distances are measured from p's walkRegion, so the samples and their order are fixed
-/// by the pyramid and that region alone.
+/// by its CellSample's spread). Distances are measured from p's walkRegion, or, for the cells of a far part
+/// (FarRule, placeCell), from its far region, so the samples and their order are fixed by the pyramid and those
+/// regions alone; farPart is i + 1 for a linearized cell of far part i, else 0.
 template <typename CellVisit, typename PointVisit>
 GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const Vec3& p, double r, double smallest,
   CellVisit&& sample, PointVisit&& point)
@@ -268,11 +378,13 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
   std::uint32_t stack[kPyramidStack];
   int stackLevel[kPyramidStack];
   int top = 0;
-  // The top-level cells the balls of p's region overlap, pushed last to first so that they are visited in order.
+  // The top-level cells the balls of p's far region overlap (it holds p's walk region), pushed last to first so that
+  // they are visited in order.
   const WalkRegion region = walkRegion(v, p);
+  const FarRule far = farRule(v, p);
   std::uint32_t tops[kMaxTopCells];
   int found = 0;
-  forEachTopCell(v, region, r, [&](std::uint32_t c) {
+  forEachTopCell(v, outermostRegion(far, region), r, [&](std::uint32_t c) {
     if (found < kMaxTopCells)
     {
       tops[found++] = c;
@@ -290,18 +402,18 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
     const PyramidNode& cell = v.nodes[stack[top]];
     const int level = stackLevel[top];
     const double edge = v.levelSize[level];
-    const double box2 = squaredDistanceToCube(region, cell.corner, edge);
-    if (!(box2 < r2))
+    const CellPlace place = placeCell(far, region, cell.corner, edge);
+    if (!(place.box2 < r2))
     {
       continue;
     }
-    // A cell taken whole enters as its sample, or point by point where it holds too few points; a level-0 cell not
-    // taken whole is read point by point.
-    const bool whole = takenWhole(edge * edge, box2, eps2, floor2);
+    // A cell taken whole enters as its sample, or point by point where it holds too few points (not in the far
+    // part); a level-0 cell not taken whole is read point by point.
+    const bool whole = takenWhole(edge * edge, place.box2, eps2, floor2);
     std::uint32_t first = cell.first, last = cell.last;
-    if (whole && !readPointByPoint(v, stack[top], level, first, last))
+    if (whole && (place.far > 0 || !readPointByPoint(v, stack[top], level, first, last)))
     {
-      sample(stack[top], level);
+      sample(stack[top], level, place.linearized);
     }
     else if (whole || level == 0)
     {
@@ -325,8 +437,9 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
 
 /// The terms of the ball of the largest scale around p, each with its bin k: cellShare(k, sample, share) for each
 /// shell a cell taken whole meets (its CellSample: its points weighted by a linear field, their squared distances
-/// spread over the shells), point(k, x, d2, normal) for each point read one by one inside the ball (x = its position
-/// - p, d2 = |x|^2). The walk (forEachMultiresolutionSample) fixes the terms and their order.
+/// spread over the shells; a linearized cell's shares formed at its far region's centre and moved to p, movedShare),
+/// point(k, x, d2, normal) for each point read one by one inside the ball (x = its position - p, d2 = |x|^2). The
+/// walk (forEachMultiresolutionSample) fixes the terms and their order.
 template <typename CellShare, typename PointTerm>
 GLS_INLINE void forEachMultiresolutionTerm(
   const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, CellShare&& cellShare, PointTerm&& point)
@@ -334,15 +447,30 @@ GLS_INLINE void forEachMultiresolutionTerm(
   const double r = b.scales[b.count - 1];
   const double r2 = r * r;
   const Vec3 anchor = regionCentre(walkRegion(v, p));
+  const FarRule far = farRule(v, p);
   forEachMultiresolutionSample(
     v, p, r, b.scales[0],
-    [&](std::uint32_t node, int level) {
+    [&](std::uint32_t node, int level, int farPart) {
       PyramidCell cell;
       cellMoments(v, node, level, cell);
       CellSample s;
-      makeCellSample(cell, p, cell.centroid - anchor, s);
-      forEachShellOfSpread(b, r2, squaredNorm(cell.centroid - p) + s.spreadPerPoint, s.halfWidth,
-        [&](int k, const ShellShare& share) { cellShare(k, s, share); });
+      const Vec3 centre = farPart > 0 ? regionCentre(far.region[farPart - 1]) : anchor;
+      const Vec3 a = cell.centroid - centre;
+      makeCellSample(cell, p, a, s);
+      const double mean = squaredNorm(cell.centroid - p) + s.spreadPerPoint;
+      if (farPart == 0)
+      {
+        forEachShellOfSpread(b, r2, mean, s.halfWidth, [&](int k, const ShellShare& share) { cellShare(k, s, share); });
+        return;
+      }
+      // A linearized cell: its shares expanded at the far region's centre, moved to p's mean. With u = p - centre,
+      // the mean moves by delta = |u|^2 - 2 a . u; the second-order term keeps (2 a . u)^2 / 2 of delta^2 / 2.
+      const double centreMean = squaredNorm(a) + s.spreadPerPoint;
+      const double delta = mean - centreMean;
+      const double au = dot(a, p - centre);
+      forEachShellOfSpreadExpanded(b, r2, centreMean, s.halfWidth, [&](int k, const ShellShareExpansion& e) {
+        cellShare(k, s, movedShare(e, delta, 2.0 * au * au));
+      });
     },
     [&](std::uint32_t i) {
       const Vec3 x = v.points[i] - p;
