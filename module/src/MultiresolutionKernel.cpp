@@ -116,7 +116,7 @@ GLS_ALWAYS_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const
       clearMoments(curvature);
       addCellShare(slope, sample, e.slope);
       addCellShare(curvature, sample, e.curvature);
-      addScaled(far.slope[shell], 1.0, slope);
+      addMoments(far.slope[shell], slope);
       addScaled(far.slopeA[0][shell], a.x, slope);
       addScaled(far.slopeA[1][shell], a.y, slope);
       addScaled(far.slopeA[2][shell], a.z, slope);
