@@ -7,11 +7,9 @@
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 #define GLS_KERNEL_DISPATCH 1
 #define GLS_ALWAYS_INLINE inline __attribute__((always_inline))
-#define GLS_ALWAYS_INLINE_LAMBDA __attribute__((always_inline))
 #else
 #define GLS_KERNEL_DISPATCH 0
 #define GLS_ALWAYS_INLINE inline
-#define GLS_ALWAYS_INLINE_LAMBDA
 #endif
 
 namespace gls

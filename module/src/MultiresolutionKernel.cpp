@@ -8,15 +8,17 @@
 #endif
 #include <cstring>
 
+#if GLS_KERNEL_VECTORS
+// Four-double vectors pass between always-inlined helpers and lambdas only (KernelVectors.h), so the vector-argument
+// ABI that -Wpsabi warns about never applies; lambda instances are reported at the end of the file, hence no pop.
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 namespace gls
 {
 namespace
 {
 
-#if GLS_KERNEL_VECTORS
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
 
 /// Adds the sums f = (f0, f1, f8) of a point at squared distance d2 (addSampleSums in AggregateMoments.h: the same
 /// products and sums, element by element, fused into multiply-adds in the AVX2 build).
@@ -84,9 +86,6 @@ GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const CellSample&
 #endif
 }
 
-#if GLS_KERNEL_VECTORS
-#pragma GCC diagnostic pop
-#endif
 
 /// sum += c * x over the 27 moments.
 GLS_ALWAYS_INLINE void addScaled(AggregateMoments& sum, double c, const AggregateMoments& x)
@@ -107,7 +106,7 @@ GLS_ALWAYS_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const
   const double aa[6] = { a.x * a.x, a.x * a.y, a.x * a.z, a.y * a.y, a.y * a.z, a.z * a.z };
   forEachShellOfSpreadExpanded(
     b, r2, squaredNorm(a) + sample.spreadPerPoint, sample.halfWidth,
-    [&](int k, const ShellShareExpansion& e) GLS_ALWAYS_INLINE_LAMBDA {
+    [&](int k, const ShellShareExpansion& e) GLS_INLINE_LAMBDA {
       const std::size_t shell = static_cast<std::size_t>(k);
       far.firstShell = std::min(far.firstShell, k);
       addCellShare(far.value[shell], sample, e.value);
@@ -175,11 +174,23 @@ GLS_ALWAYS_INLINE void addLinearizedCells(const LinearizedBins& far, const Vec3&
     const double* c[6] = { far.curvatureAA[0][k].m, far.curvatureAA[1][k].m, far.curvatureAA[2][k].m,
       far.curvatureAA[3][k].m, far.curvatureAA[4][k].m, far.curvatureAA[5][k].m };
     double* m = bins[k].m;
-    for (int j = 0; j < 3 * kAggregateValues; ++j)
+    // The moved sum of moment j, element by element (load reads a moment, or four from j, of a set).
+    const auto moved = [&](auto load) GLS_INLINE_LAMBDA {
+      const auto second = q[0] * load(c[0]) + q[1] * load(c[1]) + q[2] * load(c[2]) + q[3] * load(c[3]) +
+        q[4] * load(c[4]) + q[5] * load(c[5]);
+      return load(value) + (uu * load(one) + (ux * load(x) + uy * load(y) + uz * load(z))) + second;
+    };
+    int j = 0;
+#if GLS_KERNEL_VECTORS
+    for (; j + 4 <= 3 * kAggregateValues; j += 4)
     {
-      const double second = q[0] * c[0][j] + q[1] * c[1][j] + q[2] * c[2][j] + q[3] * c[3][j] + q[4] * c[4][j] +
-        q[5] * c[5][j];
-      m[j] += value[j] + (uu * one[j] + (ux * x[j] + uy * y[j] + uz * z[j])) + second;
+      const auto four = [j](const double* set) GLS_INLINE_LAMBDA { return kernel::load4(set + j); };
+      kernel::store4(m + j, kernel::load4(m + j) + moved(four));
+    }
+#endif
+    for (; j < 3 * kAggregateValues; ++j)
+    {
+      m[j] += moved([j](const double* set) GLS_INLINE_LAMBDA { return set[j]; });
     }
   }
 }
@@ -188,7 +199,8 @@ GLS_ALWAYS_INLINE void addLinearizedCells(const LinearizedBins& far, const Vec3&
 /// region, or its own; x = q - o): the points with their nine sums f = (1, x, n, x.n, |x|^2), the cells with their
 /// CellSample (direction from the region's centre), so that a point adds them as they are and moves the bins from o
 /// to itself once (shiftBins) instead of forming them for every sample.
-void packWalk(const MultiresolutionView& v, const WalkRegion& region, const Vec3& o, MultiresolutionScratch& s)
+GLS_ALWAYS_INLINE void packWalk(
+  const MultiresolutionView& v, const WalkRegion& region, const Vec3& o, MultiresolutionScratch& s)
 {
   const Vec3 anchor = regionCentre(region);
   s.packedCells.resize(s.taken.size());
@@ -650,24 +662,38 @@ GLS_ALWAYS_INLINE void shiftBins(const Vec3& u, int count, AggregateMoments* bin
 /// part's), taken whole (s.taken, s.takenLevel), read point by point (s.read, part 0 only: a level-0 cell not taken
 /// whole, or a near cell taken whole that holds too few points for a sample) or opened (its children make the next
 /// level's frontier); the writes only advance indices. A far part's walk goes through the cells of its part and of
-/// the larger ones only (a cell's part is at most its parent's).
+/// the larger ones only (a cell's part is at most its parent's); part 1's records where part 0 takes over
+/// (s.nearSeeds). With `seeded`, part 0 starts from those instead of the top cells, each joining the frontier at its
+/// level (the cells above them are far cells opened, or linearized, by F_0's rule for every point of F_0).
 GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& region, const FarRule& far, int part,
-  double r, double smallest, MultiresolutionScratch& s)
+  bool seeded, double r, double smallest, MultiresolutionScratch& s)
 {
   s.taken.clear();
   s.takenLevel.clear();
   s.takenFar.clear();
   s.read.clear();
   s.frontier.clear();
+  const bool recordSeeds = part == 1;
+  if (recordSeeds)
+  {
+    s.nearSeeds.clear();
+    s.nearSeedLevel.clear();
+  }
   const double r2 = r * r;
   const double eps2 = v.accuracy * v.accuracy;
   const double floor2 = smallest * smallest;
-  if (v.topEnd > v.topBegin && r > 0.0)
+  if (!seeded && v.topEnd > v.topBegin && r > 0.0)
   {
     forEachTopCell(v, outermostRegion(far, region), r, [&](std::uint32_t c) { s.frontier.push_back(c); });
   }
-  for (int level = v.topLevel; level >= 0 && !s.frontier.empty(); --level)
+  std::size_t seed = 0;
+  const std::size_t seeds = seeded ? s.nearSeeds.size() : 0;
+  for (int level = v.topLevel; level >= 0 && (!s.frontier.empty() || seed < seeds); --level)
   {
+    for (; seed < seeds && s.nearSeedLevel[seed] == level; ++seed)
+    {
+      s.frontier.push_back(s.nearSeeds[seed]);
+    }
     const double edge = v.levelSize[level];
     const double edge2 = edge * edge;
     const std::size_t n = s.frontier.size();
@@ -675,7 +701,11 @@ GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regi
     s.taken.resize(takenBefore + n);
     s.takenFar.resize(takenBefore + n);
     s.opened.resize(n);
-    std::size_t taken = takenBefore, opened = 0;
+    if (recordSeeds)
+    {
+      s.nearSeeds.resize(s.nearSeedLevel.size() + n);
+    }
+    std::size_t taken = takenBefore, opened = 0, seedCount = s.nearSeedLevel.size();
     for (std::size_t i = 0; i < n; ++i)
     {
       const std::uint32_t c = s.frontier[i];
@@ -689,6 +719,18 @@ GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regi
       taken += inside && whole && sample ? 1 : 0;
       s.opened[opened] = c;
       opened += inside && !whole ? 1 : 0;
+      if (recordSeeds)
+      {
+        // Part 0's from here: a cell of no far part (its distance is the walk region's), a far cell it samples, or a
+        // far cell of level 0 it reads point by point.
+        s.nearSeeds[seedCount] = c;
+        seedCount += !mine || (inside && (whole ? place.linearized == 0 : level == 0)) ? 1 : 0;
+      }
+    }
+    if (recordSeeds)
+    {
+      s.nearSeeds.resize(seedCount);
+      s.nearSeedLevel.resize(seedCount, level);
     }
     // The near cells taken whole that hold too few points for a sample are read point by point (readPointByPoint).
     std::size_t kept = takenBefore;
@@ -773,7 +815,7 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
     {
       // A new far region: its part's walk, summed once for its points (it reuses the walk's lists, not its packed
       // samples).
-      walk(v, region, far, i + 1, r, key.smallest, s);
+      walk(v, region, far, i + 1, false, r, key.smallest, s);
       packFarWalk(v, far.region[i], o, b, r * r, s, s.linearized[i]);
       s.farWalked[i] = true;
       s.farKey[i] = key;
@@ -783,7 +825,7 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
     outermostRegion(far, region), b.squaredScales, b.count };
   if (!s.walked || !sameWalk(s.walkedKey, key))
   {
-    walk(v, region, far, 0, r, key.smallest, s);
+    walk(v, region, far, 0, far.count > 0, r, key.smallest, s);
     packWalk(v, region, o, s);
     s.walked = true;
     s.walkedKey = key;

@@ -277,7 +277,7 @@ GLS_INLINE ShellShare pieceShareCurvature(
 /// kNarrowestSpread (in the shell of its mean), else piece(k, density, u, w, lowFixed, highFixed) for each part
 /// [u, w] of shell k, lowFixed / highFixed where that end is a scale's sphere rather than an end of the spread.
 template <typename Whole, typename Piece>
-GLS_INLINE void forEachPieceOfSpread(
+GLS_FORCE_INLINE void forEachPieceOfSpread(
   const ScaleBinning& b, double r2, double mean, double half, Whole&& whole, Piece&& piece)
 {
   const double lo = mean - half, hi = mean + half;
@@ -330,11 +330,11 @@ GLS_INLINE void forEachShellOfSpread(const ScaleBinning& b, double r2, double me
 /// forEachShellOfSpread with each share's derivatives: add(k, expansion) (wholeShareExpansion, pieceShareSlope,
 /// pieceShareCurvature).
 template <typename Add>
-GLS_INLINE void forEachShellOfSpreadExpanded(const ScaleBinning& b, double r2, double mean, double half, Add&& add)
+GLS_FORCE_INLINE void forEachShellOfSpreadExpanded(const ScaleBinning& b, double r2, double mean, double half, Add&& add)
 {
   forEachPieceOfSpread(
-    b, r2, mean, half, [&](int k) { add(k, wholeShareExpansion(mean, half)); },
-    [&](int k, const SpreadDensity& density, double u, double w, bool lowFixed, bool highFixed) {
+    b, r2, mean, half, [&](int k) GLS_INLINE_LAMBDA { add(k, wholeShareExpansion(mean, half)); },
+    [&](int k, const SpreadDensity& density, double u, double w, bool lowFixed, bool highFixed) GLS_INLINE_LAMBDA {
       add(k,
         ShellShareExpansion{ pieceShare(mean, density, u, w),
           pieceShareSlope(mean, density, u, w, lowFixed, highFixed),

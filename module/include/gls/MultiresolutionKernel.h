@@ -113,6 +113,12 @@ struct MultiresolutionScratch
   std::vector<int> cellShell;
   std::vector<std::uint32_t> singleCells, pairCells, spreadCells, wideCells;
   std::vector<std::uint8_t> takenFar; ///< per taken cell: decided by a far part's rule (never read point by point)
+  /// The cells where the walk of far part 1 (farKey[0]) left off for the walk region's own walk (part 0), level by
+  /// level from the top: those of no far part (the near subtrees) and the far cells taken whole but not linearized.
+  /// A walk region's walk starts from them instead of the top cells: the cells above them are decided from F_0 alone,
+  /// as every region of F_0 would decide them.
+  std::vector<std::uint32_t> nearSeeds;
+  std::vector<int> nearSeedLevel;
   LinearizedBins linearized[kMaxFarLevels]; ///< of each far part's region (farKey[i].farRegion)
   bool walked = false, farWalked[kMaxFarLevels] = {};
   WalkKey walkedKey{}, farKey[kMaxFarLevels] = {};
