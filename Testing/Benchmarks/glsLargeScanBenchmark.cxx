@@ -2,7 +2,8 @@
 //
 //   glsLargeScanBenchmark [--case L1|L2|L3|normals|accuracy|all (all)] [--models bunny,rocker-arm] [--threads T (2)]
 //                         [--points N (L1: 10000000; L2 and accuracy: 1000000)] [--sizes a,b,... (L3)]
-//                         [--accuracies e1,e2,... (0.1,0.2,0.3)]
+//                         [--accuracies e1,e2,... (0.1,0.2,0.3)] [--subset M (accuracy: every point)]
+//                         [--distances k1,k2,... (10,0) --rounds R (2): the linearized case]
 //
 // Every cloud is a bundled mesh sampled by area to N points, normals interpolated from the mesh; 20 quadratic
 // scales 0.8% to 8% of the diagonal; the fused continuous features (nu on the fly, O(N) memory).
@@ -17,7 +18,10 @@
 //       |f - f_exact| (sigma of the exact run), |t kappa - t kappa_exact|, |tau - tau_exact| / t, the angle between
 //       eta and eta_exact (degrees), |phi - phi_exact|, |nu - nu_exact| / (nu_exact + median nu_exact), and the
 //       share of points whose first pertinent scale moves by more than one scale step; PASS/FAIL against the
-//       targets at the default accuracy.
+//       targets at the default accuracy. With --subset M, every (N / M)-th point only (both runs), so that 10M
+//       points can be compared: the exact pass costs O(N) per point.
+//   linearized (not in all): N = 10M, the core engine alone at the default accuracy with each linearizedDistance K
+//       (0: no linearized far cells), alternately for R rounds in one process: build and run times side by side.
 #include "CommaList.h"
 #include "MeshSampler.h"
 
@@ -38,6 +42,7 @@
 #include "gls/ScaleAnalysis.h"
 #include "gls/ScaleSampling.h"
 #include "gls/ScaleSpaceEngine.h"
+#include "gls/VariationSink.h"
 
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -337,40 +342,67 @@ int firstPertinent(const double* nu, const std::vector<double>& scales)
   return static_cast<int>(std::lower_bound(scales.begin(), scales.end(), found[0]) - scales.begin());
 }
 
+/// The points compared: every point (ids empty), or every (N / M)-th point; slot(id) is a point's row.
+struct Compared
+{
+  std::vector<std::uint64_t> ids;
+  std::vector<std::uint32_t> slots; ///< per point id, its row (with ids)
+
+  Compared(std::size_t n, std::size_t subset)
+  {
+    if (subset == 0 || subset >= n)
+    {
+      return;
+    }
+    slots.assign(n, 0);
+    const std::size_t stride = n / subset;
+    for (std::size_t m = 0; m < subset; ++m)
+    {
+      ids.push_back(m * stride);
+      slots[m * stride] = static_cast<std::uint32_t>(m);
+    }
+  }
+  std::size_t count(std::size_t n) const { return ids.empty() ? n : ids.size(); }
+  std::size_t slot(std::uint64_t id) const { return ids.empty() ? static_cast<std::size_t>(id) : slots[id]; }
+  const std::vector<std::uint64_t>* subset() const { return ids.empty() ? nullptr : &ids; }
+};
+
 class ExactSink : public gls::ScaleSampleSink
 {
 public:
-  ExactSink(const std::vector<double>& scales, std::size_t n, int threads)
+  ExactSink(const std::vector<double>& scales, const Compared& compared, std::size_t n)
     : Scales(scales)
-    , Rows(n * scales.size())
-    , Neighbors(n)
-    , Nu(static_cast<std::size_t>(threads), std::vector<double>(scales.size()))
+    , Points(compared)
+    , Rows(compared.count(n) * scales.size())
+    , Neighbors(compared.count(n))
   {
   }
   void consume(std::uint64_t id, const gls::ScaleSample* s, int) override
   {
+    const std::size_t slot = this->Points.slot(id);
     for (std::size_t k = 0; k < this->Scales.size(); ++k)
     {
       const double t = this->Scales[k];
-      ExactRow& r = this->Rows[id * this->Scales.size() + k];
+      ExactRow& r = this->Rows[slot * this->Scales.size() + k];
       r = { static_cast<float>(s[k].tau / t), static_cast<float>(s[k].kappa * t), static_cast<float>(s[k].phi),
         { static_cast<float>(s[k].eta.x), static_cast<float>(s[k].eta.y), static_cast<float>(s[k].eta.z) },
         gls::geometricVariation(s[k], t, gls::VariationWeights{}) };
     }
-    this->Neighbors[id] = s[this->Scales.size() - 1].neighbors;
+    this->Neighbors[slot] = s[this->Scales.size() - 1].neighbors;
   }
   const std::vector<double>& Scales;
-  std::vector<ExactRow> Rows;
-  std::vector<double> Neighbors; ///< in the largest ball, per point
-  std::vector<std::vector<double>> Nu;
+  const Compared& Points;
+  std::vector<ExactRow> Rows;     ///< per compared point (slot) and scale
+  std::vector<double> Neighbors; ///< in the largest ball, per compared point
 };
 
 class CompareSink : public gls::ScaleSampleSink
 {
 public:
-  CompareSink(const std::vector<double>& scales, const std::vector<ExactRow>& exact, const std::vector<double>& f,
-    const std::vector<int>& first, double sigma, double medianNu, int threads)
+  CompareSink(const std::vector<double>& scales, const Compared& compared, const std::vector<ExactRow>& exact,
+    const std::vector<double>& f, const std::vector<int>& first, double sigma, double medianNu, int threads)
     : Scales(scales)
+    , Points(compared)
     , Exact(exact)
     , ExactF(f)
     , ExactFirst(first)
@@ -386,10 +418,11 @@ public:
     std::vector<Histogram>& h = this->H[static_cast<std::size_t>(thread)];
     std::vector<double>& nu = this->Nu[static_cast<std::size_t>(thread)];
     const std::size_t S = this->Scales.size();
+    const std::size_t slot = this->Points.slot(id);
     for (std::size_t k = 0; k < S; ++k)
     {
       const double t = this->Scales[k];
-      const ExactRow& e = this->Exact[id * S + k];
+      const ExactRow& e = this->Exact[slot * S + k];
       nu[k] = gls::geometricVariation(s[k], t, gls::VariationWeights{});
       if (!s[k].valid || !std::isfinite(e.tKappa))
       {
@@ -404,18 +437,19 @@ public:
     }
     const double f = gls::continuousFeature(nu.data(), this->Scales.data(), static_cast<int>(S), this->Sigma,
       gls::FeatureMeasure::Scale);
-    if (std::isfinite(f) && std::isfinite(this->ExactF[id]))
+    if (std::isfinite(f) && std::isfinite(this->ExactF[slot]))
     {
-      h[F].add(std::abs(f - this->ExactF[id]));
+      h[F].add(std::abs(f - this->ExactF[slot]));
     }
     const int first = firstPertinent(nu.data(), this->Scales);
-    const int e = this->ExactFirst[id];
+    const int e = this->ExactFirst[slot];
     if ((first < 0) != (e < 0) || std::abs(first - e) > 1)
     {
       this->Moved[static_cast<std::size_t>(thread)] += 1.0;
     }
   }
   const std::vector<double>& Scales;
+  const Compared& Points;
   const std::vector<ExactRow>& Exact;
   const std::vector<double>& ExactF;
   const std::vector<int>& ExactFirst;
@@ -425,36 +459,97 @@ public:
   std::vector<std::vector<double>> Nu;
 };
 
-int caseAccuracy(const std::vector<std::string>& models, long long n, int threads, const std::vector<double>& eps)
+/// The model sampled to n points as the core engine reads them (xyz, nrm), and the benchmark's settings for it.
+gls::ScaleSpaceSettings coreSettings(
+  const std::string& model, long long n, int threads, std::vector<double>& xyz, std::vector<double>& nrm)
 {
-  std::printf("\n== Accuracy against exact: %lld points, every point and scale, %d threads\n", n, threads);
+  auto cloud = sampleMeshSurface(modelPath(model), n, 1);
+  xyz.resize(3 * static_cast<std::size_t>(n));
+  nrm.resize(3 * static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    cloud->GetPoint(i, &xyz[3 * static_cast<std::size_t>(i)]);
+    cloud->GetPointData()->GetNormals()->GetTuple(i, &nrm[3 * static_cast<std::size_t>(i)]);
+  }
+  double b[6];
+  cloud->GetBounds(b);
+  const double diag =
+    std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
+  gls::ScaleSpaceSettings settings;
+  settings.scales = gls::sampleScales(0.008 * diag, 0.08 * diag, kScales, gls::ScaleSampling::Quadratic);
+  settings.parallel.threads = threads;
+  return settings;
+}
+
+/// The core engine alone (no filter), Evaluation Multiresolution at the default accuracy, fused features, with each
+/// linearizedDistance in turn, `rounds` times alternately: the far cells' effect side by side in one process.
+int caseLinearized(const std::vector<std::string>& models, long long n, int threads, const std::vector<double>& distances,
+  int rounds)
+{
+  std::printf("\n== Linearized far cells side by side: the core engine, %lld points, fused features, %d threads\n", n,
+    threads);
+  std::printf("%-12s %6s %8s %10s %10s %10s\n", "model", "round", "K", "build s", "run s", "us/point");
+  for (const std::string& model : models)
+  {
+    std::vector<double> xyz, nrm;
+    gls::ScaleSpaceSettings settings = coreSettings(model, n, threads, xyz, nrm);
+    settings.evaluation = gls::Evaluation::Multiresolution;
+    const std::size_t N = static_cast<std::size_t>(n);
+    std::vector<double> f(N);
+    for (int round = 1; round <= rounds; ++round)
+    {
+      for (double k : distances)
+      {
+        settings.multiresolution.linearizedDistance = k;
+        const double t0 = now();
+        gls::ScaleSpaceEngine engine(xyz.data(), nrm.data(), N, settings);
+        const double built = now();
+        const std::vector<double>& scales = engine.scales();
+        gls::VariationReductionSink sink(scales, gls::resolveThreadCount(threads), {},
+          [&scales](const double* nu) {
+            return gls::continuousFeature(nu, scales.data(), kScales, 0.1, gls::FeatureMeasure::Scale);
+          },
+          f.data());
+        engine.run(sink);
+        const double done = now();
+        std::printf("%-12s %6d %8g %10.1f %10.1f %10.2f\n", model.c_str(), round, k, built - t0, done - built,
+          1e6 * (done - built) / static_cast<double>(n));
+        std::fflush(stdout);
+      }
+    }
+  }
+  return 0;
+}
+
+int caseAccuracy(const std::vector<std::string>& models, long long n, int threads, const std::vector<double>& eps,
+  long long subset)
+{
+  if (subset > 0 && subset < n)
+  {
+    std::printf("\n== Accuracy against exact: %lld points, every %lld-th point (%lld) and every scale, %d threads\n",
+      n, n / subset, subset, threads);
+  }
+  else
+  {
+    std::printf("\n== Accuracy against exact: %lld points, every point and scale, %d threads\n", n, threads);
+  }
   const double targets[METRICS] = { 0.02, 0.01, 0.005, 0.5, 0.01, 0.1 };
   const char* names[METRICS] = { "f", "t kappa", "tau/t", "eta deg", "phi", "nu rel" };
   bool allPass = true;
   for (const std::string& model : models)
   {
-    auto cloud = sampleMeshSurface(modelPath(model), n, 1);
-    std::vector<double> xyz(3 * n), nrm(3 * n);
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      cloud->GetPoint(i, &xyz[3 * i]);
-      cloud->GetPointData()->GetNormals()->GetTuple(i, &nrm[3 * i]);
-    }
-    double b[6];
-    cloud->GetBounds(b);
-    const double diag =
-      std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
-    gls::ScaleSpaceSettings settings;
-    settings.scales = gls::sampleScales(0.008 * diag, 0.08 * diag, kScales, gls::ScaleSampling::Quadratic);
-    settings.parallel.threads = threads;
+    std::vector<double> xyz, nrm;
+    gls::ScaleSpaceSettings settings = coreSettings(model, n, threads, xyz, nrm);
     const int T = gls::resolveThreadCount(threads);
-    const std::size_t N = static_cast<std::size_t>(n);
+    const std::size_t total = static_cast<std::size_t>(n);
+    const Compared compared(total, static_cast<std::size_t>(subset > 0 ? subset : 0));
+    const std::size_t N = compared.count(total); // the points compared
     const std::vector<double>& scales = settings.scales;
     double t0 = now();
-    ExactSink exact(scales, N, T);
+    ExactSink exact(scales, compared, total);
     {
-      gls::ScaleSpaceEngine engine(xyz.data(), nrm.data(), N, settings);
-      engine.run(exact);
+      gls::ScaleSpaceEngine engine(xyz.data(), nrm.data(), total, settings);
+      engine.run(exact, compared.subset());
     }
     double largestBall = 0.0;
     for (std::size_t i = 0; i < N; ++i)
@@ -504,15 +599,15 @@ int caseAccuracy(const std::vector<std::string>& models, long long n, int thread
       ms.evaluation = gls::Evaluation::Multiresolution;
       ms.multiresolution.accuracy = e;
       t0 = now();
-      CompareSink compare(scales, exact.Rows, f, first, sigma, medianNu, T);
+      CompareSink compare(scales, compared, exact.Rows, f, first, sigma, medianNu, T);
       double samples = 0.0; // per point: cells taken whole plus points read one by one, over 1,000 points
       {
-        gls::ScaleSpaceEngine engine(xyz.data(), nrm.data(), N, ms);
-        engine.run(compare);
+        gls::ScaleSpaceEngine engine(xyz.data(), nrm.data(), total, ms);
+        engine.run(compare, compared.subset());
         const gls::MultiresolutionView& v = engine.pyramid().view();
-        const std::size_t stride = std::max<std::size_t>(1, N / 1000);
+        const std::size_t stride = std::max<std::size_t>(1, total / 1000);
         double visited = 0.0;
-        for (std::size_t i = 0; i < N; i += stride, visited += 1.0)
+        for (std::size_t i = 0; i < total; i += stride, visited += 1.0)
         {
           gls::forEachMultiresolutionSample(
             v, { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] }, scales.back(), scales.front(),
@@ -560,6 +655,9 @@ int main(int argc, char* argv[])
   long long points = 0;
   std::vector<long long> sizes = { 300000, 1000000, 3000000, 10000000 };
   std::vector<double> eps = { 0.1, 0.2, 0.3 };
+  long long subset = 0;
+  int rounds = 2;
+  std::vector<double> distances = { gls::kLinearizedDistance, 0.0 };
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -588,6 +686,22 @@ int main(int argc, char* argv[])
         sizes.push_back(std::atoll(s.c_str()));
       }
     }
+    else if (a == "--subset" && v)
+    {
+      subset = std::atoll(argv[++i]);
+    }
+    else if (a == "--rounds" && v)
+    {
+      rounds = std::atoi(argv[++i]);
+    }
+    else if (a == "--distances" && v)
+    {
+      distances.clear();
+      for (const std::string& s : splitCommaList(argv[++i]))
+      {
+        distances.push_back(std::atof(s.c_str()));
+      }
+    }
     else if (a == "--accuracies" && v)
     {
       eps.clear();
@@ -599,8 +713,8 @@ int main(int argc, char* argv[])
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--case L1|L2|L3|normals|accuracy|all] [--models a,b] [--threads T] [--points N] [--sizes a,b] "
-        "[--accuracies e1,e2]\n",
+        "usage: %s [--case L1|L2|L3|normals|accuracy|linearized|all] [--models a,b] [--threads T] [--points N] "
+        "[--sizes a,b] [--accuracies e1,e2] [--subset M] [--distances k1,k2] [--rounds R]\n",
         argv[0]);
       return 2;
     }
@@ -624,7 +738,11 @@ int main(int argc, char* argv[])
   }
   if (which == "accuracy" || which == "all")
   {
-    caseAccuracy(models, points > 0 ? points : 1000000, threads, eps);
+    caseAccuracy(models, points > 0 ? points : 1000000, threads, eps, subset);
+  }
+  if (which == "linearized")
+  {
+    caseLinearized(models, points > 0 ? points : 10000000, threads, distances, rounds);
   }
   std::printf("\nlarge-scan benchmark complete\n");
   return 0;
