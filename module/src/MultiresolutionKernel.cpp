@@ -774,20 +774,21 @@ GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regi
   }
 }
 
-bool sameRegion(const WalkRegion& a, const WalkRegion& b)
+GLS_ALWAYS_INLINE bool sameRegion(const WalkRegion& a, const WalkRegion& b)
 {
   return a.edge == b.edge && a.corner.x == b.corner.x && a.corner.y == b.corner.y && a.corner.z == b.corner.z;
 }
 
-/// The same far walk: the same key but perhaps another walk region of the same far region.
-bool sameFarWalk(const WalkKey& a, const WalkKey& b)
+/// The same far walk: the same key but perhaps another walk region of the same far region (the region first: it is
+/// what changes from one point to the next).
+GLS_ALWAYS_INLINE bool sameFarWalk(const WalkKey& a, const WalkKey& b)
 {
-  return a.nodes == b.nodes && a.count == b.count && a.accuracy == b.accuracy && a.radius == b.radius &&
-    a.smallest == b.smallest && a.linearizedDistance == b.linearizedDistance && a.squaredScales == b.squaredScales &&
-    a.scaleCount == b.scaleCount && sameRegion(a.farRegion, b.farRegion);
+  return sameRegion(a.farRegion, b.farRegion) && a.nodes == b.nodes && a.count == b.count &&
+    a.accuracy == b.accuracy && a.radius == b.radius && a.smallest == b.smallest &&
+    a.linearizedDistance == b.linearizedDistance && a.squaredScales == b.squaredScales && a.scaleCount == b.scaleCount;
 }
 
-bool sameWalk(const WalkKey& a, const WalkKey& b)
+GLS_ALWAYS_INLINE bool sameWalk(const WalkKey& a, const WalkKey& b)
 {
   return sameFarWalk(a, b) && sameRegion(a.region, b.region);
 }
