@@ -3,7 +3,7 @@
 //   glsLargeScanBenchmark [--case L1|L2|L3|normals|accuracy|all (all)] [--models bunny,rocker-arm] [--threads T (2)]
 //                         [--points N (L1: 10000000; L2 and accuracy: 1000000)] [--sizes a,b,... (L3)]
 //                         [--accuracies e1,e2,... (0.1,0.2,0.3)] [--subset M (accuracy: every point)]
-//                         [--distances k1,k2,... (10,0) --rounds R (2): the linearized case]
+//                         [--distances k1,k2,... (linearized: 10,0; accuracy: 10)] [--rounds R (2)]
 //
 // Every cloud is a bundled mesh sampled by area to N points, normals interpolated from the mesh; 20 quadratic
 // scales 0.8% to 8% of the diagonal; the fused continuous features (nu on the fly, O(N) memory).
@@ -18,8 +18,9 @@
 //       |f - f_exact| (sigma of the exact run), |t kappa - t kappa_exact|, |tau - tau_exact| / t, the angle between
 //       eta and eta_exact (degrees), |phi - phi_exact|, |nu - nu_exact| / (nu_exact + median nu_exact), and the
 //       share of points whose first pertinent scale moves by more than one scale step; PASS/FAIL against the
-//       targets at the default accuracy. With --subset M, every (N / M)-th point only (both runs), so that 10M
-//       points can be compared: the exact pass costs O(N) per point.
+//       targets at the default accuracy (and linearizedDistance). With --subset M, every (N / M)-th point only (both
+//       runs), so that 10M points can be compared: the exact pass costs O(N) per point. With --distances, each
+//       accuracy at each linearizedDistance K (the far cells' effect on the errors).
 //   linearized (not in all): N = 10M, the core engine alone at the default accuracy with each linearizedDistance K
 //       (0: no linearized far cells), alternately for R rounds in one process: build and run times side by side.
 #include "CommaList.h"
@@ -522,7 +523,7 @@ int caseLinearized(const std::vector<std::string>& models, long long n, int thre
 }
 
 int caseAccuracy(const std::vector<std::string>& models, long long n, int threads, const std::vector<double>& eps,
-  long long subset)
+  const std::vector<double>& distances, long long subset)
 {
   if (subset > 0 && subset < n)
   {
@@ -587,17 +588,19 @@ int caseAccuracy(const std::vector<std::string>& models, long long n, int thread
     std::vector<double>().swap(nu);
     std::printf("\n%s: exact %.1f s, %.0f points per largest ball; sigma %.4g, median nu %.4g\n", model.c_str(),
       exactTime, largestBall, sigma, medianNu);
-    std::printf("%-6s %8s %8s %9s", "eps", "time s", "speed-up", "samples");
+    std::printf("%-6s %5s %8s %8s %9s", "eps", "K", "time s", "speed-up", "samples");
     for (int m = 0; m < METRICS; ++m)
     {
       std::printf(" %10s p99 %9s", names[m], "max");
     }
     std::printf(" %9s\n", "moved");
-    for (double e : eps)
+    for (std::size_t run = 0; run < eps.size() * distances.size(); ++run)
     {
+      const double e = eps[run / distances.size()], k = distances[run % distances.size()];
       gls::ScaleSpaceSettings ms = settings;
       ms.evaluation = gls::Evaluation::Multiresolution;
       ms.multiresolution.accuracy = e;
+      ms.multiresolution.linearizedDistance = k;
       t0 = now();
       CompareSink compare(scales, compared, exact.Rows, f, first, sigma, medianNu, T);
       double samples = 0.0; // per point: cells taken whole plus points read one by one, over 1,000 points
@@ -626,8 +629,8 @@ int caseAccuracy(const std::vector<std::string>& models, long long n, int thread
         }
         moved += compare.Moved[static_cast<std::size_t>(t)];
       }
-      const bool isDefault = std::abs(e - gls::kDefaultAccuracy) < 1e-12;
-      std::printf("%-6.3g %8.1f %7.1fx %9.0f", e, time, exactTime / time, samples);
+      const bool isDefault = std::abs(e - gls::kDefaultAccuracy) < 1e-12 && k == gls::kLinearizedDistance;
+      std::printf("%-6.3g %5g %8.1f %7.1fx %9.0f", e, k, time, exactTime / time, samples);
       for (int m = 0; m < METRICS; ++m)
       {
         const double p99 = h[static_cast<std::size_t>(m)].quantile(0.99);
@@ -658,6 +661,7 @@ int main(int argc, char* argv[])
   long long subset = 0;
   int rounds = 2;
   std::vector<double> distances = { gls::kLinearizedDistance, 0.0 };
+  bool distancesGiven = false;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -696,6 +700,7 @@ int main(int argc, char* argv[])
     }
     else if (a == "--distances" && v)
     {
+      distancesGiven = true;
       distances.clear();
       for (const std::string& s : splitCommaList(argv[++i]))
       {
@@ -738,7 +743,8 @@ int main(int argc, char* argv[])
   }
   if (which == "accuracy" || which == "all")
   {
-    caseAccuracy(models, points > 0 ? points : 1000000, threads, eps, subset);
+    caseAccuracy(models, points > 0 ? points : 1000000, threads, eps, distancesGiven ? distances :
+      std::vector<double>{ gls::kLinearizedDistance }, subset);
   }
   if (which == "linearized")
   {

@@ -126,9 +126,10 @@ GLS_ALWAYS_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const
     });
 }
 
-/// The LinearizedBins of the far region F from the cells of its far walk (s.taken, s.takenLevel), their sums about o.
-/// Inlined into each build of the kernel (its loops vectorized there).
-GLS_ALWAYS_INLINE void packFarWalk(const MultiresolutionView& v, const WalkRegion& F, const Vec3& o,
+/// The LinearizedBins of the far region F of far part `part` from the cells of its far walk (s.taken, s.takenLevel),
+/// their sums about o; the cells too narrow to linearize go to s.farSampled[part] instead. Inlined into each build of
+/// the kernel (its loops vectorized there).
+GLS_ALWAYS_INLINE void packFarWalk(const MultiresolutionView& v, const WalkRegion& F, int part, const Vec3& o,
   const ScaleBinning& b, double r2, MultiresolutionScratch& s, LinearizedBins& far)
 {
   const std::size_t S = static_cast<std::size_t>(b.count);
@@ -140,14 +141,28 @@ GLS_ALWAYS_INLINE void packFarWalk(const MultiresolutionView& v, const WalkRegio
     bins->resize(S);
     std::memset(static_cast<void*>(bins->data()), 0, sizeof(AggregateMoments) * S); // all 0.0
   }
-  far.cells = s.taken.size();
+  far.cells = 0;
   far.firstShell = b.count;
+  std::vector<std::uint32_t>& sampled = s.farSampled[part];
+  std::vector<int>& sampledLevel = s.farSampledLevel[part];
+  sampled.clear();
+  sampledLevel.clear();
   const Vec3 centre = regionCentre(F);
   for (std::size_t k = 0; k < s.taken.size(); ++k)
   {
     PyramidCell cell;
     cellMoments(v, s.taken[k], s.takenLevel[k], cell);
-    addLinearizedCell(b, r2, cell, o, cell.centroid - centre, far);
+    const Vec3 a = cell.centroid - centre;
+    if (linearizable(spreadHalfWidth(cell, a), a, F))
+    {
+      addLinearizedCell(b, r2, cell, o, a, far);
+      ++far.cells;
+    }
+    else
+    {
+      sampled.push_back(s.taken[k]);
+      sampledLevel.push_back(s.takenLevel[k]);
+    }
   }
 }
 
@@ -817,7 +832,7 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
       // A new far region: its part's walk, summed once for its points (it reuses the walk's lists, not its packed
       // samples).
       walk(v, region, far, i + 1, false, r, key.smallest, s);
-      packFarWalk(v, far.region[i], o, b, r * r, s, s.linearized[i]);
+      packFarWalk(v, far.region[i], i, o, b, r * r, s, s.linearized[i]);
       s.farWalked[i] = true;
       s.farKey[i] = key;
     }
@@ -827,6 +842,12 @@ GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, con
   if (!s.walked || !sameWalk(s.walkedKey, key))
   {
     walk(v, region, far, 0, far.count > 0, r, key.smallest, s);
+    for (int i = 0; i < far.count; ++i)
+    {
+      // The far cells whose spread is too narrow to linearize (linearizable), sampled as near cells.
+      s.taken.insert(s.taken.end(), s.farSampled[i].begin(), s.farSampled[i].end());
+      s.takenLevel.insert(s.takenLevel.end(), s.farSampledLevel[i].begin(), s.farSampledLevel[i].end());
+    }
     packWalk(v, region, o, s);
     s.walked = true;
     s.walkedKey = key;

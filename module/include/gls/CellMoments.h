@@ -124,6 +124,14 @@ struct CellSample
   double halfWidth;
 };
 
+/// The half-width of a cell's spread of squared distances seen along `direction` (CellSample::halfWidth):
+/// sqrt(3 V), V = 4 a^T C a / m the variance of 2 a . y over its points.
+GLS_INLINE double spreadHalfWidth(const PyramidCell& cell, const Vec3& direction)
+{
+  const double variance = 4.0 * dot(direction, offsetOffsetTimes(cell, direction)) / cell.count;
+  return variance > 0.0 ? squareRoot(3.0 * variance) : 0.0;
+}
+
 /// The sample of `cell` in coordinates about `origin`, with `direction` a = c - (the walk region's centre).
 GLS_INLINE void makeCellSample(const PyramidCell& cell, const Vec3& origin, const Vec3& direction, CellSample& s)
 {
@@ -150,8 +158,7 @@ GLS_INLINE void makeCellSample(const PyramidCell& cell, const Vec3& origin, cons
   s.gradient[7] = dot(x, Na) + dot(direction, cell.offsetOffsetDotNormal);
   s.gradient[8] = 2.0 * dot(x, Ca) + dot(direction, cell.offsetSquaredOffset);
   s.spreadPerPoint = spreadOf(cell) / m;
-  const double variance = 4.0 * dot(direction, Ca) / m;
-  s.halfWidth = variance > 0.0 ? squareRoot(3.0 * variance) : 0.0;
+  s.halfWidth = spreadHalfWidth(cell, direction);
 }
 
 /// A spread narrower than this fraction of its upper end is not split: the sample goes whole to the shell of its

@@ -119,6 +119,10 @@ struct MultiresolutionScratch
   /// as every region of F_0 would decide them.
   std::vector<std::uint32_t> nearSeeds;
   std::vector<int> nearSeedLevel;
+  /// Per far part, the cells of its walk taken whole but too narrow to linearize (linearizable): every walk region of
+  /// its far region samples them as near cells.
+  std::vector<std::uint32_t> farSampled[kMaxFarLevels];
+  std::vector<int> farSampledLevel[kMaxFarLevels];
   LinearizedBins linearized[kMaxFarLevels]; ///< of each far part's region (farKey[i].farRegion)
   bool walked = false, farWalked[kMaxFarLevels] = {};
   WalkKey walkedKey{}, farKey[kMaxFarLevels] = {};

@@ -352,6 +352,19 @@ GLS_INLINE CellPlace placeCell(const FarRule& f, const WalkRegion& region, const
   return c;
 }
 
+/// Whether a cell of far region F (FarRule) taken whole is linearized: only where its spread of squared distances,
+/// seen from F's centre (half-width `half`, direction `a` = its centroid - the centre), is at least as wide as its
+/// mean's move across F (|delta| = ||u|^2 - 2 a . u| <= 2 |a| h + h^2 for |u| <= h, F's half-diagonal). A narrower
+/// spread can cross a scale's sphere as p moves within F, its share jumping from one shell to the next (a narrow one
+/// goes whole to the shell of its mean), which no expansion at the centre follows: such a cell is sampled for each
+/// point instead, as a near cell (measured: a wall of the rocker arm facing p, 5,500 of 28,000 points in the wrong
+/// ball, nu 800 times off at 3M points; docs/performance.md, "Linearized far cells").
+GLS_INLINE bool linearizable(double half, const Vec3& a, const WalkRegion& F)
+{
+  const double h = 0.8660254037844386 * F.edge; // sqrt(3) / 2
+  return half >= h * (2.0 * squareRoot(squaredNorm(a)) + h);
+}
+
 /// The region a walk's top cells are found from: the largest far region, or p's walk region.
 GLS_INLINE const WalkRegion& outermostRegion(const FarRule& f, const WalkRegion& region)
 {
@@ -457,8 +470,13 @@ GLS_INLINE void forEachMultiresolutionTerm(
       const Vec3 centre = farPart > 0 ? regionCentre(far.region[farPart - 1]) : anchor;
       const Vec3 a = cell.centroid - centre;
       makeCellSample(cell, p, a, s);
+      const bool linearized = farPart > 0 && linearizable(s.halfWidth, a, far.region[farPart - 1]);
+      if (farPart > 0 && !linearized)
+      {
+        makeCellSample(cell, p, cell.centroid - anchor, s); // sampled as a near cell
+      }
       const double mean = squaredNorm(cell.centroid - p) + s.spreadPerPoint;
-      if (farPart == 0)
+      if (!linearized)
       {
         forEachShellOfSpread(b, r2, mean, s.halfWidth, [&](int k, const ShellShare& share) { cellShare(k, s, share); });
         return;
