@@ -361,7 +361,7 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
   v.linearizedDistance = layout.linearizedDistance;
   v.farLevelCount = 0;
   while (v.farLevelCount < kMaxFarLevels && v.farLevel + v.farLevelCount <= topLevel &&
-    v.linearizedDistance * 0.8660254037844386 * v.levelSize[v.farLevel + v.farLevelCount] < layout.largestScale)
+    v.linearizedDistance * halfDiagonal(v.levelSize[v.farLevel + v.farLevelCount]) < layout.largestScale)
   {
     ++v.farLevelCount;
   }

@@ -102,6 +102,12 @@ GLS_INLINE WalkRegion walkRegion(const MultiresolutionView& v, const Vec3& p)
   return latticeCube(v, p, v.walkLevel);
 }
 
+/// The half-diagonal of a cube of edge `edge`: sqrt(3) / 2 times it.
+GLS_INLINE double halfDiagonal(double edge)
+{
+  return 0.8660254037844386 * edge;
+}
+
 /// Distance between the intervals [lo1, hi1] and [lo2, hi2] (0 where they overlap).
 GLS_INLINE double gapBetweenIntervals(double lo1, double hi1, double lo2, double hi2)
 {
@@ -308,7 +314,7 @@ GLS_INLINE FarRule farRule(const MultiresolutionView& v, const Vec3& p)
   for (int i = 0; i < count && i < kMaxFarLevels; ++i)
   {
     f.region[i] = latticeCube(v, p, v.farLevel + i);
-    const double reach = v.linearizedDistance * 0.8660254037844386 * f.region[i].edge; // sqrt(3) / 2
+    const double reach = v.linearizedDistance * halfDiagonal(f.region[i].edge);
     f.reach2[i] = reach * reach;
     f.count = f.region[i].edge > 0.0 ? i + 1 : 0;
     if (f.count == 0)
@@ -361,7 +367,7 @@ GLS_INLINE CellPlace placeCell(const FarRule& f, const WalkRegion& region, const
 /// ball, nu 800 times off at 3M points; docs/performance.md, "Linearized far cells").
 GLS_INLINE bool linearizable(double half, const Vec3& a, const WalkRegion& F)
 {
-  const double h = 0.8660254037844386 * F.edge; // sqrt(3) / 2
+  const double h = halfDiagonal(F.edge);
   return half >= h * (2.0 * squareRoot(squaredNorm(a)) + h);
 }
 
@@ -467,14 +473,12 @@ GLS_INLINE void forEachMultiresolutionTerm(
       PyramidCell cell;
       cellMoments(v, node, level, cell);
       CellSample s;
+      // A far cell too narrow to linearize is sampled as a near cell (direction from the walk region's centre).
       const Vec3 centre = farPart > 0 ? regionCentre(far.region[farPart - 1]) : anchor;
-      const Vec3 a = cell.centroid - centre;
+      const bool linearized = farPart > 0 &&
+        linearizable(spreadHalfWidth(cell, cell.centroid - centre), cell.centroid - centre, far.region[farPart - 1]);
+      const Vec3 a = cell.centroid - (linearized ? centre : anchor);
       makeCellSample(cell, p, a, s);
-      const bool linearized = farPart > 0 && linearizable(s.halfWidth, a, far.region[farPart - 1]);
-      if (farPart > 0 && !linearized)
-      {
-        makeCellSample(cell, p, cell.centroid - anchor, s); // sampled as a near cell
-      }
       const double mean = squaredNorm(cell.centroid - p) + s.spreadPerPoint;
       if (!linearized)
       {
