@@ -18,7 +18,7 @@ constexpr int kBatch = 64;
 /// for those whose squared distance d2 to p is below r2, k the first scale holding them (firstScaleHolding). Always
 /// inlined, with its callbacks, into the caller's build (baseline or AVX2).
 template <typename Index, typename Id, typename Position, typename Add>
-GLS_ALWAYS_INLINE void addInsideBall(
+GLS_FORCE_INLINE void addInsideBall(
   const Vec3& p, const ScaleBinning& b, double r2, Index begin, Index end, Id&& id, Position&& position, Add&& add)
 {
   decltype(id(begin)) inside[kBatch];

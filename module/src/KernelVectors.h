@@ -2,14 +2,14 @@
 // choice of an AVX2 + FMA build of a loop.
 #pragma once
 
+#include "gls/HostDevice.h"
+
 #include <cstring>
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 #define GLS_KERNEL_DISPATCH 1
-#define GLS_ALWAYS_INLINE inline __attribute__((always_inline))
 #else
 #define GLS_KERNEL_DISPATCH 0
-#define GLS_ALWAYS_INLINE inline
 #endif
 
 namespace gls
@@ -27,14 +27,14 @@ typedef double Double4 __attribute__((vector_size(32)));
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-GLS_ALWAYS_INLINE Double4 load4(const double* m)
+GLS_FORCE_INLINE Double4 load4(const double* m)
 {
   Double4 v;
   std::memcpy(&v, m, sizeof(v));
   return v;
 }
 
-GLS_ALWAYS_INLINE void store4(double* m, Double4 v)
+GLS_FORCE_INLINE void store4(double* m, Double4 v)
 {
   std::memcpy(m, &v, sizeof(v));
 }

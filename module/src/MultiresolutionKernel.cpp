@@ -22,7 +22,7 @@ namespace
 
 /// Adds the sums f = (f0, f1, f8) of a point at squared distance d2 (addSampleSums in AggregateMoments.h: the same
 /// products and sums, element by element, fused into multiply-adds in the AVX2 build).
-GLS_ALWAYS_INLINE void addPackedSums(AggregateMoments& a, const double* f, double d2)
+GLS_FORCE_INLINE void addPackedSums(AggregateMoments& a, const double* f, double d2)
 {
 #if GLS_KERNEL_VECTORS
   using kernel::load4;
@@ -54,14 +54,14 @@ struct LoadedSample
   double f8, g8;
 };
 
-GLS_ALWAYS_INLINE LoadedSample loadSample(const CellSample& s)
+GLS_FORCE_INLINE LoadedSample loadSample(const CellSample& s)
 {
   using kernel::load4;
   return { load4(s.sums), load4(s.sums + 4), load4(s.gradient), load4(s.gradient + 4), s.sums[8], s.gradient[8] };
 }
 
 /// A cell's share of one shell (addCellShare in CellMoments.h, the same products and sums element by element).
-GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const LoadedSample& f, const ShellShare& share)
+GLS_FORCE_INLINE void addPackedCellShare(AggregateMoments& a, const LoadedSample& f, const ShellShare& share)
 {
   using kernel::load4;
   using kernel::store4;
@@ -77,7 +77,7 @@ GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const LoadedSampl
 }
 #endif
 
-GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const CellSample& s, const ShellShare& share)
+GLS_FORCE_INLINE void addPackedCellShare(AggregateMoments& a, const CellSample& s, const ShellShare& share)
 {
 #if GLS_KERNEL_VECTORS
   addPackedCellShare(a, loadSample(s), share);
@@ -88,7 +88,7 @@ GLS_ALWAYS_INLINE void addPackedCellShare(AggregateMoments& a, const CellSample&
 
 
 /// sum += c * x over the 27 moments.
-GLS_ALWAYS_INLINE void addScaled(AggregateMoments& sum, double c, const AggregateMoments& x)
+GLS_FORCE_INLINE void addScaled(AggregateMoments& sum, double c, const AggregateMoments& x)
 {
   for (int j = 0; j < 3 * kAggregateValues; ++j)
   {
@@ -98,7 +98,7 @@ GLS_ALWAYS_INLINE void addScaled(AggregateMoments& sum, double c, const Aggregat
 
 /// Adds a linearized cell (FarRule) to its far region's LinearizedBins: its shares expanded at the region's centre
 /// (mean |a|^2 + its spread per point, a = c - the centre), its sample about the region's corner o.
-GLS_ALWAYS_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const PyramidCell& cell, const Vec3& o,
+GLS_FORCE_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const PyramidCell& cell, const Vec3& o,
   const Vec3& a, LinearizedBins& far)
 {
   CellSample sample;
@@ -129,7 +129,7 @@ GLS_ALWAYS_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const
 /// The LinearizedBins of the far region F of far part `part` from the cells of its far walk (s.taken, s.takenLevel),
 /// their sums about o; the cells too narrow to linearize go to s.farSampled[part] instead. Inlined into each build of
 /// the kernel (its loops vectorized there).
-GLS_ALWAYS_INLINE void packFarWalk(const MultiresolutionView& v, const WalkRegion& F, int part, const Vec3& o,
+GLS_FORCE_INLINE void packFarWalk(const MultiresolutionView& v, const WalkRegion& F, int part, const Vec3& o,
   const ScaleBinning& b, double r2, MultiresolutionScratch& s, LinearizedBins& far)
 {
   const std::size_t S = static_cast<std::size_t>(b.count);
@@ -168,7 +168,7 @@ GLS_ALWAYS_INLINE void packFarWalk(const MultiresolutionView& v, const WalkRegio
 
 /// Adds a far region's linearized cells for p, u = p - (the region's centre) (LinearizedBins), from the first shell
 /// they reach.
-GLS_ALWAYS_INLINE void addLinearizedCells(const LinearizedBins& far, const Vec3& u, int count, AggregateMoments* bins)
+GLS_FORCE_INLINE void addLinearizedCells(const LinearizedBins& far, const Vec3& u, int count, AggregateMoments* bins)
 {
   if (far.cells == 0)
   {
@@ -214,7 +214,7 @@ GLS_ALWAYS_INLINE void addLinearizedCells(const LinearizedBins& far, const Vec3&
 /// region, or its own; x = q - o): the points with their nine sums f = (1, x, n, x.n, |x|^2), the cells with their
 /// CellSample (direction from the region's centre), so that a point adds them as they are and moves the bins from o
 /// to itself once (shiftBins) instead of forming them for every sample.
-GLS_ALWAYS_INLINE void packWalk(
+GLS_FORCE_INLINE void packWalk(
   const MultiresolutionView& v, const WalkRegion& region, const Vec3& o, MultiresolutionScratch& s)
 {
   const Vec3 anchor = regionCentre(region);
@@ -251,7 +251,7 @@ GLS_ALWAYS_INLINE void packWalk(
 /// `Pieces` pieces [lo, sq[k]], [sq[k], sq[k + 1]], ..., cut to [lo, min(hi, r2)] (pieceShare; shells past the
 /// last one are clamped to it, with an empty piece, which adds zeros).
 template <int Pieces>
-GLS_ALWAYS_INLINE void addPieces(const ScaleBinning& b, double r2, const std::uint32_t* list, std::size_t count,
+GLS_FORCE_INLINE void addPieces(const ScaleBinning& b, double r2, const std::uint32_t* list, std::size_t count,
   const MultiresolutionScratch& s, AggregateMoments* bins)
 {
   const int S = b.count;
@@ -286,7 +286,7 @@ struct SpreadLanes
   __m128i shell;
 };
 
-__attribute__((target("avx2,fma"))) GLS_ALWAYS_INLINE SpreadLanes gatherSpreads(
+__attribute__((target("avx2,fma"))) GLS_FORCE_INLINE SpreadLanes gatherSpreads(
   const MultiresolutionScratch& s, const std::uint32_t* cells, double r2)
 {
   const __m128i index = _mm_loadu_si128(reinterpret_cast<const __m128i*>(cells));
@@ -303,7 +303,7 @@ __attribute__((target("avx2,fma"))) GLS_ALWAYS_INLINE SpreadLanes gatherSpreads(
 
 /// pieceShare of the pieces [u, v] of four spreads (its arithmetic lane by lane, with multiply-adds), stored as
 /// share[0..2] = m, share[3..5] = c, one lane per cell.
-__attribute__((target("avx2,fma"))) GLS_ALWAYS_INLINE void pieceSharesAvx2(
+__attribute__((target("avx2,fma"))) GLS_FORCE_INLINE void pieceSharesAvx2(
   const SpreadLanes& l, __m256d u, __m256d v, double (*share)[4])
 {
   const __m256d half = _mm256_set1_pd(0.5), third = _mm256_set1_pd(1.0 / 3.0), quarter = _mm256_set1_pd(0.25);
@@ -384,7 +384,7 @@ struct KindFlags
 /// classifyCellsAvx2): withinOne (one shell or narrow), withinTwo / withinThree (the spread ends below the sphere of
 /// the first shell + 1 / + 2, or past the last shell), meanInside / lowInside (the spread's mean / lower end is
 /// inside the ball: a cell within one shell enters by its mean, a split one by its lower end).
-GLS_ALWAYS_INLINE KindFlags kindsOf(int withinOne, int withinTwo, int withinThree, int meanInside, int lowInside)
+GLS_FORCE_INLINE KindFlags kindsOf(int withinOne, int withinTwo, int withinThree, int meanInside, int lowInside)
 {
   const int inside = (withinOne & meanInside) | (~withinOne & lowInside);
   const int spread = ~withinOne & inside;
@@ -405,7 +405,7 @@ struct CellKinds
 
   /// Records cell c (its kind from kindsOf's flags, each 0 or 1). The lists are written without a branch: the index
   /// is written at the current end, which advances only for the cell's own kind.
-  GLS_ALWAYS_INLINE void record(std::size_t c, double m, int first, const KindFlags& kind)
+  GLS_FORCE_INLINE void record(std::size_t c, double m, int first, const KindFlags& kind)
   {
     this->mean[c] = m;
     this->shell[c] = first;
@@ -424,7 +424,7 @@ struct CellKinds
 /// arithmetic). The kinds are formed with integer arithmetic (& and |, selects between two computed values) rather
 /// than && and a second lookup behind an if, which the compiler turns into branches on the cell's data that
 /// mispredict: a cell's kind is as good as random. Measured on the bunny at 400k points: the whole run 12% faster.
-GLS_ALWAYS_INLINE void classifyCells(const Vec3& p, const ScaleBinning& b, double r2, const CellPlacements& cells,
+GLS_FORCE_INLINE void classifyCells(const Vec3& p, const ScaleBinning& b, double r2, const CellPlacements& cells,
   std::size_t begin, std::size_t end, CellKinds& kinds)
 {
   const int last = b.count - 1;
@@ -574,7 +574,7 @@ __attribute__((target("avx2,fma"))) std::size_t classifyCellsAvx2(const Vec3& p,
 /// without a branch (classifyCells), then each kind is added in a loop of its own; the shares and their order are
 /// forEachShellOfSpread's.
 template <bool Avx2>
-GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, double r2, MultiresolutionScratch& s,
+GLS_FORCE_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, double r2, MultiresolutionScratch& s,
   AggregateMoments* bins)
 {
   const std::vector<PackedCell>& cells = s.packedCells;
@@ -636,7 +636,7 @@ GLS_ALWAYS_INLINE void addPackedCells(const Vec3& p, const ScaleBinning& b, doub
 /// Adds the packed samples of p's ball: the cells, each spread over the shells it meets (forEachShellOfSpread), and the
 /// points inside it, binned by their distance from p.
 template <bool Avx2>
-GLS_ALWAYS_INLINE void addPackedSamples(const Vec3& p, const ScaleBinning& b, double r2,
+GLS_FORCE_INLINE void addPackedSamples(const Vec3& p, const ScaleBinning& b, double r2,
   MultiresolutionScratch& s, AggregateMoments* bins)
 {
   addPackedCells<Avx2>(p, b, r2, s, bins);
@@ -649,7 +649,7 @@ GLS_ALWAYS_INLINE void addPackedSamples(const Vec3& p, const ScaleBinning& b, do
 
 /// Moves the bins' sums from coordinates about o to coordinates about p (x_p = x_o + u, u = o - p): sum x gains
 /// u sum 1, sum x.n gains u . sum n, sum |x|^2 gains 2 u . sum x + |u|^2 sum 1; the weights d^(2k) stay p's.
-GLS_ALWAYS_INLINE void shiftBins(const Vec3& u, int count, AggregateMoments* bins)
+GLS_FORCE_INLINE void shiftBins(const Vec3& u, int count, AggregateMoments* bins)
 {
   const double uu = squaredNorm(u);
   for (int k = 0; k < count; ++k)
@@ -680,7 +680,7 @@ GLS_ALWAYS_INLINE void shiftBins(const Vec3& u, int count, AggregateMoments* bin
 /// the larger ones only (a cell's part is at most its parent's); part 1's records where part 0 takes over
 /// (s.nearSeeds). With `seeded`, part 0 starts from those instead of the top cells, each joining the frontier at its
 /// level (the cells above them are far cells opened, or linearized, by F_0's rule for every point of F_0).
-GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& region, const FarRule& far, int part,
+GLS_FORCE_INLINE void walk(const MultiresolutionView& v, const WalkRegion& region, const FarRule& far, int part,
   bool seeded, double r, double smallest, MultiresolutionScratch& s)
 {
   s.taken.clear();
@@ -789,27 +789,27 @@ GLS_ALWAYS_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regi
   }
 }
 
-GLS_ALWAYS_INLINE bool sameRegion(const WalkRegion& a, const WalkRegion& b)
+GLS_FORCE_INLINE bool sameRegion(const WalkRegion& a, const WalkRegion& b)
 {
   return a.edge == b.edge && a.corner.x == b.corner.x && a.corner.y == b.corner.y && a.corner.z == b.corner.z;
 }
 
 /// The same far walk: the same key but perhaps another walk region of the same far region (the region first: it is
 /// what changes from one point to the next).
-GLS_ALWAYS_INLINE bool sameFarWalk(const WalkKey& a, const WalkKey& b)
+GLS_FORCE_INLINE bool sameFarWalk(const WalkKey& a, const WalkKey& b)
 {
   return sameRegion(a.farRegion, b.farRegion) && a.nodes == b.nodes && a.count == b.count &&
     a.accuracy == b.accuracy && a.radius == b.radius && a.smallest == b.smallest &&
     a.linearizedDistance == b.linearizedDistance && a.squaredScales == b.squaredScales && a.scaleCount == b.scaleCount;
 }
 
-GLS_ALWAYS_INLINE bool sameWalk(const WalkKey& a, const WalkKey& b)
+GLS_FORCE_INLINE bool sameWalk(const WalkKey& a, const WalkKey& b)
 {
   return sameFarWalk(a, b) && sameRegion(a.region, b.region);
 }
 
 template <bool Avx2>
-GLS_ALWAYS_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
+GLS_FORCE_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
   double minNeighbors, MultiresolutionScratch& s, ScaleSample* out)
 {
   if (b.count <= 0)

@@ -19,7 +19,7 @@ using kernel::store4;
 
 /// addToMoments (MomentBins.h) with the eight values f = (1, x, n, x.n) held as two vectors of four: the same
 /// products and sums, element by element (fused into multiply-adds in the AVX2 build).
-GLS_ALWAYS_INLINE void addToMomentsVectorized(Moments& a, const Vec3& x, double d2, const Vec3& n)
+GLS_FORCE_INLINE void addToMomentsVectorized(Moments& a, const Vec3& x, double d2, const Vec3& n)
 {
   const double d4 = d2 * d2;
   const Double4 f0 = { 1.0, x.x, x.y, x.z };
@@ -38,14 +38,14 @@ GLS_ALWAYS_INLINE void addToMomentsVectorized(Moments& a, const Vec3& x, double 
 
 #else
 /// Compilers without the GCC/clang vector extension add the moments with the scalar addToMoments.
-GLS_ALWAYS_INLINE void addToMomentsVectorized(Moments& a, const Vec3& x, double d2, const Vec3& n)
+GLS_FORCE_INLINE void addToMomentsVectorized(Moments& a, const Vec3& x, double d2, const Vec3& n)
 {
   addToMoments(a, x, d2, n);
 }
 #endif
 
 /// Adds the candidates [begin, end) of one grid row that lie inside the open ball of squared radius r2 around p.
-GLS_ALWAYS_INLINE void addRun(const GridView& g, const Vec3& p, const ScaleBinning& b, double r2,
+GLS_FORCE_INLINE void addRun(const GridView& g, const Vec3& p, const ScaleBinning& b, double r2,
   std::uint64_t begin, std::uint64_t end, Moments* bins)
 {
   kernel::addInsideBall(
@@ -54,7 +54,7 @@ GLS_ALWAYS_INLINE void addRun(const GridView& g, const Vec3& p, const ScaleBinni
     [&](std::uint64_t i, double d2, int k) { addToMomentsVectorized(bins[k], g.points[i] - p, d2, g.normals[i]); });
 }
 
-GLS_ALWAYS_INLINE void evaluate(
+GLS_FORCE_INLINE void evaluate(
   const GridView& g, const Vec3& p, const ScaleBinning& shared, double minNeighbors, Moments* bins, ScaleSample* out)
 {
   const ScaleBinning b = shared; // a local copy: the stores to the bins cannot alias it
