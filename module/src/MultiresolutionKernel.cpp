@@ -210,24 +210,105 @@ GLS_FORCE_INLINE void addLinearizedCells(const LinearizedBins& far, const Vec3& 
   }
 }
 
+/// The largest squared distance from x to a point of the region (per axis, to the farther face).
+GLS_FORCE_INLINE double squaredDistanceToFarthestPoint(const WalkRegion& region, const Vec3& x)
+{
+  const auto farther = [](double x, double lo, double hi) GLS_INLINE_LAMBDA {
+    const double below = x - lo, above = hi - x;
+    const double d = below > above ? below : above;
+    return d * d;
+  };
+  const Vec3& c = region.corner;
+  const double e = region.edge;
+  return farther(x.x, c.x, c.x + e) + farther(x.y, c.y, c.y + e) + farther(x.z, c.z, c.z + e);
+}
+
+/// Adds a sample to the region's InnerSums: its F (and H, or none), a = its centroid - the region's centre, M and
+/// K = M^2 + V.
+GLS_FORCE_INLINE void addInnerSample(InnerSums& inner, const Vec3& a, double M, double K, const double* F, const double* H)
+{
+  const double weights[15] = { 1.0, M, a.x, a.y, a.z, K, M * a.x, M * a.y, M * a.z, a.x * a.x, a.x * a.y, a.x * a.z,
+    a.y * a.y, a.y * a.z, a.z * a.z };
+  for (int i = 0; i < 15; ++i)
+  {
+    for (int j = 0; j < kAggregateValues; ++j)
+    {
+      inner.f[i][j] += weights[i] * F[j];
+    }
+  }
+  if (H)
+  {
+    for (int i = 0; i < 5; ++i)
+    {
+      for (int j = 0; j < kAggregateValues; ++j)
+      {
+        inner.h[i][j] += weights[i] * H[j];
+      }
+    }
+  }
+  ++inner.samples;
+}
+
+/// Adds the InnerSums' share of the first shell for p, u = p - (the region's centre): with mean = M - 2 a . u + |u|^2,
+/// the sums of F, mean F + 2 H and (mean^2 + V) F + 4 mean H (InnerSums), expanded in u.
+GLS_FORCE_INLINE void addInnerSums(const InnerSums& inner, const Vec3& u, AggregateMoments& bin)
+{
+  if (inner.samples == 0)
+  {
+    return;
+  }
+  const double uu = squaredNorm(u);
+  const double q[6] = { u.x * u.x, 2.0 * u.x * u.y, 2.0 * u.x * u.z, u.y * u.y, 2.0 * u.y * u.z, u.z * u.z };
+  for (int j = 0; j < kAggregateValues; ++j)
+  {
+    const double F = inner.f[0][j], MF = inner.f[1][j], KF = inner.f[5][j];
+    const double uaF = u.x * inner.f[2][j] + u.y * inner.f[3][j] + u.z * inner.f[4][j];
+    const double uMaF = u.x * inner.f[6][j] + u.y * inner.f[7][j] + u.z * inner.f[8][j];
+    const double uaauF = q[0] * inner.f[9][j] + q[1] * inner.f[10][j] + q[2] * inner.f[11][j] +
+      q[3] * inner.f[12][j] + q[4] * inner.f[13][j] + q[5] * inner.f[14][j];
+    const double uaH = u.x * inner.h[2][j] + u.y * inner.h[3][j] + u.z * inner.h[4][j];
+    const double meanF = MF - 2.0 * uaF + uu * F;
+    const double meanH = inner.h[1][j] - 2.0 * uaH + uu * inner.h[0][j];
+    // mean^2 = M^2 - 4 M a.u + 2 M |u|^2 + 4 (a.u)^2 - 4 (a.u) |u|^2 + |u|^4
+    const double squareF = KF - 4.0 * uMaF + 2.0 * uu * MF + 4.0 * uaauF - 4.0 * uu * uaF + uu * uu * F;
+    bin.m[j] += F;
+    bin.m[kAggregateValues + j] += meanF + 2.0 * inner.h[0][j];
+    bin.m[2 * kAggregateValues + j] += squareF + 4.0 * meanH;
+  }
+}
+
 /// The samples of a walk, packed once for every point of its region, about an origin o near it (the corner of its far
 /// region, or its own; x = q - o): the points with their nine sums f = (1, x, n, x.n, |x|^2), the cells with their
 /// CellSample (direction from the region's centre), so that a point adds them as they are and moves the bins from o
-/// to itself once (shiftBins) instead of forming them for every sample.
+/// to itself once (shiftBins) instead of forming them for every sample. The samples inside the first shell's sphere
+/// for every point of the region (below sq0 = scales[0]^2) go to s.inner instead (InnerSums).
 GLS_FORCE_INLINE void packWalk(
-  const MultiresolutionView& v, const WalkRegion& region, const Vec3& o, MultiresolutionScratch& s)
+  const MultiresolutionView& v, const WalkRegion& region, const Vec3& o, double sq0, MultiresolutionScratch& s)
 {
   const Vec3 anchor = regionCentre(region);
+  std::memset(static_cast<void*>(&s.inner), 0, sizeof(InnerSums)); // all 0.0
   s.packedCells.resize(s.taken.size());
   s.placements.resize(s.taken.size());
+  std::size_t cells = 0;
   for (std::size_t k = 0; k < s.taken.size(); ++k)
   {
     PyramidCell cell;
     cellMoments(v, s.taken[k], s.takenLevel[k], cell);
-    PackedCell& out = s.packedCells[k];
-    makeCellSample(cell, o, cell.centroid - anchor, out.sample);
-    s.placements.set(k, cell.centroid, out.sample.spreadPerPoint, out.sample.halfWidth);
+    PackedCell& out = s.packedCells[cells];
+    const Vec3 a = cell.centroid - anchor;
+    makeCellSample(cell, o, a, out.sample);
+    const double spread = out.sample.spreadPerPoint, half = out.sample.halfWidth;
+    if (squaredDistanceToFarthestPoint(region, cell.centroid) + spread + half < sq0)
+    {
+      const double M = squaredNorm(a) + spread;
+      addInnerSample(s.inner, a, M, M * M + half * half * (1.0 / 3.0), out.sample.sums, out.sample.gradient);
+      continue;
+    }
+    s.placements.set(cells, cell.centroid, spread, half);
+    ++cells;
   }
+  s.packedCells.resize(cells);
+  s.placements.resize(cells);
   std::size_t n = 0;
   for (const PointSpan& span : s.read)
   {
@@ -242,9 +323,17 @@ GLS_FORCE_INLINE void packWalk(
       const Vec3 x = v.points[i] - o;
       out->position = v.points[i];
       pointSums(x, squaredNorm(x), v.normals[i], out->sums);
+      if (squaredDistanceToFarthestPoint(region, v.points[i]) < sq0)
+      {
+        const Vec3 a = v.points[i] - anchor;
+        const double M = squaredNorm(a);
+        addInnerSample(s.inner, a, M, M * M, out->sums, nullptr);
+        continue;
+      }
       ++out;
     }
   }
+  s.packedPoints.resize(static_cast<std::size_t>(out - s.packedPoints.data()));
 }
 
 /// The cells `list[0, count)` whose spread meets at most `Pieces` shells from its first one (cellShell): each adds
@@ -848,11 +937,12 @@ GLS_FORCE_INLINE void evaluate(const MultiresolutionView& v, const Vec3& p, cons
       s.taken.insert(s.taken.end(), s.farSampled[i].begin(), s.farSampled[i].end());
       s.takenLevel.insert(s.takenLevel.end(), s.farSampledLevel[i].begin(), s.farSampledLevel[i].end());
     }
-    packWalk(v, region, o, s);
+    packWalk(v, region, o, b.squaredScales[0], s);
     s.walked = true;
     s.walkedKey = key;
   }
   addPackedSamples<Avx2>(p, b, r * r, s, s.bins.data());
+  addInnerSums(s.inner, p - regionCentre(region), s.bins[0]);
   for (int i = 0; i < far.count; ++i)
   {
     addLinearizedCells(s.linearized[i], p - regionCentre(far.region[i]), b.count, s.bins.data());

@@ -43,6 +43,23 @@ struct LinearizedBins
   int firstShell = 0;    ///< the lowest shell they reach (the bins below are zeros)
 };
 
+/// The samples of a walk that lie inside the smallest scale's sphere for every point of its walk region (the cells
+/// whose spread of squared distances stays below scales[0]^2, the points read one by one that stay there: near p,
+/// most of them), summed once per region as the exact polynomial of p that their share of the first shell is: each
+/// adds F, mean F + 2 H and (mean^2 + V) F + 4 mean H (wholeShare; a point: f, d2 f, d2^2 f) to the three moments,
+/// and mean = M - 2 a . u + |u|^2 with u = p - (the region's centre), a = its centroid (or position) - the centre,
+/// M = |a|^2 + its spread per point. The sums over the samples of F and H times 1, M, a_i, M a_i, a_i a_j and
+/// M^2 + V give those moments for every p of the region (addInnerSums in MultiresolutionKernel.cpp); their sums are
+/// about the walk's origin, as the packed samples'.
+struct InnerSums
+{
+  /// Of F: 1, M, a (3), M^2 + V, M a (3), a a^T (6: xx, xy, xz, yy, yz, zz), in that order.
+  double f[15][kAggregateValues];
+  /// Of H: 1, M, a (3).
+  double h[5][kAggregateValues];
+  std::size_t samples = 0; ///< how many samples they hold (0: nothing to add)
+};
+
 /// The points [first, last) of the pyramid, read one by one by a walk.
 struct PointSpan
 {
@@ -109,6 +126,7 @@ struct MultiresolutionScratch
   std::vector<PackedPoint> packedPoints;
   std::vector<PackedCell> packedCells;
   CellPlacements placements;
+  InnerSums inner; ///< the walk's samples within the first shell for its whole region (not in packedCells/Points)
   std::vector<double> cellMean;
   std::vector<int> cellShell;
   std::vector<std::uint32_t> singleCells, pairCells, spreadCells, wideCells;
