@@ -225,7 +225,8 @@ GLS_FORCE_INLINE double squaredDistanceToFarthestPoint(const WalkRegion& region,
 
 /// Adds a sample to the region's InnerSums: its F (and H, or none), a = its centroid - the region's centre, M and
 /// K = M^2 + V.
-GLS_FORCE_INLINE void addInnerSample(InnerSums& inner, const Vec3& a, double M, double K, const double* F, const double* H)
+GLS_FORCE_INLINE void addInnerSample(
+  InnerSums& inner, const Vec3& a, double M, double K, const double* F, const double* H)
 {
   const double weights[15] = { 1.0, M, a.x, a.y, a.z, K, M * a.x, M * a.y, M * a.z, a.x * a.x, a.x * a.y, a.x * a.z,
     a.y * a.y, a.y * a.z, a.z * a.z };
