@@ -260,7 +260,7 @@ GLS_FORCE_INLINE void addInnerSample(
 }
 
 /// Adds the InnerSums' share of the first shell for p, u = p - (the region's centre): with mean = M - 2 a . u + |u|^2,
-/// the sums of F, mean F + 2 H and (mean^2 + V) F + 4 mean H (InnerSums), expanded in u.
+/// the sums of F, mean F + 2 H and (mean^2 + V) F + 4 mean H (wholeShare's m and c, InnerSums), expanded in u.
 GLS_FORCE_INLINE void addInnerSums(const InnerSums& inner, const Vec3& u, AggregateMoments& bin)
 {
   if (inner.samples == 0)
@@ -311,7 +311,7 @@ GLS_FORCE_INLINE void packWalk(
     if (squaredDistanceToFarthestPoint(region, cell.centroid) + spread + half < sq0)
     {
       const double M = squaredNorm(a) + spread;
-      addInnerSample(s.inner, a, M, M * M + half * half * (1.0 / 3.0), out.sample.sums, out.sample.gradient);
+      addInnerSample(s.inner, a, M, M * M + spreadVariance(half), out.sample.sums, out.sample.gradient);
       continue;
     }
     s.placements.set(cells, cell.centroid, spread, half);

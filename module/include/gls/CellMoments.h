@@ -173,13 +173,18 @@ struct ShellShare
   double c[3]; ///< the gradient's: E[s^j (s - mean); shell] / (2 sigma^2), sigma^2 = Var(a . y) = V / 4
 };
 
-/// The share of a whole cell, within one shell: m = (1, mean, mean^2 + V), c = (0, 2, 4 mean), V = half^2 / 3.
+/// The variance V = half^2 / 3 of squared distances spread uniformly over [mean - half, mean + half] (length^4).
+GLS_INLINE double spreadVariance(double half)
+{
+  return half * half * (1.0 / 3.0);
+}
+
+/// The share of a whole cell, within one shell: m = (1, mean, mean^2 + V), c = (0, 2, 4 mean), V = spreadVariance.
 /// (E[w] F + 2 w'(mean) H for the weight w = 1 + c1 s + c2 s^2, E[w] its mean over the spread: the sums of
 /// (w(mean) + 2 w'(mean) a . y_i) f_i, exact to the first order in y.)
 GLS_INLINE ShellShare wholeShare(double mean, double half)
 {
-  const double variance = half * half * (1.0 / 3.0);
-  return { { 1.0, mean, mean * mean + variance }, { 0.0, 2.0, 4.0 * mean } };
+  return { { 1.0, mean, mean * mean + spreadVariance(half) }, { 0.0, 2.0, 4.0 * mean } };
 }
 
 /// The constants of a spread's pieces: its density rho = 1 / (2 half) and rho / (2 sigma^2) = 3 / half^3
