@@ -6,6 +6,7 @@
 #include "TestBinning.h"
 #include "TestClouds.h"
 
+#include "gls/MultiresolutionCloud.h"
 #include "gls/MultiresolutionKernel.h"
 #include "gls/MultiresolutionView.h"
 #include "gls/ScaleSampling.h"
@@ -143,6 +144,37 @@ void expectAnalytic(const CollectingSink& s, const std::vector<double>& scales, 
 }
 
 } // namespace
+
+// The near cells' edge (nearCellEdge) for smallest scales over six decades and several accuracies: at most the near
+// limit of takenWhole (its own arithmetic), at least 0.8 of it, with a mantissa of 1, 1.25, 1.5 or 1.75; the
+// layout's finest edge is that edge divided by a power of two, within (spacing, 2 spacing].
+TEST(Multiresolution, NearCellEdgeIsTheLargestShortMantissaUnderTheLimit)
+{
+  const double low[3] = { -1.0, -2.0, -3.0 };
+  for (double accuracy : { 0.15, 0.3, 0.45, 0.5, 0.55 })
+  {
+    for (double t0 = 1.3e-3; t0 < 1e3; t0 *= 1.37)
+    {
+      const double edge = gls::nearCellEdge(accuracy, t0);
+      const double limit2 = (accuracy * accuracy) *
+        (gls::kNearAccuracyShare * gls::kNearAccuracyShare * (t0 * t0));
+      ASSERT_TRUE(gls::takenWhole(edge * edge, 4.0 * limit2, accuracy * accuracy, t0 * t0)) << t0;
+      ASSERT_FALSE(gls::takenWhole(1.25 * 1.25 * edge * edge, 4.0 * limit2, accuracy * accuracy, t0 * t0)) << t0;
+      const double mantissa = edge / std::exp2(std::floor(std::log2(edge)));
+      ASSERT_TRUE(mantissa == 1.0 || mantissa == 1.25 || mantissa == 1.5 || mantissa == 1.75) << mantissa;
+      const double spacing = 0.0123 * t0;
+      const double high[3] = { low[0] + 100.0 * t0, low[1] + 50.0 * t0, low[2] + 10.0 * t0 };
+      const gls::PyramidLayout layout = gls::choosePyramidLayout(low, high, spacing, t0, 10.0 * t0, accuracy);
+      ASSERT_GT(layout.finestCellSize, spacing);
+      ASSERT_LE(layout.finestCellSize, 2.0 * spacing);
+      const double ratio = edge / layout.finestCellSize;
+      ASSERT_EQ(ratio, std::exp2(std::round(std::log2(ratio)))) << t0;
+    }
+  }
+  EXPECT_EQ(gls::nearCellEdge(0.0, 1.0), 0.0);
+  const double high[3] = { 1.0, 1.0, 1.0 };
+  EXPECT_EQ(gls::choosePyramidLayout(low, high, 0.01, 0.0, 0.1, 0.5).finestCellSize, 0.015625); // 2^-6
+}
 
 TEST(Multiresolution, SphereIsExactForEveryAccuracy)
 {

@@ -128,6 +128,29 @@ void mergeChildren(const PyramidCell* children, std::uint32_t count, const Vec3&
 
 } // namespace
 
+double nearCellEdge(double accuracy, double smallestScale)
+{
+  const double eps2 = accuracy * accuracy, floor2 = smallestScale * smallestScale;
+  constexpr double nearShare2 = kNearAccuracyShare * kNearAccuracyShare;
+  const double limit2 = eps2 * (nearShare2 * floor2); // takenWhole's, with the same operations
+  if (!(limit2 > 0.0) || !isFinite(limit2))
+  {
+    return 0.0;
+  }
+  const double limit = std::sqrt(limit2);
+  double edge = 0.0;
+  for (const double mantissa : { 1.0, 1.25, 1.5, 1.75 })
+  {
+    double e = mantissa * std::exp2(std::floor(std::log2(limit / mantissa)));
+    while (e * e > limit2)
+    {
+      e *= 0.5; // log2's rounding
+    }
+    edge = std::max(edge, e);
+  }
+  return edge;
+}
+
 PyramidLayout choosePyramidLayout(const double low[3], const double high[3], double spacing, double smallestScale,
   double largestScale, double accuracy)
 {
@@ -142,8 +165,15 @@ PyramidLayout choosePyramidLayout(const double low[3], const double high[3], dou
     extent = 0.0;
   }
   // Finest cells of about two spacings (measured on a 160k-point surface at Accuracy 0.2: 17.8 us per point, against
-  // 19.1 us at one spacing, where most finest cells hold one point).
-  double h = spacing > 0.0 && isFinite(spacing) ? std::exp2(std::floor(std::log2(2.0 * spacing))) : 0.0;
+  // 19.1 us at one spacing, where most finest cells hold one point), scaled with the smallest scale: h0 in (spacing,
+  // 2 spacing] is the near cells' edge (nearCellEdge) divided by a power of two.
+  double h = 0.0;
+  if (spacing > 0.0 && isFinite(spacing))
+  {
+    const double nearEdge = nearCellEdge(accuracy, smallestScale);
+    h = nearEdge > 0.0 ? nearEdge * std::exp2(-std::ceil(std::log2(nearEdge / (2.0 * spacing))))
+                       : std::exp2(std::floor(std::log2(2.0 * spacing)));
+  }
   if (!(h > 0.0) || !isFinite(h))
   {
     h = extent > 0.0 ? std::exp2(std::ceil(std::log2(extent / (0.5 * kLatticeCells)))) : 1.0;

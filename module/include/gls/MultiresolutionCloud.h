@@ -31,9 +31,20 @@ struct PyramidLayout
   double linearizedDistance = kLinearizedDistance; ///< where the far parts begin (MultiresolutionView, FarRule)
 };
 
-/// The layout for a cloud whose admitted points lie in [low, high]: h0 the power of two at or below twice `spacing`
-/// (the typical distance between neighbouring points), enlarged until the lattice of 2^21 cells per axis covers the
-/// box; walks shared by cubes of up to 4 h0 no larger than the smallest scale.
+/// The edge the near cells take (takenWhole: at most kNearAccuracyShare * accuracy * smallestScale): the largest
+/// number m 2^k at or below that limit with m one of 1, 1.25, 1.5 and 1.75 (so at least 0.8 of the limit), or 0 where
+/// the limit is not positive. Every level of the pyramid is this edge times a power of two, so the levels sit at
+/// fixed fractions of the smallest scale whatever the cloud's units (with power-of-two edges the near cells fell
+/// anywhere between half the limit and the limit: 0.21 of the smallest scale on the rocker arm, 0.24 on the bunny,
+/// at epsilon 0.5), and a mantissa of at most three bits keeps the cubes' corners, edges and squared distances exact
+/// in double precision, as powers of two do: every build (fused multiply-adds or not, CPU or CUDA) takes the same
+/// cells, even where a rule holds with equality (at epsilon 0.5, a cube two edges away).
+double nearCellEdge(double accuracy, double smallestScale);
+
+/// The layout for a cloud whose admitted points lie in [low, high]: h0 in (spacing, 2 spacing] (`spacing`: the typical
+/// distance between neighbouring points), nearCellEdge divided by a power of two (a power of two where that edge is
+/// 0), enlarged until the lattice of 2^21 cells per axis covers the box; walks shared by cubes of up to 4 h0 no larger
+/// than the smallest scale.
 PyramidLayout choosePyramidLayout(const double low[3], const double high[3], double spacing, double smallestScale,
   double largestScale, double accuracy);
 
