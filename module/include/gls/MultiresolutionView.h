@@ -208,11 +208,12 @@ GLS_INLINE void forEachTopCell(const MultiresolutionView& v, const WalkRegion& a
 }
 
 /// Within the smallest scale, cells are held to this share of epsilon (times the smallest scale): they enter every
-/// ball, the smallest ones among few other samples. The pyramid's lattice is scaled so that one level's edge is
-/// exactly this limit (choosePyramidLayout): at the default epsilon 0.5 the near cells are 0.32 of the smallest
-/// scale. Measured (docs/performance.md, "The lattice aligned with the smallest scale"): near cells of 0.28, 0.32 and
-/// 0.36 of it give nu p99 0.076, 0.083 and 0.091 on the rocker arm at 1M points (0.068, 0.072 and 0.080 on the
-/// bunny), the 10M core 18%, 21% and 20% faster than with the 0.21 of the power-of-two lattice.
+/// ball, the smallest ones among few other samples. The lattice is scaled so that the near cells are 0.8 to 1 times
+/// this limit (nearCellEdge in MultiresolutionCloud.h). Measured (docs/performance.md, "The lattice scaled with the
+/// smallest scale"; epsilon 0.5, 1M points, rocker arm / bunny): near cells of 0.314 / 0.305 of the smallest scale
+/// give nu p99 0.087 / 0.079 and a 10M core (with its build) 1.29x / 1.13x faster than the 0.21 / 0.24 of the earlier power-of-two
+/// lattice with a share of 0.8 (nu p99 0.074 / 0.066); on the rocker arm, near cells of 0.28 and 0.36 of it (a scratch
+/// build scaling the lattice freely) gave nu p99 0.076 and 0.091.
 constexpr double kNearAccuracyShare = 0.64;
 
 /// The rule of both walks: a cell of squared edge edge2, at squared distance box2 from p's region, is taken whole
