@@ -211,9 +211,9 @@ GLS_INLINE void forEachTopCell(const MultiresolutionView& v, const WalkRegion& a
 /// ball, the smallest ones among few other samples. The lattice is scaled so that the near cells are 0.8 to 1 times
 /// this limit (nearCellEdge in MultiresolutionCloud.h). Measured (docs/performance.md, "The lattice scaled with the
 /// smallest scale"; epsilon 0.5, 1M points, rocker arm / bunny): near cells of 0.314 / 0.305 of the smallest scale
-/// give nu p99 0.087 / 0.079 and a 10M core (with its build) 1.29x / 1.13x faster than the 0.21 / 0.24 of the earlier power-of-two
-/// lattice with a share of 0.8 (nu p99 0.074 / 0.066); on the rocker arm, near cells of 0.28 and 0.36 of it (a scratch
-/// build scaling the lattice freely) gave nu p99 0.076 and 0.091.
+/// give nu p99 0.087 / 0.079 and a 10M core (with its build) 1.29x / 1.13x faster than the 0.21 / 0.24 of the
+/// earlier power-of-two lattice with a share of 0.8 (nu p99 0.074 / 0.066); on the rocker arm, near cells of 0.28 and
+/// 0.36 of it (a scratch build scaling the lattice freely) gave nu p99 0.076 and 0.091.
 constexpr double kNearAccuracyShare = 0.64;
 
 /// The rule of both walks: a cell of squared edge edge2, at squared distance box2 from p's region, is taken whole
@@ -297,7 +297,8 @@ constexpr double kLinearizedDistance = 10.0;
 constexpr int kMaxFarLevels = 1;
 
 /// The far parts of the walk of p: for each level i < count, the far region F_i (the lattice cube of level farLevel
-/// + i holding p; F_0 has twice the edge of p's walk region) and its reach (linearizedDistance half-diagonals of F_i, doubling with i).
+/// + i holding p; F_0 has twice the edge of p's walk region) and its reach (linearizedDistance half-diagonals of
+/// F_i, doubling with i).
 /// A cell whose cube reaches at least reach_i from F_i (farthest corner), for the largest such i, belongs to far part
 /// i: it is decided from F_i instead of p's walk region (taken whole or opened by its distance from F_i, never read
 /// point by point), so that every point of F_i finds the same such cells; those entirely beyond reach_i from F_i are
