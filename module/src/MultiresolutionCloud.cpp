@@ -130,9 +130,8 @@ void mergeChildren(const PyramidCell* children, std::uint32_t count, const Vec3&
 
 double nearCellEdge(double accuracy, double smallestScale)
 {
-  const double eps2 = accuracy * accuracy, floor2 = smallestScale * smallestScale;
-  constexpr double nearShare2 = kNearAccuracyShare * kNearAccuracyShare;
-  const double limit2 = eps2 * (nearShare2 * floor2); // takenWhole's, with the same operations
+  // The walks' eps2 and floor2 (v.accuracy and the smallest scale squared), so the limit is theirs bit for bit.
+  const double limit2 = squaredNearCellLimit(accuracy * accuracy, smallestScale * smallestScale);
   if (!(limit2 > 0.0) || !isFinite(limit2))
   {
     return 0.0;

@@ -216,6 +216,15 @@ GLS_INLINE void forEachTopCell(const MultiresolutionView& v, const WalkRegion& a
 /// 0.36 of it (a scratch build scaling the lattice freely) gave nu p99 0.076 and 0.091.
 constexpr double kNearAccuracyShare = 0.64;
 
+/// The squared edge a cell nearer than the smallest scale may have (takenWhole): (kNearAccuracyShare epsilon times the
+/// smallest scale)^2, from eps2 = epsilon^2 and floor2 = the smallest scale squared. The pyramid's levels are scaled
+/// from it (nearCellEdge in MultiresolutionCloud.h), with this arithmetic, so that one level meets it exactly.
+GLS_INLINE double squaredNearCellLimit(double eps2, double floor2)
+{
+  constexpr double nearShare2 = kNearAccuracyShare * kNearAccuracyShare;
+  return eps2 * (nearShare2 * floor2);
+}
+
 /// The rule of both walks: a cell of squared edge edge2, at squared distance box2 from p's region, is taken whole
 /// when its edge is at most epsilon times its distance, or, nearer than the smallest scale, kNearAccuracyShare
 /// epsilon times the smallest scale (eps2 = epsilon^2, floor2 = the smallest scale squared: such a cell contributes
@@ -223,8 +232,7 @@ constexpr double kNearAccuracyShare = 0.64;
 /// (p's nearest neighbours enter point by point).
 GLS_INLINE bool takenWhole(double edge2, double box2, double eps2, double floor2)
 {
-  constexpr double nearShare2 = kNearAccuracyShare * kNearAccuracyShare;
-  return edge2 <= box2 && edge2 <= eps2 * (box2 > floor2 ? box2 : nearShare2 * floor2);
+  return edge2 <= box2 && edge2 <= (box2 > floor2 ? eps2 * box2 : squaredNearCellLimit(eps2, floor2));
 }
 
 /// The points [first, last) of the cell `node` of level `level` (a cell's points are contiguous).
