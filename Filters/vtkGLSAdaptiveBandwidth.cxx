@@ -74,7 +74,7 @@ int vtkGLSAdaptiveBandwidth::ComputeOutputs(vtkGLSRun& run)
     return FAILED;
   }
   cloud.Owned += ghosts; // every point is smoothed, the ghosts' values then dropped
-  if (cloud.MergeCoincident() > 0)
+  if (cloud.MergeCoincident(this->NumberOfThreads) > 0)
   {
     rawAll = gls::distinctValues(cloud.Copies, rawAll.data(), 1);
   }

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 
-std::size_t vtkGLSCloud::MergeCoincident()
+std::size_t vtkGLSCloud::MergeCoincident(int threads)
 {
   this->InputOwned = this->Owned;
-  gls::CoincidentPoints copies = gls::findCoincidentPoints(this->Points.data(), this->Size());
+  gls::CoincidentPoints copies = gls::findCoincidentPoints(this->Points.data(), this->Size(), threads);
   if (copies.merged() == 0)
   {
     return 0;

@@ -26,7 +26,8 @@ struct vtkGLSCloud
   /// Merges the points at bitwise-equal coordinates: Points (and Normals, by gls::mergedNormals) become the
   /// distinct positions, this piece's first, and Owned their number. Returns how many of this piece's input
   /// points were merged into an earlier one; nothing changes (and 0 is returned) when every position is distinct.
-  std::size_t MergeCoincident();
+  /// Uses up to `threads` threads (0: every hardware thread); the result is the same for any count.
+  std::size_t MergeCoincident(int threads = 1);
 
   /// Writes per-position values (width each, `Owned` positions) back to every copy of this piece's input points.
   void ScatterToInput(const double* values, int width, double* out) const;

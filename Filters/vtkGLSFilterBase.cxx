@@ -475,7 +475,7 @@ const char* vtkGLSFilterBase::SelectedArrayName(int index)
 void vtkGLSFilterBase::MergeCoincidentPoints(vtkGLSRun& run)
 {
   this->Heartbeat();
-  this->NoteCoincidentPoints(run, run.Cloud.MergeCoincident());
+  this->NoteCoincidentPoints(run, run.Cloud.MergeCoincident(this->NumberOfThreads));
   this->Heartbeat();
 }
 

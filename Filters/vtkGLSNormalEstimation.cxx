@@ -323,7 +323,7 @@ bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<dou
       sortedDegrees[j] = all[W * order[j] + 7];
     }
     // A position held by several pieces is one node of the tree, as in a serial run.
-    const gls::CoincidentPoints shared = gls::findCoincidentPoints(sortedXyz.data(), total);
+    const gls::CoincidentPoints shared = gls::findCoincidentPoints(sortedXyz.data(), total, this->NumberOfThreads);
     std::vector<double> xyz = gls::distinctValues(shared, sortedXyz.data(), 3);
     std::vector<double> normals = gls::distinctValues(shared, sortedNormals.data(), 3);
     const std::vector<double> degreeValues = gls::distinctValues(shared, sortedDegrees.data(), 1);
@@ -370,7 +370,7 @@ bool vtkGLSNormalEstimation::RefineDistributed(
   const std::size_t total = points.size() / 3;
   std::vector<double> reach(result.reach);
   reach.resize(total, std::numeric_limits<double>::quiet_NaN());
-  const gls::CoincidentPoints shared = gls::findCoincidentPoints(points.data(), total);
+  const gls::CoincidentPoints shared = gls::findCoincidentPoints(points.data(), total, this->NumberOfThreads);
   const std::vector<double> xyz = gls::distinctValues(shared, points.data(), 3);
   std::vector<double> distinctNormals = gls::distinctValues(shared, normals.data(), 3);
   const std::vector<double> distinctReach = gls::distinctValues(shared, reach.data(), 1);

@@ -54,7 +54,8 @@ int vtkGLSProjection::Execute(vtkGLSRun& run)
     return FAILED;
   }
   this->WarnAboutNormalLengths(run, run.Cloud.Normals, run.NormalsName.c_str());
-  this->NoteCoincidentPoints(run, gls::findCoincidentPoints(run.Cloud.Points.data(), run.Cloud.Owned).merged());
+  this->NoteCoincidentPoints(
+    run, gls::findCoincidentPoints(run.Cloud.Points.data(), run.Cloud.Owned, this->NumberOfThreads).merged());
 
   vtkNew<vtkPoints> moved;
   moved->SetDataTypeToDouble();

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <set>
 
 namespace
 {
@@ -135,4 +137,61 @@ TEST(CoincidentPoints, DistinctPointsStayDistinct)
   const gls::CoincidentPoints c = gls::findCoincidentPoints(xyz.data(), 5000);
   expectMatchesOracle(xyz, c);
   EXPECT_EQ(c.merged(), 0u);
+}
+
+TEST(CoincidentPoints, SameGroupsForAnyThreadCount)
+{
+  // Enough points for the sort to run in slices (sortUniquePairs: 65,536 or more), copies and non-finite points
+  // among them: every thread count gives the one-thread result, whose merged count a set of the positions confirms.
+  std::mt19937_64 rng(23);
+  std::uniform_int_distribution<int> lattice(-40, 40);
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::size_t n = 100000;
+  std::vector<double> xyz(3 * n);
+  std::set<std::array<double, 3>> sites;
+  std::size_t nonFinite = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    double* p = &xyz[3 * i];
+    if (rng() % 50 == 0)
+    {
+      p[0] = inf;
+      p[1] = p[2] = 0.0;
+      ++nonFinite;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      p[k] = 0.25 * lattice(rng);
+    }
+    sites.insert({ p[0] + 0.0, p[1] + 0.0, p[2] + 0.0 });
+  }
+  const gls::CoincidentPoints one = gls::findCoincidentPoints(xyz.data(), n, 1);
+  EXPECT_EQ(one.distinct.size(), sites.size() + nonFinite);
+  EXPECT_GT(one.merged(), 0u);
+  for (int threads : { 2, 3, 5 })
+  {
+    const gls::CoincidentPoints c = gls::findCoincidentPoints(xyz.data(), n, threads);
+    EXPECT_EQ(c.representative, one.representative) << threads << " threads";
+    EXPECT_EQ(c.distinct, one.distinct) << threads << " threads";
+    EXPECT_EQ(c.copyStart, one.copyStart) << threads << " threads";
+    EXPECT_EQ(c.copies, one.copies) << threads << " threads";
+  }
+  // Distinct points take the path without groups: the same structure as the grouping path gives.
+  std::vector<double> spread(3 * n);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double& v : spread)
+  {
+    v = u(rng);
+  }
+  const gls::CoincidentPoints d = gls::findCoincidentPoints(spread.data(), n, 2);
+  EXPECT_EQ(d.merged(), 0u);
+  ASSERT_EQ(d.copyStart.size(), n + 1);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    ASSERT_EQ(d.representative[i], i);
+    ASSERT_EQ(d.distinct[i], i);
+    ASSERT_EQ(d.copies[i], i);
+    ASSERT_EQ(d.copyStart[i + 1], i + 1);
+  }
 }

@@ -1,5 +1,7 @@
 #include "gls/CoincidentPoints.h"
 
+#include "gls/ParallelFor.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -37,7 +39,7 @@ std::uint64_t positionKey(const double* p)
 
 } // namespace
 
-CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n)
+CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int threads)
 {
   CoincidentPoints c;
   const auto finite = [xyz](std::uint64_t i) {
@@ -46,18 +48,35 @@ CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n)
   const auto same = [xyz](std::uint64_t a, std::uint64_t b) {
     return xyz[3 * a] == xyz[3 * b] && xyz[3 * a + 1] == xyz[3 * b + 1] && xyz[3 * a + 2] == xyz[3 * b + 2];
   };
-  // The finite points sorted by (key of their position, index): equal positions are in one run of equal keys, in
-  // input order. Sorting keys rather than comparing coordinates through the indices keeps the sort in cache.
-  std::vector<std::pair<std::uint64_t, std::uint64_t>> keyed;
-  keyed.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (finite(i))
+  // The points sorted by (key of their position, index): equal positions are in one run of equal keys, in input
+  // order. Sorting keys rather than comparing coordinates through the indices keeps the sort in cache.
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> keyed(n);
+  ParallelOptions keying;
+  keying.threads = threads;
+  keying.chunk = 65536;
+  parallelFor(n, keying, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t i = begin; i < end; ++i)
     {
-      keyed.emplace_back(positionKey(xyz + 3 * i), i);
+      keyed[i] = { positionKey(xyz + 3 * i), i };
     }
+  });
+  sortUniquePairs(keyed, threads);
+  std::size_t repeated = 1;
+  while (repeated < n && keyed[repeated].first != keyed[repeated - 1].first)
+  {
+    ++repeated;
   }
-  std::sort(keyed.begin(), keyed.end());
+  if (repeated >= n)
+  {
+    // No two keys alike (most clouds): every point is a position of its own.
+    c.representative.resize(n);
+    std::iota(c.representative.begin(), c.representative.end(), std::uint64_t(0));
+    c.distinct = c.representative;
+    c.copies = c.representative;
+    c.copyStart.resize(n + 1);
+    std::iota(c.copyStart.begin(), c.copyStart.end(), std::uint64_t(0));
+    return c;
+  }
   // first[i]: the first point (input order) of i's group; a non-finite point is a group of its own.
   std::vector<std::uint64_t> first(n);
   std::iota(first.begin(), first.end(), std::uint64_t(0));
@@ -69,11 +88,15 @@ CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n)
     {
       ++e;
     }
-    // Within a run (input order), each point joins the first earlier point at its position, if any.
+    // Within a run (input order), each finite point joins the first earlier point at its position, if any.
     leaders.clear();
     for (std::size_t k = s; k < e; ++k)
     {
       const std::uint64_t i = keyed[k].second;
+      if (!finite(i))
+      {
+        continue;
+      }
       const auto leader = std::find_if(leaders.begin(), leaders.end(), [&](std::uint64_t l) { return same(l, i); });
       if (leader == leaders.end())
       {

@@ -44,42 +44,6 @@ std::uint64_t latticeCoordinate(double v, double origin, double edge)
   return c >= kLatticeCells - 1.0 ? static_cast<std::uint64_t>(kLatticeCells - 1.0) : static_cast<std::uint64_t>(c);
 }
 
-/// Sorts (key, index) pairs: each thread sorts a slice, then the slices are merged. Pairs are unique, so the result
-/// is the one total order whatever the thread count.
-void sortPairs(std::vector<std::pair<std::uint64_t, std::uint64_t>>& pairs, int threads)
-{
-  const std::size_t n = pairs.size();
-  const std::size_t slices = static_cast<std::size_t>(std::max(1, std::min(threads, 8)));
-  if (slices == 1 || n < 65536)
-  {
-    std::sort(pairs.begin(), pairs.end());
-    return;
-  }
-  std::vector<std::size_t> bounds(slices + 1);
-  for (std::size_t s = 0; s <= slices; ++s)
-  {
-    bounds[s] = n * s / slices;
-  }
-  std::vector<std::thread> workers;
-  for (std::size_t s = 1; s < slices; ++s)
-  {
-    workers.emplace_back([&, s] { std::sort(pairs.begin() + bounds[s], pairs.begin() + bounds[s + 1]); });
-  }
-  std::sort(pairs.begin(), pairs.begin() + bounds[1]);
-  for (std::thread& w : workers)
-  {
-    w.join();
-  }
-  for (std::size_t width = 1; width < slices; width *= 2)
-  {
-    for (std::size_t s = 0; s + width < slices; s += 2 * width)
-    {
-      const std::size_t end = std::min(s + 2 * width, slices);
-      std::inplace_merge(pairs.begin() + bounds[s], pairs.begin() + bounds[s + width], pairs.begin() + bounds[end]);
-    }
-  }
-}
-
 /// The sums of a parent cell from those of its `count` children (in order), about its new centroid c: with
 /// d = c_k - c for child k, sum y y^T gains C_k + m_k d d^T; sum y n^T gains N_k + d (sum n)_k^T;
 /// sum y (y . n) gains T_k + N_k d + d tr(N_k) + d (d . (sum n)_k); sum y |y|^2 gains
@@ -264,7 +228,7 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
     return false;
   }
   std::vector<std::uint64_t>().swap(admitted);
-  sortPairs(pairs, threads);
+  sortUniquePairs(pairs, threads);
   if (abort(0.5))
   {
     return false;
@@ -273,14 +237,23 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
   this->Points.resize(m);
   this->Normals.resize(m);
   this->Ids.resize(m);
+  if (!parallelFor(m, stage(0.5, 0.55), [&](std::size_t b, std::size_t e, int) {
+        for (std::size_t k = b; k < e; ++k)
+        {
+          const std::uint64_t i = pairs[k].second;
+          this->Points[k] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
+          this->Normals[k] = { unitNormals[3 * i], unitNormals[3 * i + 1], unitNormals[3 * i + 2] };
+          this->Ids[k] = i;
+        }
+      }))
+  {
+    *this = MultiresolutionCloud();
+    return false;
+  }
   std::vector<std::uint64_t> keys; // the current level's cell keys
   std::vector<std::uint64_t> starts; // the current level's cells: [starts[c], starts[c + 1]) of the level below
   for (std::size_t k = 0; k < m; ++k)
   {
-    const std::uint64_t i = pairs[k].second;
-    this->Points[k] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
-    this->Normals[k] = { unitNormals[3 * i], unitNormals[3 * i + 1], unitNormals[3 * i + 2] };
-    this->Ids[k] = i;
     if (k == 0 || pairs[k].first != pairs[k - 1].first)
     {
       keys.push_back(pairs[k].first);

@@ -41,16 +41,23 @@ double continuousFeature(const double* nu, const double* scales, int count, doub
     return std::tanh(nu[0] / sigma);
   }
   double integral = 0.0, length = 0.0;
+  if (count < 2)
+  {
+    return std::numeric_limits<double>::quiet_NaN(); // no scale: no interval
+  }
+  // tanh(nu_k / sigma) once per scale: each inner scale ends two intervals.
+  double low = std::tanh(nu[0] / sigma);
   for (int k = 0; k + 1 < count; ++k)
   {
-    if (std::isnan(nu[k]) || std::isnan(nu[k + 1]))
+    const double high = std::tanh(nu[k + 1] / sigma);
+    if (!std::isnan(nu[k]) && !std::isnan(nu[k + 1]))
     {
-      continue;
+      const double h = measure == FeatureMeasure::Scale ? scales[k + 1] - scales[k]
+                                                        : std::log(scales[k + 1] / scales[k]);
+      integral += 0.5 * h * (low + high);
+      length += h;
     }
-    const double h = measure == FeatureMeasure::Scale ? scales[k + 1] - scales[k]
-                                                      : std::log(scales[k + 1] / scales[k]);
-    integral += 0.5 * h * (std::tanh(nu[k] / sigma) + std::tanh(nu[k + 1] / sigma));
-    length += h;
+    low = high;
   }
   return length > 0.0 ? integral / length : std::numeric_limits<double>::quiet_NaN();
 }

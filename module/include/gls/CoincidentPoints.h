@@ -23,9 +23,10 @@ struct CoincidentPoints
   std::size_t merged() const { return this->representative.size() - this->distinct.size(); }
 };
 
-/// Finds the coincident points among n interleaved xyz triples (bitwise-equal coordinates; -0 and +0 are equal).
-/// Deterministic; O(n log n).
-CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n);
+/// Finds the coincident points among n interleaved xyz triples (bitwise-equal coordinates; -0 and +0 are equal),
+/// with up to `threads` threads (0: every hardware thread). Deterministic, the same for any thread count;
+/// O(n log n).
+CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int threads = 1);
 
 /// Gathers `width` values per point of the distinct positions (the first copy's values) from per-point `values`.
 std::vector<double> distinctValues(const CoincidentPoints& c, const double* values, int width);
