@@ -71,14 +71,21 @@ GLS_INLINE int firstScaleHolding(const ScaleBinning& b, double d2)
   return k < b.count - 1 ? k : b.count - 1;
 }
 
+/// The fit of the ball of scale t from its moments (about the evaluation point).
+template <typename MomentSet>
+GLS_INLINE ScaleSample fitBall(const MomentSet& ball, double t, double minNeighbors)
+{
+  WeightedSums s, ds;
+  weightedSumsFromMoments(ball, t, s, ds);
+  return fitOrientedSphere(s, ds, neighborCount(ball), minNeighbors);
+}
+
 /// One step of the running sum over the bins: ball += bin, the ball of scale t, and its fit.
 template <typename MomentSet>
 GLS_INLINE ScaleSample addBinAndFit(MomentSet& ball, const MomentSet& bin, double t, double minNeighbors)
 {
   addMoments(ball, bin);
-  WeightedSums s, ds;
-  weightedSumsFromMoments(ball, t, s, ds);
-  return fitOrientedSphere(s, ds, neighborCount(ball), minNeighbors);
+  return fitBall(ball, t, minNeighbors);
 }
 
 /// Turns the S bins of one evaluation point into its S samples: a running sum over the bins gives the moments of
