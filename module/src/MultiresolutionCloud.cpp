@@ -265,6 +265,28 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
   {
     return false;
   }
+  // Every level's node count from the finest keys (a cell of level l is a run of equal key >> 3 l; two neighbouring
+  // keys fall in different cells up to the level of their highest differing bit), so that the nodes and the cells
+  // are allocated once.
+  std::vector<std::size_t> levelCount(static_cast<std::size_t>(topLevel) + 1, 0);
+  for (std::size_t c = 0; c < keys.size(); ++c)
+  {
+    const std::uint64_t differ = c == 0 ? ~std::uint64_t(0) : keys[c] ^ keys[c - 1];
+    const int highest = 63 - __builtin_clzll(differ); // differ != 0: the keys are distinct
+    ++levelCount[static_cast<std::size_t>(std::min(highest / 3, topLevel))];
+  }
+  for (int level = topLevel; level > 0; --level)
+  {
+    levelCount[static_cast<std::size_t>(level - 1)] += levelCount[static_cast<std::size_t>(level)];
+  }
+  std::size_t nodeTotal = 0, cellTotal = 0;
+  for (int level = 0; level <= topLevel; ++level)
+  {
+    nodeTotal += levelCount[static_cast<std::size_t>(level)];
+    cellTotal += level >= kFirstSummedLevel ? levelCount[static_cast<std::size_t>(level)] : 0;
+  }
+  this->Nodes.reserve(nodeTotal);
+  this->Cells.reserve(cellTotal);
 
   // Level by level, finest first: every level's nodes; the sums of the levels from kFirstSummedLevel up, those of
   // that level from their points, those above from their children, in order.

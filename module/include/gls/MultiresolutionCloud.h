@@ -10,10 +10,45 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <new>
+#include <utility>
 #include <vector>
 
 namespace gls
 {
+
+/// An allocator whose vectors leave new elements of trivial types uninitialized on resize: the build writes every
+/// element in a parallel loop, so their pages are first touched (and zeroed by the system) by the threads that fill
+/// them rather than zeroed twice on one thread (measured at 10M points: 3-4 s of page zeroing on the calling thread).
+template <typename T>
+struct UninitializedAllocator : std::allocator<T>
+{
+  template <typename U>
+  struct rebind
+  {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <typename U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept
+  {
+  }
+  template <typename U>
+  void construct(U* p) noexcept
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// A vector of a pyramid's array (UninitializedAllocator).
+template <typename T>
+using PyramidArray = std::vector<T, UninitializedAllocator<T>>;
 
 /// The finest level whose cells keep their sums (PyramidCell); the cells of finer levels, of about 1.5 and 3 points
 /// each on a surface, form theirs from their points when a walk takes them whole.
@@ -66,11 +101,11 @@ public:
   double bytes() const;
 
 private:
-  std::vector<Vec3> Points;
-  std::vector<Vec3> Normals;
+  PyramidArray<Vec3> Points;
+  PyramidArray<Vec3> Normals;
   std::vector<std::uint64_t> Ids;
-  std::vector<PyramidNode> Nodes;
-  std::vector<PyramidCell> Cells;
+  PyramidArray<PyramidNode> Nodes;
+  PyramidArray<PyramidCell> Cells;
   std::vector<std::uint64_t> TopKeys;
   std::size_t SummedBegin = 0;
   MultiresolutionView View;
