@@ -290,8 +290,9 @@ GLS_FORCE_INLINE void addInnerSums(const InnerSums& inner, const Vec3& u, Aggreg
 /// The samples of a walk, packed once for every point of its region, about an origin o near it (the corner of its far
 /// region, or its own; x = q - o): the points with their nine sums f = (1, x, n, x.n, |x|^2), the cells with their
 /// CellSample (direction from the region's centre), so that a point adds them as they are and moves its sums from o
-/// to itself once per scale (fitAllScalesAboutOrigin) instead of forming them for every sample. The samples inside the first shell's sphere
-/// for every point of the region (below sq0 = scales[0]^2) go to s.inner instead (InnerSums).
+/// to itself once per scale (fitAllScalesAboutOrigin) instead of forming them for every sample. The samples inside
+/// the first shell's sphere for every point of the region (below sq0 = scales[0]^2) go to s.inner instead
+/// (InnerSums).
 GLS_FORCE_INLINE void packWalk(
   const MultiresolutionView& v, const WalkRegion& region, const Vec3& o, double sq0, MultiresolutionScratch& s)
 {

@@ -36,15 +36,15 @@ int pertinentScales(const double* nu, const double* scales, int count, int maxCo
 
 double continuousFeature(const double* nu, const double* scales, int count, double sigma, FeatureMeasure measure)
 {
+  if (count <= 0)
+  {
+    return std::numeric_limits<double>::quiet_NaN(); // no scale: no interval
+  }
   if (count == 1)
   {
     return std::tanh(nu[0] / sigma);
   }
   double integral = 0.0, length = 0.0;
-  if (count < 2)
-  {
-    return std::numeric_limits<double>::quiet_NaN(); // no scale: no interval
-  }
   // tanh(nu_k / sigma) once per scale: each inner scale ends two intervals.
   double low = std::tanh(nu[0] / sigma);
   for (int k = 0; k + 1 < count; ++k)

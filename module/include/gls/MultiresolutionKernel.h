@@ -4,9 +4,9 @@
 // about one branch per cell: measured 20 ns per cell), then binned and added in batches. The walk depends on p's
 // walkRegion only, so it runs once for consecutive points of one region, and its samples are packed once with
 // their sums about the region's corner (PackedSample); each point adds them as they are and moves the running sum
-// of its bins to itself at each scale (exact algebra, a shift of the origin). The sums are therefore the same sums in another order and about
-// another origin: results agree with the host/device loop to rounding (the tests bound it) and are deterministic
-// for any thread count.
+// of its bins to itself at each scale (exact algebra, a shift of the origin). The sums are therefore the same sums
+// in another order and about another origin: results agree with the host/device loop to rounding (the tests bound
+// it) and are deterministic for any thread count.
 #pragma once
 
 #include "gls/MultiresolutionView.h"
