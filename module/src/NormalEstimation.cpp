@@ -220,8 +220,9 @@ bool estimateNormals(
   // Progress: the first neighbourhoods [0, 0.5], the grown ones [0.5, 0.6], the orientation [0.6, 1] (when it is
   // the minimum spanning tree; else the estimate is the whole range).
   const double estimateEnd = settings.orientation == NormalOrientation::MinimumSpanningTree ? 0.6 : 1.0;
+  const ParallelOptions firstStage = progressStage(settings.parallel, 0.0, 5.0 / 6.0 * estimateEnd);
   const bool completed =
-    parallelFor(g.count, progressStage(settings.parallel, 0.0, 5.0 / 6.0 * estimateEnd), [&](std::size_t begin, std::size_t end, int t) {
+    parallelFor(g.count, firstStage, [&](std::size_t begin, std::size_t end, int t) {
       std::vector<std::uint64_t>& nb = scratch[t];
       for (std::size_t s = begin; s < end; ++s)
       {
@@ -506,7 +507,8 @@ bool orientInGridOrder(NeighborGrid& grid, std::size_t n, int graphNeighbors, do
   std::vector<Index> nearest(slot[count], none); // the nearest other nodes of each node
   const int threads = resolveThreadCount(parallel.threads);
   std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
-  const bool queried = parallelFor(count, progressStage(parallel, 0.0, 0.4), [&](std::size_t begin, std::size_t end, int t) {
+  const ParallelOptions queryStage = progressStage(parallel, 0.0, 0.4);
+  const bool queried = parallelFor(count, queryStage, [&](std::size_t begin, std::size_t end, int t) {
     for (std::size_t s = begin; s < end; ++s)
     {
       const std::size_t k = slot[s + 1] - slot[s];

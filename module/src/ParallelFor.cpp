@@ -23,8 +23,8 @@ bool parallelFor(std::size_t n, const ParallelOptions& options,
 {
   const std::size_t chunk = std::max<std::size_t>(options.chunk, 1);
   const std::size_t chunkCount = (n + chunk - 1) / chunk;
-  const int threads = static_cast<int>(
-    std::min<std::size_t>(static_cast<std::size_t>(resolveThreadCount(options.threads)), std::max<std::size_t>(chunkCount, 1)));
+  const int threads = static_cast<int>(std::min<std::size_t>(
+    static_cast<std::size_t>(resolveThreadCount(options.threads)), std::max<std::size_t>(chunkCount, 1)));
 
   std::atomic<std::size_t> next{ 0 };
   std::atomic<std::size_t> done{ 0 };

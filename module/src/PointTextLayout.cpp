@@ -165,7 +165,9 @@ std::string byHeader(const Table& t, Layout& layout)
   {
     return line(t.headerLine) + ": a header line must name the columns x, y and z";
   }
-  const auto named = [&](int first) { return (column[first] >= 0) + (column[first + 1] >= 0) + (column[first + 2] >= 0); };
+  const auto named = [&](int first) {
+    return (column[first] >= 0) + (column[first + 1] >= 0) + (column[first + 2] >= 0);
+  };
   if (named(NX) != 0 && named(NX) != 3)
   {
     return line(t.headerLine) + ": a header naming normals must name all of nx, ny and nz";

@@ -202,7 +202,7 @@ GLS_INLINE SpreadDensity spreadDensity(double half)
 /// The share of the part [u, w] of a spread [mean - half, mean + half] (half > 0, density `density`): its points are
 /// those whose a . y = (s - mean) / 2 lies there, so their f regresses on a . y as F / m + (a . y) H / (m sigma^2);
 /// integrated over the uniform spread in d = s - mean. The CPU kernel's AVX2 build forms the same arithmetic for four
-/// cells at a time (pieceSharesAvx2 in MultiresolutionKernel.cpp; a change here goes there too: the test of the CPU
+/// cells at a time (pieceSharesAvx2 in src/MultiresolutionPieces.h; a change here goes there too: the test of the CPU
 /// kernel against the host/device loop fails otherwise).
 GLS_INLINE ShellShare pieceShare(double mean, const SpreadDensity& density, double u, double w)
 {
@@ -342,7 +342,8 @@ GLS_INLINE void forEachShellOfSpread(const ScaleBinning& b, double r2, double me
 /// forEachShellOfSpread with each share's derivatives: add(k, expansion) (wholeShareExpansion, pieceShareSlope,
 /// pieceShareCurvature).
 template <typename Add>
-GLS_FORCE_INLINE void forEachShellOfSpreadExpanded(const ScaleBinning& b, double r2, double mean, double half, Add&& add)
+GLS_FORCE_INLINE void forEachShellOfSpreadExpanded(
+  const ScaleBinning& b, double r2, double mean, double half, Add&& add)
 {
   forEachPieceOfSpread(
     b, r2, mean, half, [&](int k) GLS_INLINE_LAMBDA { add(k, wholeShareExpansion(mean, half)); },

@@ -16,8 +16,9 @@ struct CoincidentPoints
 {
   std::vector<std::uint64_t> representative; ///< per point: its distinct position's index in `distinct`
   std::vector<std::uint64_t> distinct;       ///< per distinct position: its first point (input order)
-  std::vector<std::uint64_t> copyStart;      ///< distinct position u has the points copies[copyStart[u] .. copyStart[u+1])
-  std::vector<std::uint64_t> copies;         ///< every point, grouped by distinct position, in input order within a group
+  /// distinct position u has the points copies[copyStart[u] .. copyStart[u+1])
+  std::vector<std::uint64_t> copyStart;
+  std::vector<std::uint64_t> copies; ///< every point, grouped by distinct position, in input order within a group
 
   /// Number of points merged into an earlier one (0: every position is distinct).
   std::size_t merged() const { return this->representative.size() - this->distinct.size(); }

@@ -6,7 +6,8 @@
 // their sums about the region's corner (PackedSample); each point adds them as they are and moves the running sum
 // of its bins to itself at each scale (exact algebra, a shift of the origin). The sums are therefore the same sums
 // in another order and about another origin: results agree with the host/device loop to rounding (the tests bound
-// it) and are deterministic for any thread count.
+// it) and are deterministic for any thread count. The implementation: src/MultiresolutionKernel.cpp, which lists its
+// parts.
 #pragma once
 
 #include "gls/MultiresolutionView.h"
@@ -49,7 +50,7 @@ struct LinearizedBins
 /// adds F, mean F + 2 H and (mean^2 + V) F + 4 mean H (wholeShare; a point: f, d2 f, d2^2 f) to the three moments,
 /// and mean = M - 2 a . u + |u|^2 with u = p - (the region's centre), a = its centroid (or position) - the centre,
 /// M = |a|^2 + its spread per point. The sums over the samples of F and H times 1, M, a_i, M a_i, a_i a_j and
-/// M^2 + V give those moments for every p of the region (addInnerSums in MultiresolutionKernel.cpp); their sums are
+/// M^2 + V give those moments for every p of the region (addInnerSums in src/MultiresolutionPacking.h); their sums are
 /// about the walk's origin, as the packed samples'.
 struct InnerSums
 {
@@ -66,7 +67,7 @@ struct PointSpan
   std::uint32_t first, last;
 };
 
-/// A point of a walk as every point of its region reads it (packWalk in MultiresolutionKernel.cpp): its position
+/// A point of a walk as every point of its region reads it (packWalk in src/MultiresolutionPacking.h): its position
 /// and its nine sums (1, x, n, x.n, |x|^2) about the region's corner.
 struct PackedPoint
 {

@@ -1,0 +1,155 @@
+// Private to the CPU multi-resolution kernel (MultiresolutionKernel.cpp, its only includer): a walk's samples packed
+// once for every point of its walk region (PackedPoint, PackedCell, CellPlacements), and those inside the smallest
+// scale's sphere for the whole region summed as a polynomial of p (InnerSums).
+#pragma once
+
+#include "KernelVectors.h"
+
+#include "gls/MultiresolutionKernel.h"
+
+#include <cstring>
+
+namespace gls
+{
+namespace kernel
+{
+
+/// The largest squared distance from x to a point of the region (per axis, to the farther face).
+GLS_FORCE_INLINE double squaredDistanceToFarthestPoint(const WalkRegion& region, const Vec3& x)
+{
+  const auto farther = [](double x, double lo, double hi) GLS_INLINE_LAMBDA {
+    const double below = x - lo, above = hi - x;
+    const double d = below > above ? below : above;
+    return d * d;
+  };
+  const Vec3& c = region.corner;
+  const double e = region.edge;
+  return farther(x.x, c.x, c.x + e) + farther(x.y, c.y, c.y + e) + farther(x.z, c.z, c.z + e);
+}
+
+/// Adds a sample to the region's InnerSums: its F (and H, or none), a = its centroid - the region's centre, M and
+/// K = M^2 + V.
+GLS_FORCE_INLINE void addInnerSample(
+  InnerSums& inner, const Vec3& a, double M, double K, const double* F, const double* H)
+{
+  const double weights[15] = { 1.0, M, a.x, a.y, a.z, K, M * a.x, M * a.y, M * a.z, a.x * a.x, a.x * a.y, a.x * a.z,
+    a.y * a.y, a.y * a.z, a.z * a.z };
+  // inner.x[i] += weights[i] * X, nine values at a time (two four-double vectors and one, in the vector builds).
+  const auto add = [&weights](double(*sums)[kAggregateValues], int count, const double* X) GLS_INLINE_LAMBDA {
+#if GLS_KERNEL_VECTORS
+    const kernel::Double4 x0 = kernel::load4(X), x1 = kernel::load4(X + 4);
+    for (int i = 0; i < count; ++i)
+    {
+      double* row = sums[i];
+      kernel::store4(row, kernel::load4(row) + weights[i] * x0);
+      kernel::store4(row + 4, kernel::load4(row + 4) + weights[i] * x1);
+      row[8] += weights[i] * X[8];
+    }
+#else
+    for (int i = 0; i < count; ++i)
+    {
+      for (int j = 0; j < kAggregateValues; ++j)
+      {
+        sums[i][j] += weights[i] * X[j];
+      }
+    }
+#endif
+  };
+  add(inner.f, 15, F);
+  if (H)
+  {
+    add(inner.h, 5, H);
+  }
+  ++inner.samples;
+}
+
+/// Adds the InnerSums' share of the first shell for p, u = p - (the region's centre): with mean = M - 2 a . u + |u|^2,
+/// the sums of F, mean F + 2 H and (mean^2 + V) F + 4 mean H (wholeShare's m and c, InnerSums), expanded in u.
+GLS_FORCE_INLINE void addInnerSums(const InnerSums& inner, const Vec3& u, AggregateMoments& bin)
+{
+  if (inner.samples == 0)
+  {
+    return;
+  }
+  const double uu = squaredNorm(u);
+  const double q[6] = { u.x * u.x, 2.0 * u.x * u.y, 2.0 * u.x * u.z, u.y * u.y, 2.0 * u.y * u.z, u.z * u.z };
+  for (int j = 0; j < kAggregateValues; ++j)
+  {
+    const double F = inner.f[0][j], MF = inner.f[1][j], KF = inner.f[5][j];
+    const double uaF = u.x * inner.f[2][j] + u.y * inner.f[3][j] + u.z * inner.f[4][j];
+    const double uMaF = u.x * inner.f[6][j] + u.y * inner.f[7][j] + u.z * inner.f[8][j];
+    const double uaauF = q[0] * inner.f[9][j] + q[1] * inner.f[10][j] + q[2] * inner.f[11][j] +
+      q[3] * inner.f[12][j] + q[4] * inner.f[13][j] + q[5] * inner.f[14][j];
+    const double uaH = u.x * inner.h[2][j] + u.y * inner.h[3][j] + u.z * inner.h[4][j];
+    const double meanF = MF - 2.0 * uaF + uu * F;
+    const double meanH = inner.h[1][j] - 2.0 * uaH + uu * inner.h[0][j];
+    // mean^2 = M^2 - 4 M a.u + 2 M |u|^2 + 4 (a.u)^2 - 4 (a.u) |u|^2 + |u|^4
+    const double squareF = KF - 4.0 * uMaF + 2.0 * uu * MF + 4.0 * uaauF - 4.0 * uu * uaF + uu * uu * F;
+    bin.m[j] += F;
+    bin.m[kAggregateValues + j] += meanF + 2.0 * inner.h[0][j];
+    bin.m[2 * kAggregateValues + j] += squareF + 4.0 * meanH;
+  }
+}
+
+/// The samples of a walk, packed once for every point of its region, about an origin o near it (the corner of its far
+/// region, or its own; x = q - o): the points with their nine sums f = (1, x, n, x.n, |x|^2), the cells with their
+/// CellSample (direction from the region's centre), so that a point adds them as they are and moves its sums from o
+/// to itself once per scale (fitAllScalesAboutOrigin) instead of forming them for every sample. The samples inside
+/// the first shell's sphere for every point of the region (below sq0 = scales[0]^2) go to s.inner instead
+/// (InnerSums).
+GLS_FORCE_INLINE void packWalk(
+  const MultiresolutionView& v, const WalkRegion& region, const Vec3& o, double sq0, MultiresolutionScratch& s)
+{
+  const Vec3 anchor = regionCentre(region);
+  std::memset(static_cast<void*>(&s.inner), 0, sizeof(InnerSums)); // all 0.0
+  s.packedCells.resize(s.taken.size());
+  s.placements.resize(s.taken.size());
+  std::size_t cells = 0;
+  for (std::size_t k = 0; k < s.taken.size(); ++k)
+  {
+    PyramidCell cell;
+    cellMoments(v, s.taken[k], s.takenLevel[k], cell);
+    PackedCell& out = s.packedCells[cells];
+    const Vec3 a = cell.centroid - anchor;
+    makeCellSample(cell, o, a, out.sample);
+    const double spread = out.sample.spreadPerPoint, half = out.sample.halfWidth;
+    if (squaredDistanceToFarthestPoint(region, cell.centroid) + spread + half < sq0)
+    {
+      const double M = squaredNorm(a) + spread;
+      addInnerSample(s.inner, a, M, M * M + spreadVariance(half), out.sample.sums, out.sample.gradient);
+      continue;
+    }
+    s.placements.set(cells, cell.centroid, spread, half);
+    ++cells;
+  }
+  s.packedCells.resize(cells);
+  s.placements.resize(cells);
+  std::size_t n = 0;
+  for (const PointSpan& span : s.read)
+  {
+    n += span.last - span.first;
+  }
+  s.packedPoints.resize(n);
+  PackedPoint* out = s.packedPoints.data();
+  for (const PointSpan& span : s.read)
+  {
+    for (std::uint32_t i = span.first; i < span.last; ++i)
+    {
+      const Vec3 x = v.points[i] - o;
+      out->position = v.points[i];
+      pointSums(x, squaredNorm(x), v.normals[i], out->sums);
+      if (squaredDistanceToFarthestPoint(region, v.points[i]) < sq0)
+      {
+        const Vec3 a = v.points[i] - anchor;
+        const double M = squaredNorm(a);
+        addInnerSample(s.inner, a, M, M * M, out->sums, nullptr);
+        continue;
+      }
+      ++out;
+    }
+  }
+  s.packedPoints.resize(static_cast<std::size_t>(out - s.packedPoints.data()));
+}
+
+} // namespace kernel
+} // namespace gls
