@@ -108,10 +108,15 @@ GLS_INLINE double halfDiagonal(double edge)
   return 0.8660254037844386 * edge;
 }
 
-/// Distance between the intervals [lo1, hi1] and [lo2, hi2] (0 where they overlap).
+/// Distance between the intervals [lo1, hi1] and [lo2, hi2] (0 where they overlap): the larger of the two one-sided
+/// gaps, at least 0 (at most one of them is positive). Written as selects of the larger value, which compile to
+/// max instructions: the walks test every cell they visit, on either side of p's region at random, and a branch
+/// per test mispredicted about half the time.
 GLS_INLINE double gapBetweenIntervals(double lo1, double hi1, double lo2, double hi2)
 {
-  return lo2 > hi1 ? lo2 - hi1 : (lo1 > hi2 ? lo1 - hi2 : 0.0);
+  const double after = lo2 - hi1, before = lo1 - hi2;
+  const double gap = after > before ? after : before;
+  return gap > 0.0 ? gap : 0.0;
 }
 
 /// Squared distance from the region to the cube [corner, corner + edge]^3 (0 where they overlap): at most the
