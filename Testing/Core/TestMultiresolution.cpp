@@ -562,6 +562,45 @@ TEST(Multiresolution, ResultsAreBitwiseIdenticalForAnyThreadCount)
   }
 }
 
+TEST(Multiresolution, DenseCloudsWalkOncePerFarRegion)
+{
+  // Where 8 finest cells are at most half the smallest scale, the walk regions are cubes of 8 cells and their own far
+  // regions (kFarRegionLevel): the CPU kernel walks, packs and sums the far cells once per such cube. Its results
+  // still agree with the host/device loop and are the same for any thread count.
+  const Cloud c = paraboloid(100, 1.0, 0.7, 0.3, 0.01, 0.05, 4);
+  const std::vector<double> dense = gls::sampleScales(0.65, 1.2, 8, gls::ScaleSampling::Quadratic);
+  const std::vector<double> sparse = gls::sampleScales(0.2, 1.2, 8, gls::ScaleSampling::Quadratic);
+  {
+    const gls::ScaleSpaceEngine engine(
+      c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(dense, 0.15, 0, 6.0, kNearLinearized));
+    const gls::MultiresolutionView v = engine.pyramid().view();
+    EXPECT_LE(std::ldexp(v.levelSize[0], gls::kFarRegionLevel + 1), dense.front());
+    EXPECT_EQ(v.walkLevel, gls::kFarRegionLevel);
+    EXPECT_EQ(v.farLevel, gls::kFarRegionLevel);
+    EXPECT_GE(v.farLevelCount, 1);
+  }
+  {
+    // A smaller smallest scale: walk regions of 4 cells, far regions of twice their edge.
+    const gls::ScaleSpaceEngine engine(
+      c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(sparse, 0.15, 0, 6.0, kNearLinearized));
+    const gls::MultiresolutionView v = engine.pyramid().view();
+    EXPECT_GT(std::ldexp(v.levelSize[0], gls::kFarRegionLevel + 1), sparse.front());
+    EXPECT_EQ(v.walkLevel, 2);
+    EXPECT_EQ(v.farLevel, gls::kFarRegionLevel);
+  }
+  for (double linearized : { gls::kLinearizedDistance, kNearLinearized })
+  {
+    SCOPED_TRACE(linearized);
+    expectCpuKernelAgreesWithTheDeviceLoop(c, dense, linearized);
+  }
+  const CollectingSink one = runMultiresolution(c, dense, 0.15, 1, 6.0, kNearLinearized);
+  const CollectingSink many = runMultiresolution(c, dense, 0.15, 3, 6.0, kNearLinearized);
+  for (std::size_t i = 0; i < one.Samples.size(); ++i)
+  {
+    ASSERT_TRUE(sameBits(one.Samples[i], many.Samples[i])) << "sample " << i;
+  }
+}
+
 TEST(Multiresolution, AbortDuringThePyramidBuildLeavesAnEmptyEngine)
 {
   const Cloud c = paraboloid(300, 1.0, 0.7, 0.3, 0.0, 0.0, 3);

@@ -149,10 +149,15 @@ PyramidLayout choosePyramidLayout(const double low[3], const double high[3], dou
   // Walks shared by cubes of 4 finest cells per axis (about 16-30 points on a surface), or smaller ones where that
   // exceeds the smallest scale. Measured (bunny, 2 threads, us per point, one walk per point / per region):
   // 0.3M points 22.9 / 16.3, 3M points 26.4 / 16.5 (cubes of 8 cells: 17.2, of 16: 21.2: the walks read more cells).
+  // Cubes of 8 cells where those are at most half the smallest scale (kFarRegionLevel: their own far regions).
   layout.walkLevel = 0;
   while (layout.walkLevel < 2 && std::ldexp(h, layout.walkLevel + 1) <= smallestScale)
   {
     ++layout.walkLevel;
+  }
+  if (layout.walkLevel == 2 && std::ldexp(h, kFarRegionLevel + 1) <= smallestScale)
+  {
+    layout.walkLevel = kFarRegionLevel;
   }
   layout.largestScale = largestScale;
   layout.low = { low[0], low[1], low[2] };
@@ -377,10 +382,10 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
   v.origin = origin;
   v.accuracy = layout.accuracy;
   v.walkLevel = std::min(std::max(layout.walkLevel, 0), topLevel);
-  // Far regions of twice the walk region's edge (about 27 points each on a surface at 10M points: a linearized cell
-  // costs its region about 8 times what a packed cell costs a point), where their reach stays within the largest
-  // ball.
-  v.farLevel = std::min(v.walkLevel + 1, topLevel);
+  // Far regions of twice the walk region's edge, at most kFarRegionLevel (about 27 points each on a surface at 10M
+  // points: a linearized cell costs its region about 8 times what a packed cell costs a point), where their reach
+  // stays within the largest ball.
+  v.farLevel = std::min(std::min(v.walkLevel + 1, kFarRegionLevel), topLevel);
   v.linearizedDistance = layout.linearizedDistance;
   v.farLevelCount = 0;
   while (v.farLevelCount < kMaxFarLevels && v.farLevel + v.farLevelCount <= topLevel &&
