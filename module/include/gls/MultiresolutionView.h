@@ -310,8 +310,8 @@ constexpr double kLinearizedDistance = 10.0;
 constexpr int kMaxFarLevels = 1;
 
 /// The far parts of the walk of p: for each level i < count, the far region F_i (the lattice cube of level farLevel
-/// + i holding p; F_0 has twice the edge of p's walk region) and its reach (linearizedDistance half-diagonals of
-/// F_i, doubling with i).
+/// + i holding p; F_0 has twice the edge of p's walk region, or is that region where it has kFarRegionLevel's edge) and
+/// its reach (linearizedDistance half-diagonals of F_i, doubling with i).
 /// A cell whose cube reaches at least reach_i from F_i (farthest corner), for the largest such i, belongs to far part
 /// i: it is decided from F_i instead of p's walk region (taken whole or opened by its distance from F_i, never read
 /// point by point), so that every point of F_i finds the same such cells; those entirely beyond reach_i from F_i are
