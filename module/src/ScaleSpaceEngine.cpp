@@ -19,6 +19,9 @@ namespace
 /// 64,500 and 213,500 with 256; a chunk of 4096 points still takes well under a second.
 constexpr std::size_t kMultiresolutionChunk = 4096;
 
+/// The fewest chunks per thread that a multi-resolution run's larger chunks leave (the load's balance at the end).
+constexpr std::size_t kChunksPerThread = 8;
+
 } // namespace
 
 ScaleSpaceEngine::ScaleSpaceEngine(
@@ -193,14 +196,16 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
     }
   }
   r.used = Backend::CPU;
+  const int threads = resolveThreadCount(options.threads);
   ParallelOptions cpu = options;
   if (multiresolution)
   {
     // Consecutive points in pyramid order share their walks (MultiresolutionScratch keeps a thread's last ones), and
-    // a chunk's first point walks anew: at 256 points per chunk that added 16% more far walks at 3M points.
-    cpu.chunk = std::max(cpu.chunk, kMultiresolutionChunk);
+    // a chunk's first point walks anew: at 256 points per chunk that added 16% more far walks at 3M points. At least
+    // kChunksPerThread chunks per thread, so that a small run (a sample of scattered points) stays balanced.
+    const std::size_t balanced = order.size() / (kChunksPerThread * static_cast<std::size_t>(threads));
+    cpu.chunk = std::max(cpu.chunk, std::min(kMultiresolutionChunk, balanced));
   }
-  const int threads = resolveThreadCount(cpu.threads);
   std::vector<std::vector<Moments>> bins(static_cast<std::size_t>(threads));
   std::vector<MultiresolutionScratch> scratch(static_cast<std::size_t>(threads));
   std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(threads));
