@@ -127,8 +127,8 @@ GLS_FORCE_INLINE void addLinearizedCells(const LinearizedBins& far, const Vec3& 
 #if GLS_KERNEL_VECTORS
     for (; j + 4 <= 3 * kAggregateValues; j += 4)
     {
-      const auto four = [j](const double* set) GLS_INLINE_LAMBDA { return kernel::load4(set + j); };
-      kernel::store4(m + j, kernel::load4(m + j) + moved(four));
+      const auto four = [j](const double* set) GLS_INLINE_LAMBDA { return load4(set + j); };
+      store4(m + j, load4(m + j) + moved(four));
     }
 #endif
     for (; j < 3 * kAggregateValues; ++j)

@@ -37,12 +37,12 @@ GLS_FORCE_INLINE void addInnerSample(
   // inner.x[i] += weights[i] * X, nine values at a time (two four-double vectors and one, in the vector builds).
   const auto add = [&weights](double(*sums)[kAggregateValues], int count, const double* X) GLS_INLINE_LAMBDA {
 #if GLS_KERNEL_VECTORS
-    const kernel::Double4 x0 = kernel::load4(X), x1 = kernel::load4(X + 4);
+    const Double4 x0 = load4(X), x1 = load4(X + 4);
     for (int i = 0; i < count; ++i)
     {
       double* row = sums[i];
-      kernel::store4(row, kernel::load4(row) + weights[i] * x0);
-      kernel::store4(row + 4, kernel::load4(row + 4) + weights[i] * x1);
+      store4(row, load4(row) + weights[i] * x0);
+      store4(row + 4, load4(row + 4) + weights[i] * x1);
       row[8] += weights[i] * X[8];
     }
 #else

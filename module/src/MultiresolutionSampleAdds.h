@@ -17,10 +17,8 @@ namespace kernel
 GLS_FORCE_INLINE void addPackedSums(AggregateMoments& a, const double* f, double d2)
 {
 #if GLS_KERNEL_VECTORS
-  using kernel::load4;
-  using kernel::store4;
-  const kernel::Double4 f0 = load4(f);
-  const kernel::Double4 f1 = load4(f + 4);
+  const Double4 f0 = load4(f);
+  const Double4 f1 = load4(f + 4);
   const double f8 = f[8];
   const double d4 = d2 * d2;
   double* m = a.m;
@@ -42,21 +40,18 @@ GLS_FORCE_INLINE void addPackedSums(AggregateMoments& a, const double* f, double
 /// A cell's F and H as the shell adds read them, loaded once for all the shells the cell meets.
 struct LoadedSample
 {
-  kernel::Double4 f0, f1, g0, g1;
+  Double4 f0, f1, g0, g1;
   double f8, g8;
 };
 
 GLS_FORCE_INLINE LoadedSample loadSample(const CellSample& s)
 {
-  using kernel::load4;
   return { load4(s.sums), load4(s.sums + 4), load4(s.gradient), load4(s.gradient + 4), s.sums[8], s.gradient[8] };
 }
 
 /// A cell's share of one shell (addCellShare in CellMoments.h, the same products and sums element by element).
 GLS_FORCE_INLINE void addPackedCellShare(AggregateMoments& a, const LoadedSample& f, const ShellShare& share)
 {
-  using kernel::load4;
-  using kernel::store4;
   double* m = a.m;
   for (int j = 0; j < 3; ++j)
   {
