@@ -141,7 +141,7 @@ TEST(CoincidentPoints, DistinctPointsStayDistinct)
 
 TEST(CoincidentPoints, SameGroupsForAnyThreadCount)
 {
-  // Enough points for the sort to run in slices (sortUniquePairs: 65,536 or more), copies and non-finite points
+  // Enough points for the sort to run in slices (sortByKey: 65,536 or more), copies and non-finite points
   // among them: every thread count gives the one-thread result, whose merged count a set of the positions confirms.
   std::mt19937_64 rng(23);
   std::uniform_int_distribution<int> lattice(-40, 40);

@@ -508,7 +508,7 @@ TEST(Multiresolution, PointsOfOneRegionShareOneWalkWhateverTheOrder)
   EXPECT_LE(v.levelSize[v.walkLevel], scales.front());
   const TestBinning binning(scales);
   const gls::ScaleBinning& b = binning.View;
-  const std::vector<std::uint64_t>& order = engine.evaluationOrder();
+  const auto& order = engine.evaluationOrder();
   std::vector<std::uint64_t> shuffled(order.begin(), order.begin() + 3000);
   std::mt19937 random(7);
   std::shuffle(shuffled.begin() + 1500, shuffled.end(), random); // half in pyramid order, half shuffled

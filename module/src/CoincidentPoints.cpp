@@ -1,5 +1,6 @@
 #include "gls/CoincidentPoints.h"
 
+#include "gls/KeySort.h"
 #include "gls/ParallelFor.h"
 
 #include <algorithm>
@@ -50,7 +51,7 @@ CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int thre
   };
   // The points sorted by (key of their position, index): equal positions are in one run of equal keys, in input
   // order. Sorting keys rather than comparing coordinates through the indices keeps the sort in cache.
-  std::vector<std::pair<std::uint64_t, std::uint64_t>> keyed(n);
+  KeyedIndices keyed(n);
   ParallelOptions keying;
   keying.threads = threads;
   keying.chunk = 65536;
@@ -60,9 +61,9 @@ CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int thre
       keyed[i] = { positionKey(xyz + 3 * i), i };
     }
   });
-  sortUniquePairs(keyed, threads);
+  sortByKey(keyed, threads);
   std::size_t repeated = 1;
-  while (repeated < n && keyed[repeated].first != keyed[repeated - 1].first)
+  while (repeated < n && keyed[repeated].key != keyed[repeated - 1].key)
   {
     ++repeated;
   }
@@ -84,7 +85,7 @@ CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int thre
   for (std::size_t s = 0; s < keyed.size();)
   {
     std::size_t e = s + 1;
-    while (e < keyed.size() && keyed[e].first == keyed[s].first)
+    while (e < keyed.size() && keyed[e].key == keyed[s].key)
     {
       ++e;
     }
@@ -92,7 +93,7 @@ CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int thre
     leaders.clear();
     for (std::size_t k = s; k < e; ++k)
     {
-      const std::uint64_t i = keyed[k].second;
+      const std::uint64_t i = keyed[k].index;
       if (!finite(i))
       {
         continue;

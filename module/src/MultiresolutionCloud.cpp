@@ -1,5 +1,6 @@
 #include "gls/MultiresolutionCloud.h"
 
+#include "gls/KeySort.h"
 #include "gls/Numeric.h"
 
 #include <algorithm>
@@ -10,6 +11,9 @@ namespace gls
 {
 namespace
 {
+
+/// Below this many keys, runsOfEqualKeys takes one thread.
+constexpr std::size_t kParallelRuns = 65536;
 
 constexpr double kLatticeCells = static_cast<double>(std::uint64_t(1) << kMortonBits);
 
@@ -41,6 +45,48 @@ std::uint64_t latticeCoordinate(double v, double origin, double edge)
     return 0;
   }
   return c >= kLatticeCells - 1.0 ? static_cast<std::uint64_t>(kLatticeCells - 1.0) : static_cast<std::uint64_t>(c);
+}
+
+/// The runs of equal keyOf(k) over k in [0, n) (keyOf non-decreasing): each run's key and first index, with n
+/// appended to the first indices. On up to `threads` threads, each counting then writing the runs that begin in its
+/// slice, so the result does not depend on the thread count.
+template <typename KeyOf>
+void runsOfEqualKeys(std::size_t n, const KeyOf& keyOf, int threads, PyramidArray<std::uint64_t>& runKeys,
+  PyramidArray<std::uint64_t>& runStarts)
+{
+  const std::size_t slices = n < kParallelRuns ? 1 : static_cast<std::size_t>(std::max(threads, 1));
+  const auto sliceBegin = [n, slices](std::size_t s) { return n * s / slices; };
+  const auto begins = [&keyOf](std::size_t k) { return k == 0 || keyOf(k) != keyOf(k - 1); };
+  ParallelOptions bySlice;
+  bySlice.threads = static_cast<int>(slices);
+  bySlice.chunk = 1;
+  std::vector<std::size_t> first(slices + 1, 0); // runs beginning in the slices before
+  parallelFor(slices, bySlice, [&](std::size_t s, std::size_t, int) {
+    std::size_t count = 0;
+    for (std::size_t k = sliceBegin(s); k < sliceBegin(s + 1); ++k)
+    {
+      count += begins(k) ? 1 : 0;
+    }
+    first[s + 1] = count;
+  });
+  for (std::size_t s = 0; s < slices; ++s)
+  {
+    first[s + 1] += first[s];
+  }
+  runKeys.resize(first[slices]);
+  runStarts.resize(first[slices] + 1);
+  parallelFor(slices, bySlice, [&](std::size_t s, std::size_t, int) {
+    std::size_t r = first[s];
+    for (std::size_t k = sliceBegin(s); k < sliceBegin(s + 1); ++k)
+    {
+      if (begins(k))
+      {
+        runKeys[r] = keyOf(k);
+        runStarts[r++] = k;
+      }
+    }
+  });
+  runStarts[first[slices]] = n;
 }
 
 /// The sums of a parent cell from those of its `count` children (in order), about its new centroid c: with
@@ -165,14 +211,6 @@ PyramidLayout choosePyramidLayout(const double low[3], const double high[3], dou
   return layout;
 }
 
-double MultiresolutionCloud::bytes() const
-{
-  return static_cast<double>(this->Points.size()) * (2.0 * sizeof(Vec3) + sizeof(std::uint64_t)) +
-    static_cast<double>(this->Nodes.size()) * sizeof(PyramidNode) +
-    static_cast<double>(this->Cells.size()) * sizeof(PyramidCell) +
-    static_cast<double>(this->TopKeys.size()) * sizeof(std::uint64_t);
-}
-
 bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, std::size_t n,
   const unsigned char* admit, const PyramidLayout& layout, const ParallelOptions& parallel)
 {
@@ -208,23 +246,33 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
   const Vec3 origin = { std::floor(layout.low.x / H) * H, std::floor(layout.low.y / H) * H,
     std::floor(layout.low.z / H) * H };
 
-  // Keys of the admitted points on the finest lattice.
-  std::vector<std::uint64_t> admitted;
+  // Keys of the admitted points on the finest lattice (the k-th admitted point: k itself where all are).
+  std::size_t admittedCount = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    if (admit[i])
+    admittedCount += admit[i] ? 1 : 0;
+  }
+  std::vector<std::uint64_t> admitted;
+  if (admittedCount < n)
+  {
+    admitted.reserve(admittedCount);
+    for (std::size_t i = 0; i < n; ++i)
     {
-      admitted.push_back(i);
+      if (admit[i])
+      {
+        admitted.push_back(i);
+      }
     }
   }
-  std::vector<std::pair<std::uint64_t, std::uint64_t>> pairs(admitted.size());
-  if (!parallelFor(admitted.size(), stage(0.0, 0.1), [&](std::size_t b, std::size_t e, int) {
+  KeyedIndices keyed(admittedCount);
+  if (!parallelFor(admittedCount, stage(0.0, 0.1), [&](std::size_t b, std::size_t e, int) {
         for (std::size_t k = b; k < e; ++k)
         {
-          const double* q = xyz + 3 * admitted[k];
-          pairs[k] = { mortonKey(latticeCoordinate(q[0], origin.x, h0), latticeCoordinate(q[1], origin.y, h0),
+          const std::uint64_t i = admitted.empty() ? k : admitted[k];
+          const double* q = xyz + 3 * i;
+          keyed[k] = { mortonKey(latticeCoordinate(q[0], origin.x, h0), latticeCoordinate(q[1], origin.y, h0),
                          latticeCoordinate(q[2], origin.z, h0)),
-            admitted[k] };
+            i };
         }
       }))
   {
@@ -232,19 +280,19 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
     return false;
   }
   std::vector<std::uint64_t>().swap(admitted);
-  sortUniquePairs(pairs, threads);
+  sortByKey(keyed, threads);
   if (abort(0.5))
   {
     return false;
   }
-  const std::size_t m = pairs.size();
+  const std::size_t m = keyed.size();
   this->Points.resize(m);
   this->Normals.resize(m);
   this->Ids.resize(m);
   if (!parallelFor(m, stage(0.5, 0.55), [&](std::size_t b, std::size_t e, int) {
         for (std::size_t k = b; k < e; ++k)
         {
-          const std::uint64_t i = pairs[k].second;
+          const std::uint64_t i = keyed[k].index;
           this->Points[k] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
           this->Normals[k] = { unitNormals[3 * i], unitNormals[3 * i + 1], unitNormals[3 * i + 2] };
           this->Ids[k] = i;
@@ -254,18 +302,10 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
     *this = MultiresolutionCloud();
     return false;
   }
-  std::vector<std::uint64_t> keys; // the current level's cell keys
-  std::vector<std::uint64_t> starts; // the current level's cells: [starts[c], starts[c + 1]) of the level below
-  for (std::size_t k = 0; k < m; ++k)
-  {
-    if (k == 0 || pairs[k].first != pairs[k - 1].first)
-    {
-      keys.push_back(pairs[k].first);
-      starts.push_back(k);
-    }
-  }
-  starts.push_back(m);
-  std::vector<std::pair<std::uint64_t, std::uint64_t>>().swap(pairs);
+  PyramidArray<std::uint64_t> keys; // the current level's cell keys
+  PyramidArray<std::uint64_t> starts; // the current level's cells: [starts[c], starts[c + 1]) of the level below
+  runsOfEqualKeys(m, [&keyed](std::size_t k) { return keyed[k].key; }, threads, keys, starts);
+  KeyedIndices().swap(keyed);
   if (abort(0.6))
   {
     return false;
@@ -346,21 +386,12 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
     }
     if (level == topLevel)
     {
-      this->TopKeys = keys;
+      this->TopKeys.assign(keys.begin(), keys.end());
       break;
     }
     // The next level's cells: runs of equal parent keys.
-    std::vector<std::uint64_t> parentKeys, parentStarts;
-    for (std::size_t c = 0; c < count; ++c)
-    {
-      const std::uint64_t parent = keys[c] >> 3;
-      if (c == 0 || parent != (keys[c - 1] >> 3))
-      {
-        parentKeys.push_back(parent);
-        parentStarts.push_back(c);
-      }
-    }
-    parentStarts.push_back(count);
+    PyramidArray<std::uint64_t> parentKeys, parentStarts;
+    runsOfEqualKeys(count, [&keys](std::size_t c) { return keys[c] >> 3; }, threads, parentKeys, parentStarts);
     keys.swap(parentKeys);
     starts.swap(parentStarts);
     below = first;

@@ -1,6 +1,7 @@
 #include "gls/NeighborGrid.h"
 
 #include "gls/Numeric.h"
+#include "gls/ParallelFor.h"
 
 #include <algorithm>
 #include <cmath>
@@ -258,21 +259,30 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
 void normalizeAndAdmit(const double* points, const double* normals, std::size_t n, std::vector<double>& unitNormals,
   std::vector<unsigned char>& admit)
 {
-  unitNormals.assign(3 * n, std::numeric_limits<double>::quiet_NaN());
-  admit.assign(n, 0);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double* m = normals + 3 * i;
-    const double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-    if (len > 0.0 && isFinite(len))
+  unitNormals.resize(3 * n);
+  admit.resize(n);
+  normalizeAndAdmit(points, normals, n, unitNormals.data(), admit.data(), 1);
+}
+
+void normalizeAndAdmit(const double* points, const double* normals, std::size_t n, double* unitNormals,
+  unsigned char* admit, int threads)
+{
+  ParallelOptions options;
+  options.threads = threads;
+  options.chunk = 65536;
+  parallelFor(n, options, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t i = begin; i < end; ++i)
     {
+      const double* m = normals + 3 * i;
+      const double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+      const bool normalizable = len > 0.0 && isFinite(len);
       for (int a = 0; a < 3; ++a)
       {
-        unitNormals[3 * i + a] = m[a] / len;
+        unitNormals[3 * i + a] = normalizable ? m[a] / len : std::numeric_limits<double>::quiet_NaN();
       }
-      admit[i] = finitePoint(points + 3 * i) ? 1 : 0;
+      admit[i] = normalizable && finitePoint(points + 3 * i) ? 1 : 0;
     }
-  }
+  });
 }
 
 } // namespace gls

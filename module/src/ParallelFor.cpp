@@ -77,38 +77,4 @@ bool parallelFor(std::size_t n, const ParallelOptions& options,
   return true;
 }
 
-void sortUniquePairs(std::vector<std::pair<std::uint64_t, std::uint64_t>>& pairs, int threads)
-{
-  const std::size_t n = pairs.size();
-  const std::size_t slices = static_cast<std::size_t>(std::max(1, std::min(resolveThreadCount(threads), 8)));
-  if (slices == 1 || n < 65536)
-  {
-    std::sort(pairs.begin(), pairs.end());
-    return;
-  }
-  std::vector<std::size_t> bounds(slices + 1);
-  for (std::size_t s = 0; s <= slices; ++s)
-  {
-    bounds[s] = n * s / slices;
-  }
-  std::vector<std::thread> workers;
-  for (std::size_t s = 1; s < slices; ++s)
-  {
-    workers.emplace_back([&, s] { std::sort(pairs.begin() + bounds[s], pairs.begin() + bounds[s + 1]); });
-  }
-  std::sort(pairs.begin(), pairs.begin() + bounds[1]);
-  for (std::thread& w : workers)
-  {
-    w.join();
-  }
-  for (std::size_t width = 1; width < slices; width *= 2)
-  {
-    for (std::size_t s = 0; s + width < slices; s += 2 * width)
-    {
-      const std::size_t end = std::min(s + 2 * width, slices);
-      std::inplace_merge(pairs.begin() + bounds[s], pairs.begin() + bounds[s + width], pairs.begin() + bounds[end]);
-    }
-  }
-}
-
 } // namespace gls

@@ -34,14 +34,20 @@ ScaleSpaceEngine::ScaleSpaceEngine(
   }
   this->BinTable = makeBinningTable(this->SquaredScales);
   // Unit normals; points whose normal cannot be normalized stay out of every neighbourhood.
-  std::vector<double> unitNormals;
-  std::vector<unsigned char> admit;
-  normalizeAndAdmit(points, normals, count, unitNormals, admit);
+  // (The large arrays are written whole by parallel loops: their pages are first touched on every thread.)
+  UninitializedArray<double> unitNormals(3 * count);
+  UninitializedArray<unsigned char> admit(count);
+  normalizeAndAdmit(points, normals, count, unitNormals.data(), admit.data(), this->Settings.parallel.threads);
   this->Positions.resize(count);
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    this->Positions[i] = { points[3 * i], points[3 * i + 1], points[3 * i + 2] };
-  }
+  ParallelOptions copying;
+  copying.threads = this->Settings.parallel.threads;
+  copying.chunk = 65536;
+  parallelFor(count, copying, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      this->Positions[i] = { points[3 * i], points[3 * i + 1], points[3 * i + 2] };
+    }
+  });
   if (this->Settings.evaluation == Evaluation::Multiresolution && !this->Settings.scales.empty())
   {
     this->buildPyramid(points, unitNormals.data(), count, admit.data());
@@ -49,8 +55,7 @@ ScaleSpaceEngine::ScaleSpaceEngine(
     {
       return;
     }
-    const std::vector<std::uint64_t>& ids = this->Pyramid.ids();
-    this->Order.assign(ids.begin(), ids.end());
+    this->Order = this->Pyramid.takeIds();
   }
   else
   {
@@ -105,7 +110,7 @@ ScaleBinning ScaleSpaceEngine::binning() const
   return b;
 }
 
-bool ScaleSpaceEngine::runOnDevice(ScaleSampleSink& sink, const std::vector<std::uint64_t>& order,
+bool ScaleSpaceEngine::runOnDevice(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
   const ParallelOptions& options, std::string& reason, bool& aborted) const
 {
   aborted = false;
@@ -128,9 +133,9 @@ bool ScaleSpaceEngine::runOnDevice(ScaleSampleSink& sink, const std::vector<std:
   std::vector<ScaleSample> samples;
   ParallelOptions feed;
   feed.threads = options.threads;
-  for (std::size_t begin = 0; begin < order.size(); begin += chunk)
+  for (std::size_t begin = 0; begin < orderSize; begin += chunk)
   {
-    const std::size_t count = std::min(chunk, order.size() - begin);
+    const std::size_t count = std::min(chunk, orderSize - begin);
     positions.resize(count);
     samples.resize(count * static_cast<std::size_t>(S));
     for (std::size_t i = 0; i < count; ++i)
@@ -147,7 +152,7 @@ bool ScaleSpaceEngine::runOnDevice(ScaleSampleSink& sink, const std::vector<std:
         sink.consume(order[begin + i], samples.data() + i * S, thread);
       }
     });
-    if (options.progress && options.progress(static_cast<double>(begin + count) / order.size()))
+    if (options.progress && options.progress(static_cast<double>(begin + count) / orderSize))
     {
       aborted = true;
       return false;
@@ -163,7 +168,8 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
   {
     return false;
   }
-  const std::vector<std::uint64_t>& order = ids ? *ids : this->Order;
+  const std::uint64_t* order = ids ? ids->data() : this->Order.data();
+  const std::size_t orderSize = ids ? ids->size() : this->Order.size();
   const int S = static_cast<int>(this->Settings.scales.size());
   const ParallelOptions& options = parallel ? *parallel : this->Settings.parallel;
   const bool multiresolution = this->Settings.evaluation == Evaluation::Multiresolution;
@@ -183,7 +189,7 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
     else
     {
       bool aborted = false;
-      if (this->runOnDevice(sink, order, options, r.fallbackReason, aborted))
+      if (this->runOnDevice(sink, order, orderSize, options, r.fallbackReason, aborted))
       {
         r.used = Backend::CUDA;
         return true;
@@ -203,7 +209,7 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
     // Consecutive points in pyramid order share their walks (MultiresolutionScratch keeps a thread's last ones), and
     // a chunk's first point walks anew: at 256 points per chunk that added 16% more far walks at 3M points. At least
     // kChunksPerThread chunks per thread, so that a small run (a sample of scattered points) stays balanced.
-    const std::size_t balanced = order.size() / (kChunksPerThread * static_cast<std::size_t>(threads));
+    const std::size_t balanced = orderSize / (kChunksPerThread * static_cast<std::size_t>(threads));
     cpu.chunk = std::max(cpu.chunk, std::min(kMultiresolutionChunk, balanced));
   }
   std::vector<std::vector<Moments>> bins(static_cast<std::size_t>(threads));
@@ -211,8 +217,12 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
   std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(threads));
   const GridView& g = this->Grid.view();
   const ScaleBinning binning = this->binning();
+  // A run in the engine's own order reads its first points' positions from the grid's or the pyramid's sorted copy
+  // (the same values, in that order): through Positions, each point cost a cache miss (2% of a 10M-point run).
+  const Vec3* sorted = multiresolution ? this->Pyramid.view().points : g.points;
+  const std::size_t sortedCount = ids ? 0 : multiresolution ? this->Pyramid.view().count : g.count;
 
-  return parallelFor(order.size(), cpu, [&](std::size_t begin, std::size_t end, int thread) {
+  return parallelFor(orderSize, cpu, [&](std::size_t begin, std::size_t end, int thread) {
     std::vector<Moments>& b = bins[thread];
     std::vector<ScaleSample>& out = samples[thread];
     if (!multiresolution)
@@ -223,7 +233,7 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
     for (std::size_t o = begin; o < end; ++o)
     {
       const std::uint64_t id = order[o];
-      const Vec3& p = this->Positions[id];
+      const Vec3& p = o < sortedCount ? sorted[o] : this->Positions[id];
       if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
       {
         for (int k = 0; k < S; ++k)

@@ -7,48 +7,19 @@
 
 #include "gls/MultiresolutionView.h"
 #include "gls/ParallelFor.h"
+#include "gls/UninitializedArray.h"
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
-#include <new>
 #include <utility>
 #include <vector>
 
 namespace gls
 {
 
-/// An allocator whose vectors leave new elements of trivial types uninitialized on resize: the build writes every
-/// element in a parallel loop, so their pages are first touched (and zeroed by the system) by the threads that fill
-/// them rather than zeroed twice on one thread (measured at 10M points: 3-4 s of page zeroing on the calling thread).
+/// A vector of a pyramid's array (left uninitialized until the build's parallel loops write it).
 template <typename T>
-struct UninitializedAllocator : std::allocator<T>
-{
-  template <typename U>
-  struct rebind
-  {
-    using other = UninitializedAllocator<U>;
-  };
-  UninitializedAllocator() = default;
-  template <typename U>
-  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept
-  {
-  }
-  template <typename U>
-  void construct(U* p) noexcept
-  {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args)
-  {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-
-/// A vector of a pyramid's array (UninitializedAllocator).
-template <typename T>
-using PyramidArray = std::vector<T, UninitializedAllocator<T>>;
+using PyramidArray = UninitializedArray<T>;
 
 /// The finest level whose cells keep their sums (PyramidCell); the cells of finer levels, of about 1.5 and 3 points
 /// each on a surface, form theirs from their points when a walk takes them whole.
@@ -101,18 +72,17 @@ public:
     const PyramidLayout& layout, const ParallelOptions& parallel);
 
   const MultiresolutionView& view() const { return this->View; }
-  /// Original indices of the points in pyramid order (a locality-preserving evaluation order).
-  const std::vector<std::uint64_t>& ids() const { return this->Ids; }
+  /// Moves out the original indices of the points in pyramid order (a locality-preserving evaluation order); the
+  /// cloud holds none afterwards.
+  PyramidArray<std::uint64_t> takeIds() { return std::move(this->Ids); }
   /// Nodes of every level (PyramidNode), and the cells with stored sums (levels kFirstSummedLevel and above).
   std::size_t nodeCount() const { return this->Nodes.size(); }
   std::size_t cellCount() const { return this->Cells.size(); }
-  /// Bytes held (points, normals, ids, cells).
-  double bytes() const;
 
 private:
   PyramidArray<Vec3> Points;
   PyramidArray<Vec3> Normals;
-  std::vector<std::uint64_t> Ids;
+  PyramidArray<std::uint64_t> Ids;
   PyramidArray<PyramidNode> Nodes;
   PyramidArray<PyramidCell> Cells;
   std::vector<std::uint64_t> TopKeys;

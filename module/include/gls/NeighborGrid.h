@@ -50,6 +50,11 @@ double surfaceSpacingOfBox(const double low[3], const double high[3], std::size_
 void normalizeAndAdmit(const double* points, const double* normals, std::size_t n, std::vector<double>& unitNormals,
   std::vector<unsigned char>& admit);
 
+/// normalizeAndAdmit into arrays of 3n and n values that it writes whole, on up to `threads` threads (0: every
+/// hardware thread; the same values for any count).
+void normalizeAndAdmit(const double* points, const double* normals, std::size_t n, double* unitNormals,
+  unsigned char* admit, int threads);
+
 /// The last step of a counting sort's fill, where each bucket's start was used as its next free slot: starts[b]
 /// (b < buckets) now holds where bucket b ends, the start of bucket b + 1. Shifts them back by one bucket, so that
 /// starts[b] is bucket b's start again (starts[buckets], the total, stays). No second array of offsets is needed.

@@ -4,10 +4,7 @@
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
 #include <functional>
-#include <utility>
-#include <vector>
 
 namespace gls
 {
@@ -29,10 +26,5 @@ int resolveThreadCount(int requested);
 /// Returns false if the progress callback asked to abort (remaining chunks are then skipped).
 bool parallelFor(std::size_t n, const ParallelOptions& options,
   const std::function<void(std::size_t, std::size_t, int)>& body);
-
-/// Sorts (key, index) pairs that are all distinct in increasing order with up to `threads` threads (0: every hardware
-/// thread): each thread sorts a slice, then the slices are merged. Distinct pairs have one total order, so the result
-/// is the same whatever the thread count.
-void sortUniquePairs(std::vector<std::pair<std::uint64_t, std::uint64_t>>& pairs, int threads);
 
 } // namespace gls

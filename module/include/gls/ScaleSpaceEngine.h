@@ -12,6 +12,7 @@
 #include "gls/PointScaleSpace.h"
 #include "gls/ScaleSample.h"
 #include "gls/ScaleSampling.h"
+#include "gls/UninitializedArray.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -86,7 +87,7 @@ public:
   /// The order a run without ids evaluates the points in (grid order first, for locality; then the points left out
   /// of the grid). A caller that evaluates a subset (e.g. the owned points of a distributed piece, not its ghosts)
   /// keeps locality by filtering this order.
-  const std::vector<std::uint64_t>& evaluationOrder() const { return this->Order; }
+  const UninitializedArray<std::uint64_t>& evaluationOrder() const { return this->Order; }
 
   /// Evaluates the given points (all when ids is null) and feeds the sink. A multi-resolution engine runs its pass
   /// whatever `method` says (the per-scale reference is of the exact evaluation). `parallel` overrides the settings'
@@ -105,14 +106,14 @@ private:
   void buildPyramid(const double* points, const double* unitNormals, std::size_t count, const unsigned char* admit);
   /// The CUDA run: false with `reason` on a CUDA failure (nothing was fed to the sink), false with `aborted` set
   /// when the progress callback asked to stop.
-  bool runOnDevice(ScaleSampleSink& sink, const std::vector<std::uint64_t>& order, const ParallelOptions& options,
-    std::string& reason, bool& aborted) const;
+  bool runOnDevice(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
+    const ParallelOptions& options, std::string& reason, bool& aborted) const;
 
   ScaleSpaceSettings Settings;
   std::vector<double> SquaredScales;
   BinningTable BinTable;
-  std::vector<Vec3> Positions;          ///< all input positions (NaN allowed)
-  std::vector<std::uint64_t> Order;     ///< evaluation order: grid order first (locality), then the rest
+  UninitializedArray<Vec3> Positions;   ///< all input positions (NaN allowed)
+  UninitializedArray<std::uint64_t> Order; ///< evaluation order: grid order first (locality), then the rest
   NeighborGrid Grid;                    ///< exact evaluation
   MultiresolutionCloud Pyramid;         ///< multi-resolution evaluation
   bool BuildAborted = false;
