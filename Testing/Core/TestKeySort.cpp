@@ -77,8 +77,8 @@ TEST(KeySort, StableByKeyForAnyThreadCount)
     {
       gls::KeyedIndices sorted = asItems(input);
       gls::sortByKey(sorted, threads);
-      EXPECT_TRUE(asPairs(sorted) == expected) << c.n << " pairs of " << c.bits << "-bit keys shifted by " << c.shift << ", "
-                                      << threads << " threads";
+      EXPECT_TRUE(asPairs(sorted) == expected)
+        << c.n << " pairs of " << c.bits << "-bit keys shifted by " << c.shift << ", " << threads << " threads";
     }
   }
 }

@@ -562,6 +562,51 @@ TEST(Multiresolution, ResultsAreBitwiseIdenticalForAnyThreadCount)
   }
 }
 
+TEST(Multiresolution, GivenPointsGetTheSamplesOfAFullRun)
+{
+  // A run given a sample of the points (taken in pyramid order: under a quarter of them) or a longer list (taken as
+  // given), in reverse input order: each point gets the bits a run over all points gives it, and only those points
+  // are fed.
+  const Cloud c = paraboloid(200, 1.0, 0.7, 0.3, 0.02, 0.1, 4);
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.5, 8, gls::ScaleSampling::Quadratic);
+  const gls::ScaleSpaceEngine engine(
+    c.points.data(), c.normals.data(), c.size(), multiresolutionSettings(scales, 0.1, 2, 6.0, kNearLinearized));
+  CollectingSink all(c.size(), scales.size());
+  ASSERT_TRUE(engine.run(all));
+  for (std::size_t stride : { 7, 2 })
+  {
+    SCOPED_TRACE(stride);
+    std::vector<std::uint64_t> ids;
+    for (std::size_t i = c.size(); i-- > 0;)
+    {
+      if (i % stride == 0)
+      {
+        ids.push_back(i);
+      }
+    }
+    CollectingSink some(c.size(), scales.size());
+    for (gls::ScaleSample& sample : some.Samples)
+    {
+      sample.neighbors = -1.0; // marks the points not fed
+    }
+    ASSERT_TRUE(engine.run(some, &ids));
+    for (std::size_t i = 0; i < c.size(); ++i)
+    {
+      for (std::size_t k = 0; k < scales.size(); ++k)
+      {
+        if (i % stride == 0)
+        {
+          ASSERT_TRUE(sameBits(some.at(i, k), all.at(i, k))) << "point " << i << ", scale " << k;
+        }
+        else
+        {
+          ASSERT_EQ(some.at(i, k).neighbors, -1.0) << "point " << i << " was not given";
+        }
+      }
+    }
+  }
+}
+
 TEST(Multiresolution, DenseCloudsWalkOncePerFarRegion)
 {
   // Where 8 finest cells are at most half the smallest scale, the walk regions are cubes of 8 cells and their own far

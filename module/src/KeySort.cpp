@@ -88,7 +88,8 @@ void sortByKey(KeyedIndices& items, int threads)
     ParallelOptions copying;
     copying.threads = static_cast<int>(slices);
     copying.chunk = 1 << 16;
-    parallelFor(n, copying, [&](std::size_t b, std::size_t e, int) { std::copy(from + b, from + e, items.data() + b); });
+    parallelFor(
+      n, copying, [&](std::size_t b, std::size_t e, int) { std::copy(from + b, from + e, items.data() + b); });
   }
 }
 

@@ -47,6 +47,13 @@ std::uint64_t latticeCoordinate(double v, double origin, double edge)
   return c >= kLatticeCells - 1.0 ? static_cast<std::uint64_t>(kLatticeCells - 1.0) : static_cast<std::uint64_t>(c);
 }
 
+/// The key of the finest lattice's cell (edge h0, lowest corner `origin`) that holds q.
+std::uint64_t finestLatticeKey(const double* q, const Vec3& origin, double h0)
+{
+  return mortonKey(latticeCoordinate(q[0], origin.x, h0), latticeCoordinate(q[1], origin.y, h0),
+    latticeCoordinate(q[2], origin.z, h0));
+}
+
 /// The runs of equal keyOf(k) over k in [0, n) (keyOf non-decreasing): each run's key and first index, with n
 /// appended to the first indices. On up to `threads` threads, each counting then writing the runs that begin in its
 /// slice, so the result does not depend on the thread count.
@@ -211,6 +218,12 @@ PyramidLayout choosePyramidLayout(const double low[3], const double high[3], dou
   return layout;
 }
 
+std::uint64_t MultiresolutionCloud::finestKey(const Vec3& p) const
+{
+  const double q[3] = { p.x, p.y, p.z };
+  return finestLatticeKey(q, this->View.origin, this->View.levelSize[0]);
+}
+
 bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, std::size_t n,
   const unsigned char* admit, const PyramidLayout& layout, const ParallelOptions& parallel)
 {
@@ -269,10 +282,7 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
         for (std::size_t k = b; k < e; ++k)
         {
           const std::uint64_t i = admitted.empty() ? k : admitted[k];
-          const double* q = xyz + 3 * i;
-          keyed[k] = { mortonKey(latticeCoordinate(q[0], origin.x, h0), latticeCoordinate(q[1], origin.y, h0),
-                         latticeCoordinate(q[2], origin.z, h0)),
-            i };
+          keyed[k] = { finestLatticeKey(xyz + 3 * i, origin, h0), i };
         }
       }))
   {

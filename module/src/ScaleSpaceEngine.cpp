@@ -1,5 +1,6 @@
 #include "gls/ScaleSpaceEngine.h"
 
+#include "gls/KeySort.h"
 #include "gls/MultiresolutionKernel.h"
 #include "gls/Numeric.h"
 #include "gls/OnePassKernel.h"
@@ -21,6 +22,9 @@ constexpr std::size_t kMultiresolutionChunk = 4096;
 
 /// The fewest chunks per thread that a multi-resolution run's larger chunks leave (the load's balance at the end).
 constexpr std::size_t kChunksPerThread = 8;
+
+/// A multi-resolution run given fewer than 1 / kSampleFraction of the points takes them in pyramid order.
+constexpr std::size_t kSampleFraction = 4;
 
 } // namespace
 
@@ -168,11 +172,30 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
   {
     return false;
   }
-  const std::uint64_t* order = ids ? ids->data() : this->Order.data();
-  const std::size_t orderSize = ids ? ids->size() : this->Order.size();
   const int S = static_cast<int>(this->Settings.scales.size());
   const ParallelOptions& options = parallel ? *parallel : this->Settings.parallel;
   const bool multiresolution = this->Settings.evaluation == Evaluation::Multiresolution;
+  const std::uint64_t* order = ids ? ids->data() : this->Order.data();
+  const std::size_t orderSize = ids ? ids->size() : this->Order.size();
+  UninitializedArray<std::uint64_t> idsInPyramidOrder;
+  if (ids && multiresolution && orderSize * kSampleFraction < this->Positions.size())
+  {
+    // A sample of the points in pyramid order, so that consecutive walks find their cells in cache: the relative
+    // sigma's 20,000 scattered points of a 10M-point cloud (2 threads) took 1.09 s in input order, 0.85 s in this
+    // one. (Longer lists come in that order already: the owned points of a distributed piece.)
+    KeyedIndices byKey(orderSize);
+    for (std::size_t k = 0; k < orderSize; ++k)
+    {
+      byKey[k] = { this->Pyramid.finestKey(this->Positions[order[k]]), order[k] };
+    }
+    sortByKey(byKey, options.threads);
+    idsInPyramidOrder.resize(orderSize);
+    for (std::size_t k = 0; k < orderSize; ++k)
+    {
+      idsInPyramidOrder[k] = byKey[k].index;
+    }
+    order = idsInPyramidOrder.data();
+  }
   RunReport local;
   RunReport& r = report ? *report : local;
   r = RunReport();

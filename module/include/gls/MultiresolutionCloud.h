@@ -75,6 +75,9 @@ public:
   /// Moves out the original indices of the points in pyramid order (a locality-preserving evaluation order); the
   /// cloud holds none afterwards.
   PyramidArray<std::uint64_t> takeIds() { return std::move(this->Ids); }
+  /// The key of position p on the finest lattice: the pyramid lists its points by increasing key. A position outside
+  /// the lattice takes the key of the nearest cell; a non-finite coordinate counts as the lattice's lowest.
+  std::uint64_t finestKey(const Vec3& p) const;
   /// Nodes of every level (PyramidNode), and the cells with stored sums (levels kFirstSummedLevel and above).
   std::size_t nodeCount() const { return this->Nodes.size(); }
   std::size_t cellCount() const { return this->Cells.size(); }

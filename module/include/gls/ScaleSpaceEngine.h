@@ -89,11 +89,12 @@ public:
   /// keeps locality by filtering this order.
   const UninitializedArray<std::uint64_t>& evaluationOrder() const { return this->Order; }
 
-  /// Evaluates the given points (all when ids is null) and feeds the sink. A multi-resolution engine runs its pass
-  /// whatever `method` says (the per-scale reference is of the exact evaluation). `parallel` overrides the settings'
-  /// threads and progress callback for this run. `backend` Auto or CUDA runs the one-pass method on the CUDA
-  /// device when one is usable and falls back to the CPU otherwise (or on any CUDA error), saying why in `report`.
-  /// Returns false if aborted.
+  /// Evaluates the given points (all when ids is null) and feeds the sink, in an order of the engine's choosing (a
+  /// multi-resolution engine takes a few given points, under a quarter of them, in pyramid order). A multi-resolution
+  /// engine runs its pass whatever `method` says (the per-scale reference is of the exact evaluation). `parallel`
+  /// overrides the settings' threads and progress callback for this run. `backend` Auto or CUDA runs the one-pass
+  /// method on the CUDA device when one is usable and falls back to the CPU otherwise (or on any CUDA error), saying
+  /// why in `report`. Returns false if aborted.
   bool run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids = nullptr,
     EvaluationMethod method = EvaluationMethod::OnePass, const ParallelOptions* parallel = nullptr,
     Backend backend = Backend::CPU, RunReport* report = nullptr) const;
