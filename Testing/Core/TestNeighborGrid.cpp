@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 namespace
@@ -178,4 +179,44 @@ TEST(NeighborGrid, OverflowingExtentFallsBackToOneCell)
   grid.kNearest({ 0.9, 0, 0 }, 2, knn);
   ASSERT_EQ(knn.size(), 2u);
   EXPECT_EQ(grid.view().ids[knn[0].second], 3u);
+}
+
+TEST(NeighborGrid, AdmitRuleIsTheSameWithAndWithoutTheNormalizedCopy)
+{
+  // admitOrientedPoints and unitNormal (the multi-resolution pyramid's way) against normalizeAndAdmit: the same flags
+  // and the same bits, for normals of every kind (unit, long, tiny, zero, subnormal, overflowing, inf, NaN) and points
+  // finite or not, on 1 and 3 threads.
+  const double inf = INFINITY, nan = NAN;
+  const double kinds[][3] = { { 0, 0, 1 }, { 3, -4, 12 }, { 1e-3, 2e-3, -5e-4 }, { 0, 0, 0 }, { 1e-310, 0, 0 },
+    { 1e200, 1e200, 0 }, { inf, 0, 0 }, { nan, 1, 0 }, { -0.0, 0.6, 0.8 } };
+  const double places[][3] = { { 0.5, -2, 3 }, { nan, 0, 0 }, { 0, inf, 0 } };
+  std::vector<double> points, normals;
+  for (const auto& m : kinds)
+  {
+    for (const auto& p : places)
+    {
+      points.insert(points.end(), p, p + 3);
+      normals.insert(normals.end(), m, m + 3);
+    }
+  }
+  const std::size_t n = points.size() / 3;
+  std::vector<double> unit;
+  std::vector<unsigned char> admit;
+  gls::normalizeAndAdmit(points.data(), normals.data(), n, unit, admit);
+  EXPECT_EQ(std::count(admit.begin(), admit.end(), 1), 4); // the four normalizable normals at the finite point
+  for (int threads : { 1, 3 })
+  {
+    std::vector<unsigned char> flags(n, 7);
+    gls::admitOrientedPoints(points.data(), normals.data(), n, flags.data(), threads);
+    EXPECT_EQ(flags, admit);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    double u[3];
+    EXPECT_EQ(gls::unitNormal(&normals[3 * i], u), !std::isnan(unit[3 * i])) << i;
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_EQ(std::memcmp(&u[a], &unit[3 * i + a], sizeof(double)), 0) << i;
+    }
+  }
 }

@@ -1,6 +1,7 @@
 #include "gls/MultiresolutionCloud.h"
 
 #include "gls/KeySort.h"
+#include "gls/NeighborGrid.h"
 #include "gls/Numeric.h"
 
 #include <algorithm>
@@ -224,7 +225,7 @@ std::uint64_t MultiresolutionCloud::finestKey(const Vec3& p) const
   return finestLatticeKey(q, this->View.origin, this->View.levelSize[0]);
 }
 
-bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, std::size_t n,
+bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::size_t n,
   const unsigned char* admit, const PyramidLayout& layout, const ParallelOptions& parallel)
 {
   *this = MultiresolutionCloud();
@@ -304,7 +305,9 @@ bool MultiresolutionCloud::build(const double* xyz, const double* unitNormals, s
         {
           const std::uint64_t i = keyed[k].index;
           this->Points[k] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
-          this->Normals[k] = { unitNormals[3 * i], unitNormals[3 * i + 1], unitNormals[3 * i + 2] };
+          double u[3];
+          unitNormal(normals + 3 * i, u);
+          this->Normals[k] = { u[0], u[1], u[2] };
           this->Ids[k] = i;
         }
       }))

@@ -17,6 +17,13 @@ bool finitePoint(const double* p)
   return isFinite(p[0]) && isFinite(p[1]) && isFinite(p[2]);
 }
 
+/// |m| where m can be normalized (its length is finite and positive), else 0.
+double normalizableLength(const double* m)
+{
+  const double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+  return len > 0.0 && isFinite(len) ? len : 0.0;
+}
+
 bool admitted(const double* xyz, const unsigned char* include, std::size_t i)
 {
   return (include == nullptr || include[i] != 0) && finitePoint(xyz + 3 * i);
@@ -273,16 +280,33 @@ void normalizeAndAdmit(const double* points, const double* normals, std::size_t 
   parallelFor(n, options, [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      const double* m = normals + 3 * i;
-      const double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-      const bool normalizable = len > 0.0 && isFinite(len);
-      for (int a = 0; a < 3; ++a)
-      {
-        unitNormals[3 * i + a] = normalizable ? m[a] / len : std::numeric_limits<double>::quiet_NaN();
-      }
+      const bool normalizable = unitNormal(normals + 3 * i, unitNormals + 3 * i);
       admit[i] = normalizable && finitePoint(points + 3 * i) ? 1 : 0;
     }
   });
+}
+
+void admitOrientedPoints(const double* points, const double* normals, std::size_t n, unsigned char* admit, int threads)
+{
+  ParallelOptions options;
+  options.threads = threads;
+  options.chunk = 65536;
+  parallelFor(n, options, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      admit[i] = normalizableLength(normals + 3 * i) > 0.0 && finitePoint(points + 3 * i) ? 1 : 0;
+    }
+  });
+}
+
+bool unitNormal(const double* m, double* u)
+{
+  const double len = normalizableLength(m);
+  for (int a = 0; a < 3; ++a)
+  {
+    u[a] = len > 0.0 ? m[a] / len : std::numeric_limits<double>::quiet_NaN();
+  }
+  return len > 0.0;
 }
 
 } // namespace gls

@@ -37,14 +37,25 @@ ScaleSpaceEngine::ScaleSpaceEngine(
     this->SquaredScales.push_back(t * t);
   }
   this->BinTable = makeBinningTable(this->SquaredScales);
-  // Unit normals; points whose normal cannot be normalized stay out of every neighbourhood.
-  // (The large arrays are written whole by parallel loops: their pages are first touched on every thread.)
-  UninitializedArray<double> unitNormals(3 * count);
+  // Points whose normal cannot be normalized stay out of every neighbourhood. (The large arrays are written whole by
+  // parallel loops: their pages are first touched on every thread.)
+  const int threads = this->Settings.parallel.threads;
+  const bool multiresolution =
+    this->Settings.evaluation == Evaluation::Multiresolution && !this->Settings.scales.empty();
   UninitializedArray<unsigned char> admit(count);
-  normalizeAndAdmit(points, normals, count, unitNormals.data(), admit.data(), this->Settings.parallel.threads);
+  UninitializedArray<double> unitNormals; // the exact evaluation's (the pyramid normalizes as it sorts)
+  if (multiresolution)
+  {
+    admitOrientedPoints(points, normals, count, admit.data(), threads);
+  }
+  else
+  {
+    unitNormals.resize(3 * count);
+    normalizeAndAdmit(points, normals, count, unitNormals.data(), admit.data(), threads);
+  }
   this->Positions.resize(count);
   ParallelOptions copying;
-  copying.threads = this->Settings.parallel.threads;
+  copying.threads = threads;
   copying.chunk = 65536;
   parallelFor(count, copying, [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t i = begin; i < end; ++i)
@@ -52,9 +63,9 @@ ScaleSpaceEngine::ScaleSpaceEngine(
       this->Positions[i] = { points[3 * i], points[3 * i + 1], points[3 * i + 2] };
     }
   });
-  if (this->Settings.evaluation == Evaluation::Multiresolution && !this->Settings.scales.empty())
+  if (multiresolution)
   {
-    this->buildPyramid(points, unitNormals.data(), count, admit.data());
+    this->buildPyramid(points, normals, count, admit.data());
     if (this->BuildAborted)
     {
       return;
@@ -80,7 +91,7 @@ ScaleSpaceEngine::ScaleSpaceEngine(
 }
 
 void ScaleSpaceEngine::buildPyramid(
-  const double* points, const double* unitNormals, std::size_t count, const unsigned char* admit)
+  const double* points, const double* normals, std::size_t count, const unsigned char* admit)
 {
   const MultiresolutionSettings& m = this->Settings.multiresolution;
   double low[3] = { m.low[0], m.low[1], m.low[2] }, high[3] = { m.high[0], m.high[1], m.high[2] };
@@ -99,7 +110,7 @@ void ScaleSpaceEngine::buildPyramid(
   const double smallest = this->Settings.scales.front();
   PyramidLayout layout = choosePyramidLayout(low, high, spacing, smallest, largest, m.accuracy);
   layout.linearizedDistance = m.linearizedDistance;
-  this->BuildAborted = !this->Pyramid.build(points, unitNormals, count, admit, layout, this->Settings.parallel);
+  this->BuildAborted = !this->Pyramid.build(points, normals, count, admit, layout, this->Settings.parallel);
 }
 
 ScaleBinning ScaleSpaceEngine::binning() const

@@ -66,9 +66,10 @@ PyramidLayout choosePyramidLayout(const double low[3], const double high[3], dou
 class MultiresolutionCloud
 {
 public:
-  /// Builds the pyramid of the points with admit[i] != 0 (finite coordinates and unit normals required).
-  /// parallel.progress receives the fraction done; returns false if it asked to abort (the cloud is then empty).
-  bool build(const double* xyz, const double* unitNormals, std::size_t n, const unsigned char* admit,
+  /// Builds the pyramid of the points with admit[i] != 0 (finite coordinates and normals that can be normalized
+  /// required: admitOrientedPoints), their normals normalized by unitNormal. parallel.progress receives the fraction
+  /// done; returns false if it asked to abort (the cloud is then empty).
+  bool build(const double* xyz, const double* normals, std::size_t n, const unsigned char* admit,
     const PyramidLayout& layout, const ParallelOptions& parallel);
 
   const MultiresolutionView& view() const { return this->View; }

@@ -55,6 +55,15 @@ void normalizeAndAdmit(const double* points, const double* normals, std::size_t 
 void normalizeAndAdmit(const double* points, const double* normals, std::size_t n, double* unitNormals,
   unsigned char* admit, int threads);
 
+/// The admit flags of normalizeAndAdmit alone (n values, written whole), on up to `threads` threads: for a caller that
+/// normalizes the admitted points' normals itself (unitNormal), as the multi-resolution pyramid does while it sorts
+/// them.
+void admitOrientedPoints(const double* points, const double* normals, std::size_t n, unsigned char* admit, int threads);
+
+/// The unit normal of normalizeAndAdmit: m / |m| into u (3 values) and true, or NaN and false where m cannot be
+/// normalized (its length is 0 or not finite).
+bool unitNormal(const double* m, double* u);
+
 /// The last step of a counting sort's fill, where each bucket's start was used as its next free slot: starts[b]
 /// (b < buckets) now holds where bucket b ends, the start of bucket b + 1. Shifts them back by one bucket, so that
 /// starts[b] is bucket b's start again (starts[buckets], the total, stays). No second array of offsets is needed.

@@ -104,7 +104,7 @@ public:
 
 private:
   ScaleBinning binning() const;
-  void buildPyramid(const double* points, const double* unitNormals, std::size_t count, const unsigned char* admit);
+  void buildPyramid(const double* points, const double* normals, std::size_t count, const unsigned char* admit);
   /// The CUDA run: false with `reason` on a CUDA failure (nothing was fed to the sink), false with `aborted` set
   /// when the progress callback asked to stop.
   bool runOnDevice(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
