@@ -157,6 +157,10 @@ protected:
   /// GLSBackend (where the fits ran, when a fit ran).
   static void WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd);
 
+  /// Copies the first n tuples of `triples` (3 components, any value type) into out (3 n doubles): one block copy
+  /// for an array of doubles in one block (vtkDoubleArray), tuple by tuple otherwise. The same values either way.
+  static void CopyTriples(vtkDataArray* triples, vtkIdType n, double* out);
+
   int NumberOfThreads;
   vtkMultiProcessController* Controller = nullptr;
 

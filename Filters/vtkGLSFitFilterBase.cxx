@@ -56,10 +56,7 @@ bool vtkGLSFitFilterBase::GatherNormals(vtkGLSRun& run)
     return false;
   }
   run.Cloud.Normals.resize(3 * static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    nrm->GetTuple(i, &run.Cloud.Normals[3 * i]);
-  }
+  CopyTriples(nrm, n, run.Cloud.Normals.data());
   run.NormalsName = nrm->GetName() ? nrm->GetName() : "";
   return true;
 }
