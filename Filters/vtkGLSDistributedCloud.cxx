@@ -293,17 +293,33 @@ std::vector<long long> vtkGLSDistributedCloud::GlobalIds(vtkDataSet* piece) cons
 {
   const vtkIdType n = piece ? piece->GetNumberOfPoints() : 0;
   std::vector<long long> ids(static_cast<std::size_t>(n));
-  vtkDataArray* given = piece ? piece->GetPointData()->GetGlobalIds() : nullptr;
-  const bool haveGiven = given && given->GetNumberOfComponents() == 1 && given->GetNumberOfTuples() == n;
-  if (this->AllTrue(haveGiven || n == 0) && this->Max(haveGiven ? 1.0 : 0.0) > 0.5)
+  long long offset = 0;
+  if (!this->RankOrderIds(piece, offset))
   {
+    vtkDataArray* given = n > 0 ? piece->GetPointData()->GetGlobalIds() : nullptr; // every piece with points has it
     for (vtkIdType i = 0; i < n; ++i)
     {
       ids[static_cast<std::size_t>(i)] = static_cast<long long>(given->GetComponent(i, 0));
     }
     return ids;
   }
-  long long offset = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    ids[static_cast<std::size_t>(i)] = offset + i;
+  }
+  return ids;
+}
+
+bool vtkGLSDistributedCloud::RankOrderIds(vtkDataSet* piece, long long& offset) const
+{
+  const vtkIdType n = piece ? piece->GetNumberOfPoints() : 0;
+  vtkDataArray* given = piece ? piece->GetPointData()->GetGlobalIds() : nullptr;
+  const bool haveGiven = given && given->GetNumberOfComponents() == 1 && given->GetNumberOfTuples() == n;
+  offset = 0;
+  if (this->AllTrue(haveGiven || n == 0) && this->Max(haveGiven ? 1.0 : 0.0) > 0.5)
+  {
+    return false;
+  }
   if (this->Controller)
   {
     std::vector<long long> counts(static_cast<std::size_t>(this->Size));
@@ -314,11 +330,7 @@ std::vector<long long> vtkGLSDistributedCloud::GlobalIds(vtkDataSet* piece) cons
       offset += counts[static_cast<std::size_t>(r)];
     }
   }
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    ids[static_cast<std::size_t>(i)] = offset + i;
-  }
-  return ids;
+  return true;
 }
 
 bool vtkGLSDistributedCloud::GatherRows(const std::vector<double>& local, int width, int root,

@@ -86,6 +86,10 @@ public:
   /// else the rank-order numbering (offset of this rank = number of points of the ranks before it).
   std::vector<long long> GlobalIds(vtkDataSet* piece) const;
 
+  /// True (on every rank) when the pieces carry no GlobalIds attribute, so that GlobalIds numbers them in rank
+  /// order: point i of this piece has the id `offset` + i. A caller that only needs some ids need not list all.
+  bool RankOrderIds(vtkDataSet* piece, long long& offset) const;
+
   /// Gathers rows of `width` doubles from every rank onto `root` (in rank order); `counts` receives every rank's
   /// number of rows (on every rank). `all` is filled on the root only.
   bool GatherRows(const std::vector<double>& local, int width, int root, std::vector<double>& all,
