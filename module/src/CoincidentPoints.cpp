@@ -1,6 +1,7 @@
 #include "gls/CoincidentPoints.h"
 
 #include "gls/KeySort.h"
+#include "gls/NeighborGrid.h"
 #include "gls/ParallelFor.h"
 
 #include <algorithm>
@@ -71,20 +72,17 @@ CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int thre
   {
     // No two keys alike (most clouds): every point is a position of its own. (The arrays filled on all threads: at
     // 10M points, 0.23 s on one.)
-    for (PointIndices* identity : { &c.representative, &c.distinct, &c.copies, &c.copyStart })
-    {
-      identity->resize(identity == &c.copyStart ? n + 1 : n);
-    }
-    parallelFor(n + 1, keying, [&](std::size_t begin, std::size_t end, int) {
+    c.representative.resize(n);
+    c.distinct.resize(n);
+    c.copies.resize(n);
+    c.copyStart.resize(n + 1);
+    parallelFor(n, keying, [&](std::size_t begin, std::size_t end, int) {
       for (std::size_t i = begin; i < end; ++i)
       {
-        c.copyStart[i] = i;
-        if (i < n)
-        {
-          c.representative[i] = c.distinct[i] = c.copies[i] = i;
-        }
+        c.representative[i] = c.distinct[i] = c.copies[i] = c.copyStart[i] = i;
       }
     });
+    c.copyStart[n] = n;
     return c;
   }
   // first[i]: the first point (input order) of i's group; a non-finite point is a group of its own.
@@ -179,13 +177,12 @@ std::vector<double> mergedNormals(const CoincidentPoints& c, const double* norma
     double sum[3] = { 0.0, 0.0, 0.0 };
     for (const std::uint64_t* i = begin; i != end; ++i)
     {
-      const double* m = normals + 3 * *i;
-      const double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-      if (len > 0.0 && std::isfinite(len))
+      double unit[3];
+      if (unitNormal(normals + 3 * *i, unit))
       {
         for (int k = 0; k < 3; ++k)
         {
-          sum[k] += m[k] / len;
+          sum[k] += unit[k];
         }
       }
     }

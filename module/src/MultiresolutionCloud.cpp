@@ -59,8 +59,8 @@ std::uint64_t finestLatticeKey(const double* q, const Vec3& origin, double h0)
 /// appended to the first indices. On up to `threads` threads, each counting then writing the runs that begin in its
 /// slice, so the result does not depend on the thread count.
 template <typename KeyOf>
-void runsOfEqualKeys(std::size_t n, const KeyOf& keyOf, int threads, PyramidArray<std::uint64_t>& runKeys,
-  PyramidArray<std::uint64_t>& runStarts)
+void runsOfEqualKeys(std::size_t n, const KeyOf& keyOf, int threads, UninitializedArray<std::uint64_t>& runKeys,
+  UninitializedArray<std::uint64_t>& runStarts)
 {
   const std::size_t slices = n < kParallelRuns ? 1 : static_cast<std::size_t>(std::max(threads, 1));
   const auto sliceBegin = [n, slices](std::size_t s) { return n * s / slices; };
@@ -315,8 +315,8 @@ bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::
     *this = MultiresolutionCloud();
     return false;
   }
-  PyramidArray<std::uint64_t> keys; // the current level's cell keys
-  PyramidArray<std::uint64_t> starts; // the current level's cells: [starts[c], starts[c + 1]) of the level below
+  UninitializedArray<std::uint64_t> keys; // the current level's cell keys
+  UninitializedArray<std::uint64_t> starts; // the current level's cells: [starts[c], starts[c + 1]) of the level below
   runsOfEqualKeys(m, [&keyed](std::size_t k) { return keyed[k].key; }, threads, keys, starts);
   KeyedIndices().swap(keyed);
   if (abort(0.6))
@@ -403,7 +403,7 @@ bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::
       break;
     }
     // The next level's cells: runs of equal parent keys.
-    PyramidArray<std::uint64_t> parentKeys, parentStarts;
+    UninitializedArray<std::uint64_t> parentKeys, parentStarts;
     runsOfEqualKeys(count, [&keys](std::size_t c) { return keys[c] >> 3; }, threads, parentKeys, parentStarts);
     keys.swap(parentKeys);
     starts.swap(parentStarts);

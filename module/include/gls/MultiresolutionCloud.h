@@ -17,10 +17,6 @@
 namespace gls
 {
 
-/// A vector of a pyramid's array (left uninitialized until the build's parallel loops write it).
-template <typename T>
-using PyramidArray = UninitializedArray<T>;
-
 /// The finest level whose cells keep their sums (PyramidCell); the cells of finer levels, of about 1.5 and 3 points
 /// each on a surface, form theirs from their points when a walk takes them whole.
 constexpr int kFirstSummedLevel = 2;
@@ -75,7 +71,7 @@ public:
   const MultiresolutionView& view() const { return this->View; }
   /// Moves out the original indices of the points in pyramid order (a locality-preserving evaluation order); the
   /// cloud holds none afterwards.
-  PyramidArray<std::uint64_t> takeIds() { return std::move(this->Ids); }
+  UninitializedArray<std::uint64_t> takeIds() { return std::move(this->Ids); }
   /// The key of position p on the finest lattice: the pyramid lists its points by increasing key. A position outside
   /// the lattice takes the key of the nearest cell; a non-finite coordinate counts as the lattice's lowest.
   std::uint64_t finestKey(const Vec3& p) const;
@@ -84,11 +80,11 @@ public:
   std::size_t cellCount() const { return this->Cells.size(); }
 
 private:
-  PyramidArray<Vec3> Points;
-  PyramidArray<Vec3> Normals;
-  PyramidArray<std::uint64_t> Ids;
-  PyramidArray<PyramidNode> Nodes;
-  PyramidArray<PyramidCell> Cells;
+  UninitializedArray<Vec3> Points;
+  UninitializedArray<Vec3> Normals;
+  UninitializedArray<std::uint64_t> Ids;
+  UninitializedArray<PyramidNode> Nodes;
+  UninitializedArray<PyramidCell> Cells;
   std::vector<std::uint64_t> TopKeys;
   std::size_t SummedBegin = 0;
   MultiresolutionView View;
