@@ -15,6 +15,13 @@ constexpr const char* Variation = "GLSGeometricVariation";
 constexpr const char* PertinentScaleCount = "GLSPertinentScaleCount";
 constexpr const char* PertinentScales = "GLSPertinentScales";
 constexpr const char* Feature = "GLSFeature";
+// The scale summary of the continuous features (ScaleSummary on; gls::ScaleSummary): one value per point.
+constexpr const char* StableScale = "GLSStableScale";             // the most stable scale (length)
+constexpr const char* StableTau = "GLSStableTau";                 // tau there (length)
+constexpr const char* StableKappa = "GLSStableKappa";             // kappa there (1/length)
+constexpr const char* StablePhi = "GLSStablePhi";                 // phi there (dimensionless)
+constexpr const char* MaxVariation = "GLSMaxVariation";           // the largest nu (dimensionless)
+constexpr const char* MaxVariationScale = "GLSMaxVariationScale"; // its scale (length)
 constexpr const char* Sigma = "GLSSigma";                 // field data of the features: the sigma used
 constexpr const char* Dissimilarity = "GLSDissimilarity";
 constexpr const char* Similar = "GLSSimilar";

@@ -4,6 +4,8 @@
 #include "vtkGLSRun.h"
 
 #include "vtkDoubleArray.h"
+#include "vtkIntArray.h"
+#include "vtkSmartPointer.h"
 #include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -13,6 +15,7 @@
 #include "gls/Descriptors.h"
 #include "gls/ScaleAnalysis.h"
 #include "gls/ScaleSpaceEngine.h"
+#include "gls/VariationSink.h"
 
 #include <algorithm>
 #include <cmath>
@@ -54,10 +57,22 @@ public:
 
 constexpr double kSigmaSampleSize = 20000;
 
+/// The summary's double arrays (GLSStableScale, tau, kappa, phi, GLSMaxVariation and its scale) and its int count.
+constexpr double kSummaryArrays = 6.5;
+
+vtkSmartPointer<vtkDoubleArray> NewPointArray(const char* name, vtkIdType n)
+{
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name);
+  array->SetNumberOfTuples(n);
+  return array;
+}
+
 }
 
 vtkGLSContinuousFeatures::vtkGLSContinuousFeatures()
   : ReuseInputScaleSpace(true)
+  , ScaleSummary(false)
   , SigmaMode(SIGMA_RELATIVE)
   , Sigma(0.1)
   , TargetMedianFeature(0.28)
@@ -89,9 +104,26 @@ bool vtkGLSContinuousFeatures::CheckParameters(vtkGLSRun& run)
   return true;
 }
 
-vtkGLSScaleFilterBase::SampleRequest vtkGLSContinuousFeatures::GetSampleRequest(const vtkGLSRun&) const
+vtkGLSScaleFilterBase::SampleRequest vtkGLSContinuousFeatures::GetSampleRequest(const vtkGLSRun& run) const
 {
-  return VariationRequest(this->ReuseInputScaleSpace);
+  SampleRequest request = VariationRequest(this->ReuseInputScaleSpace);
+  if (this->ScaleSummary)
+  {
+    request.Descriptors = true; // tau, kappa and phi at the stable scale
+    request.VariationWillDo = false;
+    request.BytesPerPoint = kSummaryArrays * sizeof(double);
+  }
+  request.BytesPerPoint += sizeof(double); // GLSFeature
+  if (this->SigmaMode == SIGMA_RELATIVE)
+  {
+    // nu of the sigma's sample, in the sink and gathered for the median.
+    const double rows = std::min(kSigmaSampleSize, static_cast<double>(run.Input->GetNumberOfPoints()));
+    request.BytesPerScale = 2.0 * rows * sizeof(double);
+  }
+  request.What = this->ScaleSummary ? "the continuous features and their scale summary" : "the continuous features";
+  request.Advice = "Use fewer scales (NumberOfScales), or an absolute sigma (SigmaMode Absolute), whose sample "
+                   "of nu is not needed.";
+  return request;
 }
 
 int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)
@@ -105,14 +137,7 @@ int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)
   vtkNew<vtkDoubleArray> feature;
   feature->SetName(vtkGLSArrayNames::Feature);
   feature->SetNumberOfTuples(run.Input->GetNumberOfPoints());
-  const gls::FeatureMeasure measure = static_cast<gls::FeatureMeasure>(this->FeatureMeasure);
-  const std::vector<double>& t = run.Scales;
-  if (!this->ReduceVariation(
-        run,
-        [sigma, measure, &t](const double* nu) {
-          return gls::continuousFeature(nu, t.data(), static_cast<int>(t.size()), sigma, measure);
-        },
-        feature->GetPointer(0), 1.0))
+  if (!this->ComputeFeatureAndSummary(run, sigma, feature))
   {
     return ABORTED; // no partial arrays
   }
@@ -124,6 +149,54 @@ int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)
   used->InsertNextValue(sigma);
   run.Output->GetFieldData()->AddArray(used);
   return COMPLETED;
+}
+
+bool vtkGLSContinuousFeatures::ComputeFeatureAndSummary(vtkGLSRun& run, double sigma, vtkDataArray* featureArray)
+{
+  double* feature = static_cast<vtkDoubleArray*>(featureArray)->GetPointer(0);
+  const gls::FeatureMeasure measure = static_cast<gls::FeatureMeasure>(this->FeatureMeasure);
+  const std::vector<double>& t = run.Scales;
+  if (!this->ScaleSummary)
+  {
+    return this->ReduceVariation(
+      run,
+      [sigma, measure, &t](const double* nu) {
+        return gls::continuousFeature(nu, t.data(), static_cast<int>(t.size()), sigma, measure);
+      },
+      feature, 1.0);
+  }
+  const vtkIdType n = run.Input->GetNumberOfPoints();
+  vtkNew<vtkIntArray> count;
+  count->SetName(vtkGLSArrayNames::PertinentScaleCount);
+  count->SetNumberOfTuples(n);
+  const auto stableScale = NewPointArray(vtkGLSArrayNames::StableScale, n);
+  const auto tau = NewPointArray(vtkGLSArrayNames::StableTau, n);
+  const auto kappa = NewPointArray(vtkGLSArrayNames::StableKappa, n);
+  const auto phi = NewPointArray(vtkGLSArrayNames::StablePhi, n);
+  const auto maxNu = NewPointArray(vtkGLSArrayNames::MaxVariation, n);
+  const auto maxNuScale = NewPointArray(vtkGLSArrayNames::MaxVariationScale, n);
+  gls::ScaleSummarySink::Outputs out;
+  out.feature = feature;
+  out.pertinentCount = count->GetPointer(0);
+  out.stableScale = stableScale->GetPointer(0);
+  out.tau = tau->GetPointer(0);
+  out.kappa = kappa->GetPointer(0);
+  out.phi = phi->GetPointer(0);
+  out.maxVariation = maxNu->GetPointer(0);
+  out.maxVariationScale = maxNuScale->GetPointer(0);
+  gls::ScaleSummarySink sink(t, gls::resolveThreadCount(this->NumberOfThreads), this->Weights(), sigma, measure, out);
+  if (!this->FeedSamples(run, sink, nullptr, 0.05, 1.0))
+  {
+    return false;
+  }
+  vtkPointData* pd = run.Output->GetPointData();
+  pd->AddArray(count);
+  for (vtkDoubleArray* array : { stableScale.Get(), tau.Get(), kappa.Get(), phi.Get(), maxNu.Get(),
+         maxNuScale.Get() })
+  {
+    pd->AddArray(array);
+  }
+  return true;
 }
 
 bool vtkGLSContinuousFeatures::RelativeSigma(vtkGLSRun& run, double& sigma)
@@ -198,6 +271,7 @@ void vtkGLSContinuousFeatures::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ReuseInputScaleSpace: " << this->ReuseInputScaleSpace << "\n";
+  os << indent << "ScaleSummary: " << this->ScaleSummary << "\n";
   os << indent << "SigmaMode: " << (this->SigmaMode == SIGMA_RELATIVE ? "Relative" : "Absolute") << "\n";
   os << indent << "Sigma: " << this->Sigma << "\n";
   os << indent << "TargetMedianFeature: " << this->TargetMedianFeature << "\n";

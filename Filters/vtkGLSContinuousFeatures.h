@@ -18,12 +18,21 @@
  *
  * Point-data output: GLSFeature (dimensionless, [0, 1]); NaN where no pair of consecutive scales has a defined nu.
  * Field data: GLSScales (length), GLSSigma (the sigma used, dimensionless).
+ *
+ * With ScaleSummary on, the same pass also writes what the scales say of each point, one value per point
+ * (docs/math.md, "Scale summary"): GLSPertinentScaleCount (the local minima of nu), GLSStableScale (length: the
+ * pertinent scale of lowest nu, or where nu has no inner minimum the defined scale of lowest nu), GLSStableTau
+ * (length), GLSStableKappa (1/length) and GLSStablePhi (dimensionless) at that scale, GLSMaxVariation (the largest
+ * nu, dimensionless) and GLSMaxVariationScale (length). Each is NaN (the count 0) where nu is NaN at every scale.
+ * This is what the main job keeps of the scale space by default: memory O(N) whatever the number of scales.
  */
 #ifndef vtkGLSContinuousFeatures_h
 #define vtkGLSContinuousFeatures_h
 
 #include "vtkGLSFiltersModule.h"
 #include "vtkGLSVariationFilterBase.h"
+
+class vtkDataArray;
 
 class VTKGLSFILTERS_EXPORT vtkGLSContinuousFeatures : public vtkGLSVariationFilterBase
 {
@@ -45,6 +54,14 @@ public:
   vtkSetMacro(ReuseInputScaleSpace, bool);
   vtkGetMacro(ReuseInputScaleSpace, bool);
   vtkBooleanMacro(ReuseInputScaleSpace, bool);
+  ///@}
+
+  ///@{
+  /// Also write the per-point scale summary (see the class documentation; default off). It needs the samples, not
+  /// only nu: upstream stored arrays serve when they hold tau, kappa, phi and the derivatives.
+  vtkSetMacro(ScaleSummary, bool);
+  vtkGetMacro(ScaleSummary, bool);
+  vtkBooleanMacro(ScaleSummary, bool);
   ///@}
 
   enum SigmaModeType
@@ -99,7 +116,11 @@ protected:
   /// aborted.
   bool RelativeSigma(vtkGLSRun& run, double& sigma);
 
+  /// GLSFeature, and the scale summary with ScaleSummary on, from the samples in one fused pass. False if aborted.
+  bool ComputeFeatureAndSummary(vtkGLSRun& run, double sigma, vtkDataArray* feature);
+
   bool ReuseInputScaleSpace;
+  bool ScaleSummary;
   int SigmaMode;
   double Sigma;
   double TargetMedianFeature;

@@ -22,6 +22,11 @@
 namespace
 {
 
+/// Every how many points the coverage keeps one row of neighbour counts, and what the rows cost with their copy
+/// gathered for the median (bytes per point and scale).
+constexpr std::uint64_t kCoverageStride = 61;
+constexpr double CoverageBytesPerPointScale = 2.0 * sizeof(double) / kCoverageStride;
+
 /// Forwards the samples and keeps, per scale, how many were valid, and the neighbour counts of every 61st point
 /// (a deterministic sample, for a median).
 class CoverageSink : public gls::ScaleSampleSink
@@ -44,7 +49,7 @@ public:
     {
       this->Valid[t][k] += s[k].valid ? 1.0 : 0.0;
     }
-    if (id % 61 == 0)
+    if (id % kCoverageStride == 0)
     {
       for (std::size_t k = 0; k < this->S; ++k)
       {
@@ -136,8 +141,11 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   const auto everywhere = [&](bool local) {
     return dist.AllTrue(local || emptyPiece) && (!dist.IsParallel() || dist.Max(local ? 1.0 : 0.0) > 0.5);
   };
-  const auto budget = [&](double bytes) {
-    return this->CheckMemoryBudget(bytes, request.What, request.Advice);
+  // Every large allocation of the run, counted before any is made: per (point, scale), per point and per scale.
+  const auto budget = [&](double bytes, double scales) {
+    return this->CheckMemoryBudget(bytes + static_cast<double>(n) * request.BytesPerPoint +
+        scales * request.BytesPerScale,
+      request.What, request.Advice);
   };
 
   if (request.MayReuseInput)
@@ -164,7 +172,7 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
     {
       run.Scales = stored;
       run.Samples = samples ? std::move(samples) : vtkGLSSampleSource::Empty();
-      return this->AgreeToContinue(run, budget(static_cast<double>(n) * S * request.BytesPerPointScale));
+      return this->AgreeToContinue(run, budget(static_cast<double>(n) * S * request.BytesPerPointScale, S));
     }
   }
 
@@ -173,8 +181,10 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   const std::size_t owned = run.Cloud.Owned;
   const int threads = gls::resolveThreadCount(this->NumberOfThreads);
   ok = ok &&
-    budget(static_cast<double>(owned) * static_cast<double>(run.Scales.size()) * request.BytesPerPointScale +
-      vtkGLSSampleSource::EngineBytes(owned, run.Scales.size(), threads)) &&
+    budget(static_cast<double>(owned) * static_cast<double>(run.Scales.size()) *
+          (request.BytesPerPointScale + CoverageBytesPerPointScale) +
+        vtkGLSSampleSource::EngineBytes(owned, run.Scales.size(), threads),
+      static_cast<double>(run.Scales.size())) &&
     this->GatherFitCloud(run);
   if (!this->AgreeToContinue(run, ok))
   {

@@ -159,6 +159,8 @@ protected:
     bool VariationWillDo = false; ///< an upstream GLSGeometricVariation (nu) at its GLSScales is enough
     bool MayReuseInput = false; ///< stored arrays may replace a fit (the filter's ReuseInputScaleSpace)
     double BytesPerPointScale = 0.0; ///< output bytes for each (point, scale) pair
+    double BytesPerPoint = 0.0;      ///< output bytes for each point, whatever the number of scales
+    double BytesPerScale = 0.0;      ///< working bytes for each scale, whatever the number of points
     const char* What = "the fused GLS fit";
     const char* Advice = "Use fewer points or scales.";
   };

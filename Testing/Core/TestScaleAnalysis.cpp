@@ -47,6 +47,72 @@ TEST(ScaleAnalysis, PertinentScalesAreTheLowestLocalMinima)
   EXPECT_EQ(out[1], 7);
 }
 
+namespace
+{
+/// Samples whose tau, kappa and phi name their scale index (tau = k, kappa = 10 k, phi = k / 100).
+std::vector<gls::ScaleSample> IndexedSamples(int count)
+{
+  std::vector<gls::ScaleSample> samples(static_cast<std::size_t>(count));
+  for (int k = 0; k < count; ++k)
+  {
+    samples[static_cast<std::size_t>(k)].tau = k;
+    samples[static_cast<std::size_t>(k)].kappa = 10.0 * k;
+    samples[static_cast<std::size_t>(k)].phi = k / 100.0;
+  }
+  return samples;
+}
+}
+
+TEST(ScaleAnalysis, SummaryTakesThePertinentScaleOfLowestNu)
+{
+  // The sequence of PertinentScalesAreTheLowestLocalMinima: minima at indices 1 (3), 3 (1) and 6 (0.5).
+  const double nu[] = { 5, 3, 4, 1, 1, 2, 0.5, 0.7, NAN, 0.1, 0.2 };
+  const double t[] = { 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11 };
+  const auto samples = IndexedSamples(11);
+  const gls::ScaleSummary s = gls::summarizeScales(samples.data(), nu, t, 11);
+  double pertinent[11];
+  EXPECT_EQ(s.pertinentCount, gls::pertinentScales(nu, t, 11, 11, pertinent));
+  EXPECT_EQ(s.pertinentCount, 3);
+  // Not index 9 (nu 0.1 is lower, but next to NaN it is no pertinent minimum).
+  EXPECT_EQ(s.stableIndex, 6);
+  EXPECT_EQ(s.stableScale, 7.0);
+  EXPECT_EQ(s.tau, 6.0);
+  EXPECT_EQ(s.kappa, 60.0);
+  EXPECT_EQ(s.phi, 0.06);
+  EXPECT_EQ(s.maxVariation, 5.0);
+  EXPECT_EQ(s.maxVariationScale, 1.0);
+}
+
+TEST(ScaleAnalysis, SummaryWithoutAnInnerMinimumTakesTheLowestNu)
+{
+  const double t[] = { 1, 2, 3, 4 };
+  const auto samples = IndexedSamples(4);
+  const double rising[] = { 0.1, 0.2, 0.3, 0.4 };
+  gls::ScaleSummary s = gls::summarizeScales(samples.data(), rising, t, 4);
+  EXPECT_EQ(s.pertinentCount, 0);
+  EXPECT_EQ(s.stableScale, 1.0);
+  EXPECT_EQ(s.maxVariationScale, 4.0);
+  // A flat nu (a sphere: rounding noise around 1e-20) goes to the smallest scale, and its largest nu too.
+  const double flat[] = { 2e-20, 1e-20, 3e-20, 1e-20 };
+  s = gls::summarizeScales(samples.data(), flat, t, 4);
+  EXPECT_EQ(s.pertinentCount, 0);
+  EXPECT_EQ(s.stableScale, 1.0);
+  EXPECT_EQ(s.tau, 0.0);
+  const double undefinedStart[] = { NAN, NAN, 0.3, 0.2 };
+  s = gls::summarizeScales(samples.data(), undefinedStart, t, 4);
+  EXPECT_EQ(s.stableScale, 4.0);
+  EXPECT_EQ(s.maxVariation, 0.3);
+  EXPECT_EQ(s.maxVariationScale, 3.0);
+  const double none[] = { NAN, NAN, NAN, NAN };
+  s = gls::summarizeScales(samples.data(), none, t, 4);
+  EXPECT_EQ(s.stableIndex, -1);
+  EXPECT_EQ(s.pertinentCount, 0);
+  for (double v : { s.stableScale, s.tau, s.kappa, s.phi, s.maxVariation, s.maxVariationScale })
+  {
+    EXPECT_TRUE(std::isnan(v));
+  }
+}
+
 TEST(ScaleAnalysis, ContinuousFeatureIsTheNormalizedTrapezoidIntegral)
 {
   const double t[] = { 1, 2, 4 };

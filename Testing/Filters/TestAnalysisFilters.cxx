@@ -217,6 +217,85 @@ TEST(ContinuousFeaturesFilter, SphereIsZeroAndBunnySpreadsOverTheUnitInterval)
   EXPECT_NEAR(pointArray(l, "GLSFeature")[p], integral / length, 1e-14);
 }
 
+TEST(ContinuousFeaturesFilter, ScaleSummaryFollowsTheStoredScaleSpaceAndKeepsTheFeature)
+{
+  vtkNew<vtkGLSContinuousFeatures> plain;
+  auto a = run(plain.Get(), bunnyWithNormals());
+  vtkNew<vtkGLSContinuousFeatures> summary;
+  summary->ScaleSummaryOn();
+  auto b = run(summary.Get(), bunnyWithNormals());
+  EXPECT_TRUE(identical(pointArray(a, "GLSFeature"), pointArray(b, "GLSFeature")));
+  EXPECT_EQ(plain->GetLastSigma(), summary->GetLastSigma());
+  // From the stored scale space, the summary is the same bits as the fused pass.
+  vtkNew<vtkGLSContinuousFeatures> fromStored;
+  fromStored->ScaleSummaryOn();
+  auto c = run(fromStored.Get(), bunnyScaleSpace());
+  const char* names[] = { "GLSFeature", "GLSPertinentScaleCount", "GLSStableScale", "GLSStableTau", "GLSStableKappa",
+    "GLSStablePhi", "GLSMaxVariation", "GLSMaxVariationScale" };
+  for (const char* name : names)
+  {
+    ASSERT_NE(b->GetPointData()->GetArray(name), nullptr) << name;
+    EXPECT_TRUE(identical(pointArray(b, name), pointArray(c, name))) << name;
+  }
+  // The rule (docs/math.md, "Scale summary") recomputed here from nu and the stored descriptors.
+  vtkNew<vtkGLSGeometricVariation> variation;
+  auto v = run(variation.Get(), bunnyScaleSpace());
+  const auto nu = pointArray(v, "GLSGeometricVariation");
+  const auto scales = fieldArray(bunnyScaleSpace(), "GLSScales");
+  const auto tau = pointArray(bunnyScaleSpace(), "GLSTau");
+  const auto kappa = pointArray(bunnyScaleSpace(), "GLSKappa");
+  const auto phi = pointArray(bunnyScaleSpace(), "GLSFitness");
+  const auto count = pointArray(b, "GLSPertinentScaleCount");
+  const auto stable = pointArray(b, "GLSStableScale");
+  const auto stableTau = pointArray(b, "GLSStableTau");
+  const auto stableKappa = pointArray(b, "GLSStableKappa");
+  const auto stablePhi = pointArray(b, "GLSStablePhi");
+  const auto maxNu = pointArray(b, "GLSMaxVariation");
+  const auto maxNuScale = pointArray(b, "GLSMaxVariationScale");
+  const std::size_t S = scales.size();
+  const double noise = 1e-12;
+  std::size_t withPertinent = 0, undefined = 0;
+  for (std::size_t i = 0; i < stable.size(); ++i)
+  {
+    const double* row = &nu[i * S];
+    int minima = 0;
+    long lowestMinimum = -1, lowest = -1, highest = -1;
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      if (std::isnan(row[k]))
+      {
+        continue;
+      }
+      if (k > 0 && k + 1 < S && row[k] < row[k - 1] - noise && row[k] <= row[k + 1] + noise)
+      {
+        ++minima;
+        lowestMinimum = lowestMinimum < 0 || row[k] < row[lowestMinimum] ? static_cast<long>(k) : lowestMinimum;
+      }
+      lowest = lowest < 0 || row[k] < row[lowest] - noise ? static_cast<long>(k) : lowest;
+      highest = highest < 0 || row[k] > row[highest] ? static_cast<long>(k) : highest;
+    }
+    ASSERT_EQ(count[i], minima) << i;
+    withPertinent += minima > 0 ? 1 : 0;
+    const long k = lowestMinimum >= 0 ? lowestMinimum : lowest;
+    if (k < 0)
+    {
+      ++undefined;
+      ASSERT_TRUE(std::isnan(stable[i]) && std::isnan(stableTau[i]) && std::isnan(maxNu[i])) << i;
+      continue;
+    }
+    const std::size_t at = i * S + static_cast<std::size_t>(k);
+    ASSERT_EQ(stable[i], scales[static_cast<std::size_t>(k)]) << i;
+    ASSERT_TRUE(sameOrBothNaN(stableTau[i], tau[at])) << i;
+    ASSERT_TRUE(sameOrBothNaN(stableKappa[i], kappa[at])) << i;
+    ASSERT_TRUE(sameOrBothNaN(stablePhi[i], phi[at])) << i;
+    ASSERT_EQ(maxNu[i], row[highest]) << i;
+    ASSERT_EQ(maxNuScale[i], scales[static_cast<std::size_t>(highest)]) << i;
+  }
+  // The bunny has pertinent scales at most points, and few points without any defined nu.
+  EXPECT_GT(withPertinent, stable.size() / 2);
+  EXPECT_LT(undefined, stable.size() / 100);
+}
+
 TEST(DissimilarityFilter, SphereIsUniformAndTheQueryIsSimilarToItself)
 {
   const Cloud c = sphere(3000, 1.0);

@@ -382,6 +382,25 @@ TEST(BadInput, ScalesLargerThanTheCloud)
   }
 }
 
+TEST(BadInput, TheRelativeSigmasSampleIsCountedBeforeAnyWork)
+{
+  // 10,000 points: the sigma's sample holds nu of every point at every scale (10,000 x 100,000 doubles, twice:
+  // 16 GB), which used to end the process with std::bad_alloc. Now an error naming the settings, before any fit.
+  const Cloud c = sphere(10000, 1.0);
+  for (const auto& setting : { std::make_pair(100000, 4096.0), std::make_pair(20000, 500.0) })
+  {
+    vtkNew<vtkGLSContinuousFeatures> features;
+    features->SetNumberOfScales(setting.first);
+    features->SetMemoryBudget(setting.second);
+    const Result r = run(features, makePolyData(c));
+    EXPECT_EQ(r.errors, 1);
+    EXPECT_NE(r.message.find("MemoryBudget"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("NumberOfScales"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("SigmaMode"), std::string::npos) << r.message;
+    EXPECT_EQ(r.output->GetPointData()->GetArray("GLSFeature"), nullptr);
+  }
+}
+
 TEST(BadInput, AHundredThousandScales)
 {
   const Cloud c = sphere(150, 1.0);

@@ -28,7 +28,7 @@ int pertinentScales(const double* nu, const double* scales, int count, int maxCo
   std::vector<int> minima;
   for (int k = 1; k + 1 < count; ++k)
   {
-    if (nu[k] < nu[k - 1] - kVariationNoise && nu[k] <= nu[k + 1] + kVariationNoise)
+    if (isPertinentScale(nu, k))
     {
       minima.push_back(k);
     }
@@ -45,6 +45,51 @@ int pertinentScales(const double* nu, const double* scales, int count, int maxCo
     out[i] = scales[minima[i]];
   }
   return static_cast<int>(minima.size());
+}
+
+ScaleSummary summarizeScales(const ScaleSample* samples, const double* nu, const double* scales, int count)
+{
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  ScaleSummary summary{ -1, 0, nan, nan, nan, nan, nan, nan };
+  int lowestPertinent = -1, lowestDefined = -1, highest = -1;
+  for (int k = 0; k < count; ++k)
+  {
+    if (std::isnan(nu[k]))
+    {
+      continue;
+    }
+    if (k > 0 && k + 1 < count && isPertinentScale(nu, k))
+    {
+      ++summary.pertinentCount;
+      if (lowestPertinent < 0 || nu[k] < nu[lowestPertinent])
+      {
+        lowestPertinent = k;
+      }
+    }
+    if (lowestDefined < 0 || nu[k] < nu[lowestDefined] - kVariationNoise)
+    {
+      lowestDefined = k;
+    }
+    if (highest < 0 || nu[k] > nu[highest])
+    {
+      highest = k;
+    }
+  }
+  const int stable = lowestPertinent >= 0 ? lowestPertinent : lowestDefined;
+  if (stable >= 0)
+  {
+    summary.stableIndex = stable;
+    summary.stableScale = scales[stable];
+    summary.tau = samples[stable].tau;
+    summary.kappa = samples[stable].kappa;
+    summary.phi = samples[stable].phi;
+  }
+  if (highest >= 0)
+  {
+    summary.maxVariation = nu[highest];
+    summary.maxVariationScale = scales[highest];
+  }
+  return summary;
 }
 
 double continuousFeature(const double* nu, const double* scales, int count, double sigma, FeatureMeasure measure)

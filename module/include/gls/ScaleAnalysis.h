@@ -14,11 +14,37 @@ namespace gls
 /// 1e-20 with random ups and downs.
 constexpr double kVariationNoise = 1e-12;
 
+/// Whether inner scale k (0 < k < S-1) is a strict local minimum of nu: nu[k] < nu[k-1] - kVariationNoise and
+/// nu[k] <= nu[k+1] + kVariationNoise (false when a neighbour or nu[k] is NaN). The rule of pertinentScales.
+inline bool isPertinentScale(const double* nu, int k)
+{
+  return nu[k] < nu[k - 1] - kVariationNoise && nu[k] <= nu[k + 1] + kVariationNoise;
+}
+
 /// Scale indices k (0 < k < S-1) where nu has a strict local minimum: nu[k] < nu[k-1] - noise and
 /// nu[k] <= nu[k+1] + noise (noise = kVariationNoise; a flat bottom counts once, at its first scale); NaN neighbours
 /// disqualify. Keeps the maxCount minima with the lowest nu,
 /// written in increasing scale order to `out` (the scales, not indices). Returns how many were written.
 int pertinentScales(const double* nu, const double* scales, int count, int maxCount, double* out);
+
+/// One point's summary over the sampled scales: what the main job keeps of the scale space by default (every value
+/// per point, none per scale). docs/math.md, "Scale summary".
+struct ScaleSummary
+{
+  int stableIndex;          ///< index of the most stable scale; -1 when nu is NaN at every scale
+  int pertinentCount;       ///< number of pertinent scales (isPertinentScale), 0 when nu is monotonic or flat
+  double stableScale;       ///< the most stable scale (length): the pertinent scale of lowest nu; where there is
+                            ///< none, the defined scale of lowest nu (ties within kVariationNoise: the smaller
+                            ///< scale); NaN when nu is NaN at every scale
+  double tau;               ///< tau at the most stable scale (length); NaN with it or where that fit is undefined
+  double kappa;             ///< kappa at the most stable scale (1/length)
+  double phi;               ///< phi at the most stable scale (dimensionless, [0, 1])
+  double maxVariation;      ///< the largest nu over the defined scales (dimensionless); NaN when none is defined
+  double maxVariationScale; ///< the scale of the largest nu (length; the smaller one on ties); NaN with it
+};
+
+/// The summary of one point from its samples and nu at `count` increasing scales.
+ScaleSummary summarizeScales(const ScaleSample* samples, const double* nu, const double* scales, int count);
 
 enum class FeatureMeasure
 {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "gls/Descriptors.h"
+#include "gls/ScaleAnalysis.h"
 #include "gls/ScaleSpaceEngine.h"
 
 #include <functional>
@@ -45,6 +46,71 @@ private:
   VariationWeights Weights;
   Reducer Reduce;
   double* Out;
+  std::vector<std::vector<double>> Nu;
+};
+
+/// The fused pass of the main job: per point, the continuous feature (as VariationReductionSink with
+/// continuousFeature: the same bits) and the summary over the scales (summarizeScales), nothing per scale.
+class ScaleSummarySink : public ScaleSampleSink
+{
+public:
+  /// Where each point's values go (one per point; null pointers are skipped).
+  struct Outputs
+  {
+    double* feature = nullptr;
+    int* pertinentCount = nullptr;
+    double* stableScale = nullptr;
+    double* tau = nullptr;
+    double* kappa = nullptr;
+    double* phi = nullptr;
+    double* maxVariation = nullptr;
+    double* maxVariationScale = nullptr;
+  };
+
+  /// scales: the engine's scales (kept by reference); sigma and measure: those of the feature.
+  ScaleSummarySink(const std::vector<double>& scales, int threads, VariationWeights weights, double sigma,
+    FeatureMeasure measure, const Outputs& out)
+    : Scales(scales)
+    , Weights(weights)
+    , Sigma(sigma)
+    , Measure(measure)
+    , Out(out)
+    , Nu(static_cast<std::size_t>(threads), std::vector<double>(scales.size()))
+  {
+  }
+
+  void consume(std::uint64_t id, const ScaleSample* s, int thread) override
+  {
+    std::vector<double>& nu = this->Nu[static_cast<std::size_t>(thread)];
+    const int count = static_cast<int>(this->Scales.size());
+    for (int k = 0; k < count; ++k)
+    {
+      const std::size_t i = static_cast<std::size_t>(k);
+      nu[i] = geometricVariation(s[k], this->Scales[i], this->Weights);
+    }
+    const ScaleSummary summary = summarizeScales(s, nu.data(), this->Scales.data(), count);
+    const auto put = [id](auto* array, auto value) {
+      if (array)
+      {
+        array[id] = value;
+      }
+    };
+    put(this->Out.feature, continuousFeature(nu.data(), this->Scales.data(), count, this->Sigma, this->Measure));
+    put(this->Out.pertinentCount, summary.pertinentCount);
+    put(this->Out.stableScale, summary.stableScale);
+    put(this->Out.tau, summary.tau);
+    put(this->Out.kappa, summary.kappa);
+    put(this->Out.phi, summary.phi);
+    put(this->Out.maxVariation, summary.maxVariation);
+    put(this->Out.maxVariationScale, summary.maxVariationScale);
+  }
+
+private:
+  const std::vector<double>& Scales;
+  VariationWeights Weights;
+  double Sigma;
+  FeatureMeasure Measure;
+  Outputs Out;
   std::vector<std::vector<double>> Nu;
 };
 

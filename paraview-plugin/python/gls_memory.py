@@ -1,0 +1,55 @@
+"""The main job's memory check, made before any stage runs: what the analysis of N points at S scales needs, against
+what the machine has available (or --memory-budget), with the figure and the option that would fit.
+
+The figures per point are the main job's measured peak resident memory divided by the points (docs/main-job.md,
+"Memory"), rounded up: the default path (normals, the fused features and summaries, the compact output) and, with
+--per-scale, every scale's arrays on top."""
+import math
+
+# Peak resident bytes per point of the default path, whatever the number of scales (measured at 1M-10M points).
+DEFAULT_BYTES_PER_POINT = 420.0
+# With --per-scale: bytes per point and scale on top (the scale space, nu, and their copy in the written file).
+PER_SCALE_BYTES_PER_POINT_SCALE = 240.0
+GIB = 1024.0 ** 3
+
+
+class MemoryError_(Exception):
+    """The analysis would not fit (one line: the figure and what to change)."""
+
+
+def available_bytes():
+    """MemAvailable of /proc/meminfo (bytes); None where the file does not say."""
+    try:
+        with open('/proc/meminfo') as f:
+            for line in f:
+                if line.startswith('MemAvailable:'):
+                    return float(line.split()[1]) * 1024.0
+    except OSError:
+        pass
+    return None
+
+
+def needed_bytes(points, scales, per_scale):
+    """The estimated peak (bytes) of the main job on `points` points at `scales` scales."""
+    per_point = DEFAULT_BYTES_PER_POINT + (PER_SCALE_BYTES_PER_POINT_SCALE * scales if per_scale else 0.0)
+    return points * per_point
+
+
+def check(points, scales, per_scale, budget_gib=None):
+    """Raises MemoryError_ when the estimate exceeds the budget (GiB; default: the memory available now).
+    Returns (needed bytes, budget bytes or None)."""
+    budget = budget_gib * GIB if budget_gib is not None else available_bytes()
+    needed = needed_bytes(points, scales, per_scale)
+    if budget is None or needed <= budget:
+        return needed, budget
+    where = '--memory-budget' if budget_gib is not None else 'available'
+    if per_scale:
+        default = needed_bytes(points, scales, False)
+        fitting = int(math.floor((budget / points - DEFAULT_BYTES_PER_POINT) / PER_SCALE_BYTES_PER_POINT_SCALE))
+        advice = 'drop --per-scale (the per-point summaries need about %.1f GiB)' % (default / GIB)
+        if fitting >= 2:
+            advice += ', or keep it with --scales %d' % fitting
+        raise MemoryError_('storing every scale (--per-scale) of %d points at %d scales needs about %.1f GiB, '
+                           'above the %.1f GiB %s: %s' % (points, scales, needed / GIB, budget / GIB, where, advice))
+    raise MemoryError_('the analysis of %d points needs about %.1f GiB, above the %.1f GiB %s: analyse a part of '
+                       'the cloud, or a machine with more memory' % (points, needed / GIB, budget / GIB, where))
