@@ -16,8 +16,28 @@ from main_job_helpers import denoising_rms, failure_text, image_stats, polydata_
 ANALYZE, WORK = sys.argv[1], sys.argv[2]
 
 
+# What the default output holds besides the points (docs/main-job.md, "Outputs"), and their types in the file.
+DEFAULT_ARRAYS = {'Normals': 'float', 'NormalQuality': 'float', 'GLSFeature': 'float',
+                  'GLSPertinentScaleCount': 'unsigned char', 'GLSStableScale': 'float', 'GLSStableTau': 'float',
+                  'GLSStableKappa': 'float', 'GLSStablePhi': 'float', 'GLSMaxVariation': 'float',
+                  'GLSMaxVariationScale': 'float'}
+PER_SCALE_ARRAYS = ('GLSTau', 'GLSEta', 'GLSKappa', 'GLSFitness', 'GLSdTau', 'GLSdEta', 'GLSdKappa',
+                    'GLSNeighborCount', 'GLSGeometricVariation', 'GLSPertinentScales')
+
+
 def run(*args):
     return helpers.run(ANALYZE, *args)
+
+
+def write_torus_ply(path, count, seed=3):
+    """A binary float PLY of `count` points (positions only, random order) on a torus (R 1, r 0.3)."""
+    rng = np.random.default_rng(seed)
+    u, v = rng.uniform(0, 2 * np.pi, count), rng.uniform(0, 2 * np.pi, count)
+    points = np.stack([(1 + 0.3 * np.cos(v)) * np.cos(u), (1 + 0.3 * np.cos(v)) * np.sin(u), 0.3 * np.sin(v)], 1)
+    with open(path, 'wb') as f:
+        f.write(('ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\nproperty float y\n'
+                 'property float z\nend_header\n' % count).encode())
+        f.write(points.astype('<f4').tobytes())
 
 
 class MainJob(unittest.TestCase):
@@ -30,7 +50,8 @@ class MainJob(unittest.TestCase):
         out = os.path.join(WORK, 'bunny')
         result = run('--output-dir', out, '--noise', '0.002')
         self.assertEqual(result.returncode, 0, failure_text(result))
-        self.assertIn('scale space', result.stderr)  # the progress lines
+        self.assertIn('features and summary', result.stderr)  # the progress lines
+        self.assertNotIn('warning', result.stderr)  # the demo warns about none of its own choices
         self.assertIn('adaptive bandwidth', result.stderr)
         files = {s: os.path.join(out, 'stanford-bunny' + s) for s in
                  ('-gls.vtp', '-features.png', '-profiles.png', '-denoising.png', '-scale-space.png', '-gls.pvsm')}
@@ -38,10 +59,10 @@ class MainJob(unittest.TestCase):
             self.assertTrue(os.path.isfile(f), f)
         pd = read_vtp(files['-gls.vtp'])
         self.assertEqual(pd.GetNumberOfPoints(), 35947)
-        for name in ('Normals', 'GLSTau', 'GLSEta', 'GLSKappa', 'GLSFitness', 'GLSdTau', 'GLSdEta', 'GLSdKappa',
-                     'GLSNeighborCount', 'GLSGeometricVariation', 'GLSPertinentScales', 'GLSPertinentScaleCount',
-                     'GLSFeature'):
+        for name in DEFAULT_ARRAYS:
             self.assertIsNotNone(pd.GetPointData().GetArray(name), name)
+        for name in PER_SCALE_ARRAYS:  # only with --per-scale
+            self.assertIsNone(pd.GetPointData().GetArray(name), name)
         feature = vtk_to_numpy(pd.GetPointData().GetArray('GLSFeature'))
         self.assertTrue(np.all((feature >= 0) & (feature <= 1)))
         # The data-relative sigma: features stand out from a low background (median 0.28, the filter's target).
@@ -71,7 +92,8 @@ class MainJob(unittest.TestCase):
         result = run(xyz, '--output-dir', WORK, '--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2')
         self.assertEqual(result.returncode, 0, failure_text(result))
         pd = read_vtp(os.path.join(WORK, 'sphere-gls.vtp'))
-        np.testing.assert_allclose(vtk_to_numpy(pd.GetPointData().GetArray('GLSKappa')), 0.5, atol=1e-8)
+        # Exact points and normals: kappa 1/2 at every scale, so at the most stable one too (float32 in the file).
+        np.testing.assert_allclose(vtk_to_numpy(pd.GetPointData().GetArray('GLSStableKappa')), 0.5, atol=1e-6)
         # Points exactly on a sphere with exact normals: the projection onto the fitted spheres moves nothing.
         before, after = denoising_rms(result.stdout)
         self.assertEqual(before, 0.0)
@@ -86,8 +108,90 @@ class MainJob(unittest.TestCase):
         result = run(csv, '--output-dir', WORK, '--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2')
         self.assertEqual(result.returncode, 0, failure_text(result))
         pd = read_vtp(os.path.join(WORK, 'ball-gls.vtp'))
-        kappa = vtk_to_numpy(pd.GetPointData().GetArray('GLSKappa'))
+        kappa = vtk_to_numpy(pd.GetPointData().GetArray('GLSStableKappa'))
         self.assertLess(abs(np.median(kappa) - 1.0), 0.02)  # estimated, MST-oriented normals: outward
+
+    def test_per_scale_keeps_every_scale_and_the_same_summary(self):
+        xyz = os.path.join(WORK, 'scales.xyz')
+        write_sphere(xyz, 3000, 1.0, False, ' ')
+        quick = ('--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2')
+        summary_dir, per_scale_dir = os.path.join(WORK, 'summary'), os.path.join(WORK, 'per-scale')
+        result = run(xyz, '--output-dir', summary_dir, *quick)
+        self.assertEqual(result.returncode, 0, failure_text(result))
+        result = run(xyz, '--output-dir', per_scale_dir, '--per-scale', *quick)
+        self.assertEqual(result.returncode, 0, failure_text(result))
+        summary = read_vtp(os.path.join(summary_dir, 'scales-gls.vtp'))
+        per_scale = read_vtp(os.path.join(per_scale_dir, 'scales-gls.vtp'))
+        for name in PER_SCALE_ARRAYS:  # every scale's values (three pertinent scales at most)
+            components = per_scale.GetPointData().GetArray(name).GetNumberOfComponents()
+            self.assertEqual(components, 3 if name == 'GLSPertinentScales' else 15 if 'Eta' in name else 5, name)
+        # The summary of the stored scales is the fused pass's (float32 of the same doubles).
+        for name in ('GLSFeature', 'GLSStableKappa', 'GLSStableScale', 'GLSMaxVariation'):
+            a = vtk_to_numpy(summary.GetPointData().GetArray(name))
+            b = vtk_to_numpy(per_scale.GetPointData().GetArray(name)).astype(np.float32)
+            np.testing.assert_array_equal(a, b, name)
+
+    def test_a_million_points_give_compact_summaries(self):
+        ply = os.path.join(WORK, 'torus-1m.ply')
+        write_torus_ply(ply, 1000000)
+        out = os.path.join(WORK, 'million')
+        result = run(ply, '--output-dir', out)
+        self.assertEqual(result.returncode, 0, failure_text(result))
+        vtp = os.path.join(out, 'torus-1m-gls.vtp')
+        pd = read_vtp(vtp)
+        self.assertEqual(pd.GetNumberOfPoints(), 1000000)
+        names = {pd.GetPointData().GetArrayName(i) for i in range(pd.GetPointData().GetNumberOfArrays())}
+        self.assertEqual(names, set(DEFAULT_ARRAYS))
+        for name, kind in DEFAULT_ARRAYS.items():
+            self.assertEqual(pd.GetPointData().GetArray(name).GetDataTypeAsString(), kind, name)
+        self.assertEqual(pd.GetPoints().GetData().GetDataTypeAsString(), 'float')
+        # 12 bytes of positions, 12 of normals and 8 float32 summaries, zlib-compressed, one poly-vertex cell:
+        # about 47 bytes a point on points in random order (docs/main-job.md).
+        size = os.path.getsize(vtp) / 1e6
+        self.assertLess(size, 49.0)
+        self.assertIn('%.1f bytes per point' % size, result.stdout)
+        # A torus of tube radius 0.3: kappa at the most stable scale is about the mean curvature, between the outer
+        # (1/0.3 + 1/1.3) / 2 = 2.05 and the inner (1/0.3 - 1/0.7) / 2 = 0.95 equators' (a ball of radius t on the
+        # inner side reaches across the hole's curvature: 0.89 at the 1st percentile here).
+        kappa = vtk_to_numpy(pd.GetPointData().GetArray('GLSStableKappa'))
+        self.assertGreater(np.nanpercentile(kappa, 1), (1 / 0.3 - 1 / 0.7) / 2 - 0.1)
+        self.assertLess(np.nanpercentile(kappa, 99), (1 / 0.3 + 1 / 1.3) / 2 + 0.1)
+        self.assertAlmostEqual(np.nanmedian(kappa), 1 / 0.3 / 2 + 0.0, delta=0.25)
+
+    def test_per_scale_beyond_the_budget_is_refused_before_any_stage(self):
+        out = os.path.join(WORK, 'refused')
+        result = run('--output-dir', out, '--per-scale', '--memory-budget', '0.1')
+        self.assertEqual(result.returncode, 2, failure_text(result))
+        self.assertIn('gls-analyze: storing every scale (--per-scale) of 35947 points at 20 scales needs about',
+                      result.stderr)
+        self.assertIn('drop --per-scale (the per-point summaries need about', result.stderr)
+        self.assertIn('or keep it with --scales', result.stderr)
+        self.assertNotIn('%', result.stderr)  # no stage reported progress
+        self.assertEqual(os.listdir(out), [])
+
+    def test_ctrl_c_stops_within_seconds_and_writes_nothing(self):
+        import signal
+        import subprocess
+        import time
+        ply = os.path.join(WORK, 'torus-interrupted.ply')
+        write_torus_ply(ply, 1000000)
+        out = os.path.join(WORK, 'interrupted')
+        env = dict(os.environ)
+        env.pop('DISPLAY', None)
+        process = subprocess.Popen([ANALYZE, ply, '--output-dir', out], stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True, env=env, start_new_session=True)
+        seen = ''
+        for line in process.stderr:  # wait until the fused pass runs
+            seen += line
+            if 'features and summary' in line and '25%' in line:
+                break
+        interrupted = time.time()
+        os.killpg(process.pid, signal.SIGINT)  # as a terminal's Ctrl-C: the whole process group
+        _, rest = process.communicate(timeout=60)
+        self.assertLess(time.time() - interrupted, 10.0, seen + rest)
+        self.assertEqual(process.returncode, 130, seen + rest)
+        self.assertIn('gls-analyze: interrupted; no results written', rest)
+        self.assertEqual(os.listdir(out), [])  # neither results nor the staging folder
 
     def test_ply_and_vtp_inputs(self):
         from vtkmodules.vtkIOPLY import vtkPLYWriter
@@ -111,7 +215,7 @@ class MainJob(unittest.TestCase):
             result = run(path, '--output-dir', WORK, '--scales', '4', '--min-scale', '0.08', '--max-scale', '0.3')
             self.assertEqual(result.returncode, 0, failure_text(result))
             out = read_vtp(os.path.join(WORK, stem + '-gls.vtp'))
-            kappa = vtk_to_numpy(out.GetPointData().GetArray('GLSKappa'))
+            kappa = vtk_to_numpy(out.GetPointData().GetArray('GLSStableKappa'))
             self.assertLess(abs(np.nanmedian(kappa) - 1.0), 0.02, path)
 
     def test_missing_unreadable_and_malformed_files_get_clear_messages(self):

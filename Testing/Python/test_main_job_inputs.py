@@ -67,7 +67,7 @@ class Inputs(unittest.TestCase):
         return read_vtp(os.path.join(out, stem + '-gls.vtp'))
 
     def assertUnitSphereKappa(self, pd):
-        kappa = point_array(pd, 'GLSKappa')
+        kappa = point_array(pd, 'GLSStableKappa')
         self.assertLess(abs(np.nanmedian(kappa) - 1.0), 0.02)  # estimated, MST-oriented normals: outward
 
     # Options and output directory -------------------------------------------------------------------------------
@@ -104,10 +104,10 @@ class Inputs(unittest.TestCase):
     # A stage that fails stops the job ---------------------------------------------------------------------------
 
     def test_a_stage_error_stops_the_job_and_writes_nothing(self):
-        # Valid options the scale space refuses (its memory need, whatever the machine): the error, not "20 scales".
+        # Valid options the features refuse (the sigma's sample at every scale, whatever the machine): the error.
         out = path('too-many-scales')
         result = run(os.path.join(DATA, 'fandisk.obj'), '--output-dir', out, '--scales', '1000000')
-        line = self.assertFailsInOneLine(result, 'scale space: Not enough memory budget', out)
+        line = self.assertFailsInOneLine(result, 'features and summary: Not enough memory budget', out)
         self.assertTrue(line.endswith('; no results written'), line)
         self.assertNotIn('GLS pipeline', result.stdout)
         # Scales far below the spacing: every fit undefined, so no feature: an error with the advice.
@@ -227,7 +227,7 @@ class Inputs(unittest.TestCase):
         out = path('ball-out')
         pd = self.assertSucceeds(run(path('ball.stl'), '--output-dir', out, *QUICK), out, 'ball', mesh=True)
         self.assertEqual(pd.GetNumberOfPoints(), 60 * 38 + 2)  # the STL reader merges the triangles' corners
-        self.assertLess(abs(np.nanmedian(point_array(pd, 'GLSKappa')) - 0.5), 0.01)  # radius 2
+        self.assertLess(abs(np.nanmedian(point_array(pd, 'GLSStableKappa')) - 0.5), 0.01)  # radius 2
 
     def test_ply_cloud_without_cells_is_drawn(self):
         cloud = path('cloud.ply')
@@ -235,7 +235,10 @@ class Inputs(unittest.TestCase):
         out = path('cloud-out')
         pd = self.assertSucceeds(run(cloud, '--output-dir', out, *QUICK), out, 'cloud')
         self.assertUnitSphereKappa(pd)
-        self.assertEqual(pd.GetNumberOfVerts(), pd.GetNumberOfPoints())  # so that the .vtp shows in ParaView
+        # One poly-vertex cell of every point, so that the .vtp shows in ParaView (4 bytes a point, where a vertex
+        # cell per point took 16).
+        self.assertEqual(pd.GetNumberOfVerts(), 1)
+        self.assertEqual(pd.GetVerts().GetNumberOfConnectivityIds(), pd.GetNumberOfPoints())
         # The picture shows the points (it was the background only: it drew cells, and there were none).
         self.assertLess(central_background(os.path.join(out, 'cloud-features.png')), 0.93)  # drawn: 0.90
 

@@ -44,6 +44,10 @@ def longest_section(mesh):
     closed = order[0] == order[-1]
     if closed:
         pts = pts[:-1]
+    # The cut repeats a position where the plane passes through a mesh vertex (two edges meet there): each position
+    # once, in the order of the polyline.
+    _, first = np.unique(pts, axis=0, return_index=True)
+    pts = pts[np.sort(first)]
     curve = vtkPolyData()
     points = vtkPoints()
     points.SetDataTypeToDouble()
@@ -68,8 +72,7 @@ def scale_space_image(make_proxy, curve, watch, scales=200, min_scale=0.005, max
     image = make_proxy('GLSScaleSpaceImage', registrationName='CrossSection', Input=source,
                        NumberOfScales=scales, MinScale=min_scale, MaxScale=max_scale)
     watch.watch(image, 'scale-space image', progress=False)
-    image.UpdatePipeline()
-    watch.check()
+    watch.update(image)
     result = (simple.servermanager.Fetch(image, idx=0), simple.servermanager.Fetch(image, idx=1))
     simple.Delete(image)
     simple.Delete(source)

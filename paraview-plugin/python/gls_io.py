@@ -27,6 +27,15 @@ def check_file(path):
         raise InputError('%s: the file is empty' % path)
 
 
+def output_of(proxy, port=0):
+    """The data a proxy's algorithm produced, without a copy of its arrays (the main job runs ParaView's builtin
+    session, where the algorithm is in this process; servermanager.Fetch would deep-copy a 10M-point cloud)."""
+    data = proxy.GetClientSideObject().GetOutputDataObject(port)
+    shallow = data.NewInstance()
+    shallow.ShallowCopy(data)
+    return shallow
+
+
 def open_cloud(path, make_proxy, watch):
     """(source proxy, polydata, description of how it was read) for the file; raises InputError. make_proxy(name,
     **properties) creates a plugin proxy; watch (gls_watch.Watch) turns the reader's errors into the message."""
@@ -47,12 +56,11 @@ def open_cloud(path, make_proxy, watch):
         if reader is None:
             raise InputError('%s: no ParaView reader accepts it (not a valid %s file?)' % (path, ext[1:].upper()))
     watch.watch(reader, 'reader', progress=False)
-    reader.UpdatePipeline()
     try:
-        watch.check()
+        watch.update(reader)
     except gls_watch.StageError as e:
         raise InputError(str(e))
-    data = simple.servermanager.Fetch(reader)
+    data = output_of(reader)
     if not data.IsA('vtkPolyData'):
         raise InputError('%s: the reader gives a %s, not a point cloud or surface' % (path, data.GetClassName()))
     if data.GetNumberOfPoints() == 0:

@@ -1,12 +1,14 @@
 """The GLS main job, for pvpython (under Xvfb when there is no display: see the gls-analyze wrapper).
 
     gls-analyze [input] [--output-dir DIR] [--scales N] [--min-scale F] [--max-scale F] [--sigma S] [--noise F]
+                [--per-scale] [--query ID] [--memory-budget GIB]
 
 Reads a point cloud or mesh (PLY, OBJ, STL, VTP, or a text file: XYZ/PTS/CSV/TXT; default: the bundled bunny
-scan), estimates oriented normals when the file has none, computes the GLS scale space (N quadratic scales from
---min-scale to --max-scale, fractions of the bounding-box diagonal), the geometric variation and the continuous
-features, and writes to the output directory:
-  <name>-gls.vtp        every array (inline binary VTK XML)
+scan), estimates oriented normals when the file has none, analyses N quadratic scales from --min-scale to
+--max-scale (fractions of the bounding-box diagonal) in one fused pass that stores nothing per scale (the continuous
+features and the per-point scale summary; memory is checked first), and writes to the output directory:
+  <name>-gls.vtp        the points, the input's arrays, normals, GLSFeature and the per-point summaries (float32,
+                        compressed: about 47 bytes a point on a cloud); every scale's arrays too with --per-scale
   <name>-features.png   the continuous features on the cloud (colour map, scalar bar, title)
   <name>-profiles.png   kappa and nu against 300 scales for a few selected points (GLS Scale Profiles; the
                         paper's Figures 2-3 style)
@@ -15,7 +17,7 @@ features, and writes to the output directory:
   <name>-scale-space.png  a mesh only: the scale-space image (t*kappa against arclength and scale, zero crossings
                         of kappa) of its central cross-section (GLS Scale Space Image; the paper's Figures 6-8)
   <name>-gls.pvsm       a ParaView state that opens the .vtp coloured by the features
-Files appear only when every stage succeeded. Exit status: 0 done; 2 the input, the options or a stage's result
+Files appear only when every stage succeeded. Exit status: 0 done; 130 interrupted (Ctrl-C, nothing written); 2 the input, the options or a stage's result
 cannot be used (one line on stderr says why; nothing written); 1 an internal error (a traceback, nothing
 written); 3 no X server could be started. docs/main-job.md has the details (column layouts of text files).
 """
@@ -36,6 +38,7 @@ import gls_coincident  # noqa: E402
 import gls_cross_section  # noqa: E402
 import gls_denoising  # noqa: E402
 import gls_io  # noqa: E402
+import gls_memory  # noqa: E402
 import gls_outputs  # noqa: E402
 import gls_profiles  # noqa: E402
 import gls_render  # noqa: E402
@@ -71,6 +74,14 @@ def parse_arguments(argv):
     p.add_argument('--sigma', type=float, default=None,
                    help='an absolute tanh scale of the features, > 0 (default: relative to the data, so that the '
                         'median feature is 0.28)')
+    p.add_argument('--per-scale', action='store_true',
+                   help='also store every scale (the scale space and nu: about %d bytes per point and scale) '
+                        'instead of the per-point summaries only' % gls_memory.PER_SCALE_BYTES_PER_POINT_SCALE)
+    p.add_argument('--query', type=int, default=None,
+                   help='a point id: adds GLSDissimilarity, how unlike that point every point is across the scales')
+    p.add_argument('--memory-budget', type=float, default=None,
+                   help='GiB the analysis may use (default: the memory available when it starts); checked before '
+                        'any stage runs')
     p.add_argument('--noise', type=float, default=0.0,
                    help='denoising picture: Gaussian noise added along the normals first, standard deviation as a '
                         'fraction of the diagonal, >= 0 (default 0: denoise the input as it is)')
@@ -89,6 +100,10 @@ def validate(args):
                          % (args.min_scale, args.max_scale))
     if args.sigma is not None and not (math.isfinite(args.sigma) and args.sigma > 0):
         raise UsageError('--sigma must be positive; got %g' % args.sigma)
+    if args.memory_budget is not None and not (math.isfinite(args.memory_budget) and args.memory_budget > 0):
+        raise UsageError('--memory-budget must be a positive number of GiB; got %g' % args.memory_budget)
+    if args.query is not None and args.query < 0:
+        raise UsageError('--query must be a point id (0 or more); got %d' % args.query)
     if not (math.isfinite(args.noise) and args.noise >= 0):
         raise UsageError('--noise must be 0 or positive; got %g' % args.noise)
 
@@ -115,12 +130,50 @@ def checked_features(result):
     return feature
 
 
+def summary_pipeline(args, upstream, watch):
+    """The default path: one fused pass (GLS Continuous Features with ScaleSummary) that stores nothing per scale."""
+    sigma = {} if args.sigma is None else {'SigmaMode': 'Absolute', 'Sigma': args.sigma}
+    return watch.watch(gls_filter('GLSContinuousFeatures', registrationName='Features', Input=upstream,
+                                  Normals=NORMALS, NumberOfScales=args.scales, MinScale=args.min_scale,
+                                  MaxScale=args.max_scale, ScaleSampling='Quadratic', ScaleSummary=1, **sigma),
+                       'features and summary')
+
+
+def per_scale_pipeline(args, upstream, watch):
+    """--per-scale: the scale space and nu stored at every scale, then the features and the summary from them."""
+    scale_space = watch.watch(gls_filter('GLSScaleSpace', registrationName='ScaleSpace', Input=upstream,
+                                         Normals=NORMALS, NumberOfScales=args.scales, MinScale=args.min_scale,
+                                         MaxScale=args.max_scale, ScaleSampling='Quadratic'), 'scale space')
+    variation = watch.watch(gls_filter('GLSGeometricVariation', registrationName='Variation', Input=scale_space,
+                                       Normals=NORMALS), 'geometric variation')
+    return summary_pipeline(args, variation, watch)
+
+
+def query_dissimilarity(args, upstream, watch, count):
+    """GLSDissimilarity of every point to --query (a fused pass at the analysis' scales), or None."""
+    if args.query is None:
+        return None
+    if not 0 <= args.query < count:
+        raise gls_io.InputError('--query %d is not a point of the analysed cloud (0 to %d)' % (args.query, count - 1))
+    dissimilarity = watch.watch(gls_filter('GLSMultiScaleDissimilarity', registrationName='Dissimilarity',
+                                           Input=upstream, Normals=NORMALS, QueryPointId=args.query,
+                                           NumberOfScales=args.scales, MinScale=args.min_scale,
+                                           MaxScale=args.max_scale, ScaleSampling='Quadratic',
+                                           PriorMinScale=args.min_scale, PriorMaxScale=args.max_scale),
+                                'dissimilarity')
+    watch.update(dissimilarity)
+    return gls_io.output_of(dissimilarity).GetPointData().GetArray('GLSDissimilarity')
+
+
 def analyze(args, outputs):
     """Runs every stage, writing into `outputs`' staging folder; raises InputError, StageError or AnalysisError."""
     from paraview import simple
     from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkCommonCore import vtkLogger
+    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_WARNING)  # no INFO lines of VTK's own filters (the cutter)
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
     watch = gls_watch.Watch()
+    watch.handle_interruptions()
     source, data, description = gls_io.open_cloud(args.input, gls_filter, watch)
     count = data.GetNumberOfPoints()
     print('input: %s (%d points; %s)' % (args.input, count, description))
@@ -131,36 +184,40 @@ def analyze(args, outputs):
     analysed = merged.polydata if merged is not None else data
     if analysed.GetNumberOfPoints() < 2:
         raise gls_io.InputError('%s: all %d points are at one position: nothing to analyse' % (args.input, count))
+    needed, budget = gls_memory.check(analysed.GetNumberOfPoints(), args.scales, args.per_scale, args.memory_budget)
+    print('memory: about %.1f GiB needed%s' % (needed / gls_memory.GIB, '' if budget is None else
+                                              ' (%.1f GiB %s)' % (budget / gls_memory.GIB, 'budget' if
+                                                                  args.memory_budget is not None else 'available')))
 
     start = time.time()
     upstream = source
     if not gls_cloud.has_normals(analysed):
         upstream = watch.watch(gls_filter('GLSNormalEstimation', registrationName='Normals', Input=source), 'normals')
-    scale_space = watch.watch(gls_filter('GLSScaleSpace', registrationName='ScaleSpace', Input=upstream,
-                                         Normals=NORMALS, NumberOfScales=args.scales, MinScale=args.min_scale,
-                                         MaxScale=args.max_scale, ScaleSampling='Quadratic'), 'scale space')
-    variation = watch.watch(gls_filter('GLSGeometricVariation', registrationName='Variation', Input=scale_space,
-                                       Normals=NORMALS), 'geometric variation')
-    # --sigma: an absolute sigma; else the filter's default, relative to the data (median feature 0.28).
-    sigma = {} if args.sigma is None else {'SigmaMode': 'Absolute', 'Sigma': args.sigma}
-    features = watch.watch(gls_filter('GLSContinuousFeatures', registrationName='Features', Input=variation,
-                                      Normals=NORMALS, **sigma), 'continuous features')
-    features.UpdatePipeline()
-    watch.check()
-    result = simple.servermanager.Fetch(features)
+        watch.update(upstream)
+        print('normals: %.2f s' % (time.time() - start))
+    features = (per_scale_pipeline if args.per_scale else summary_pipeline)(args, upstream, watch)
+    watch.update(features)
+    result = gls_io.output_of(features)
     feature = checked_features(result)
     elapsed = time.time() - start
     pd = result.GetPointData()
     scales = vtk_to_numpy(result.GetFieldData().GetArray('GLSScales'))
-    print('GLS pipeline: %.2f s; %d scales from %.4g to %.4g; feature in [%.3f, %.3f], median %.3f'
-          % (elapsed, len(scales), scales[0], scales[-1], np.nanmin(feature), np.nanmax(feature),
-             np.nanmedian(feature)))
+    print('GLS pipeline: %.2f s; %d scales from %.4g to %.4g (length units of the data); feature in [%.3f, %.3f], '
+          'median %.3f' % (elapsed, len(scales), scales[0], scales[-1], np.nanmin(feature), np.nanmax(feature),
+                           np.nanmedian(feature)))
+    dissimilarity = query_dissimilarity(args, upstream, watch, result.GetNumberOfPoints())
+    if dissimilarity is not None:
+        pd.AddArray(dissimilarity)
 
     output = merged.scatter(result) if merged is not None else result
-    if output.GetNumberOfCells() == 0:  # a cloud without cells: vertices, so that ParaView shows the .vtp
+    if not args.per_scale:
+        output, narrowed = gls_outputs.compact(output, keep_cells=output.GetNumberOfCells() > 0)
+        print('output: per-point summaries; narrowed to float32 (uint8 for the count): %s' % ', '.join(narrowed))
+    elif output.GetNumberOfCells() == 0:  # a cloud without cells: vertices, so that ParaView shows the .vtp
         output.SetVerts(gls_cloud.vertex_cells(output.GetNumberOfPoints()))
     vtp = outputs.path('-gls.vtp')
     gls_outputs.write_vtp(vtp, output)
+    print('wrote the data: %.1f bytes per point' % (os.path.getsize(vtp) / float(count)))
     gls_render.render_features(outputs.path('-features.png'), output,
                                'GLS continuous features: %s (%d points)' % (outputs.name, count))
 
@@ -169,20 +226,20 @@ def analyze(args, outputs):
                                       Normals=NORMALS, PointIds=list(picks.values()), NumberOfScales=300,
                                       MinScale=args.min_scale, MaxScale=args.max_scale, ScaleSampling='Quadratic'),
                            'scale profiles', progress=False)
-    profiles.UpdatePipeline()
-    watch.check()
+    watch.update(profiles)
     gls_profiles.plot_profiles(outputs.path('-profiles.png'), 'GLS scale profiles: %s' % outputs.name,
-                               simple.servermanager.Fetch(profiles), picks,
-                               vtk_to_numpy(pd.GetArray('GLSPertinentScales')))
+                               gls_io.output_of(profiles), picks)
 
-    cloud = analysed if upstream is source else simple.servermanager.Fetch(upstream)
+    cloud = analysed if upstream is source else gls_io.output_of(upstream)
     stage = gls_denoising.denoise(gls_filter, cloud, args.noise, watch)
     rms = gls_denoising.offsets(stage)
-    print('denoising: %.2f s; bandwidth searched from %.4g to %.4g; RMS distance to the input surface %.4g -> %.4g'
-          % (stage['seconds'], 1.5 * stage['spacing'], 8.0 * stage['spacing'], rms['noisy'], rms['denoised']))
+    print('denoising: %.2f s%s; bandwidth searched from %.4g to %.4g; RMS distance to the input surface %.4g -> %.4g'
+          % (stage['seconds'], gls_denoising.sample_note(stage), gls_denoising.MIN_BANDWIDTH * stage['spacing'],
+             gls_denoising.MAX_BANDWIDTH * stage['spacing'], rms['noisy'], rms['denoised']))
     gls_denoising.render(outputs.path('-denoising.png'), stage,
-                         'GLS denoising: %s%s (left) -> adaptive-bandwidth MLS projection (right)'
-                         % (outputs.name, ' + noise %.3g x diagonal' % args.noise if args.noise > 0 else ''))
+                         'GLS denoising: %s%s%s (left) -> adaptive-bandwidth MLS projection (right)'
+                         % (outputs.name, ' + noise %.3g x diagonal' % args.noise if args.noise > 0 else '',
+                            gls_denoising.sample_note(stage)))
 
     curve, axis = gls_cross_section.longest_section(analysed)
     if curve is None:
@@ -218,12 +275,15 @@ def main(argv):
         return fail(e)
     try:
         analyze(args, outputs)
-    except (gls_io.InputError, gls_watch.StageError, AnalysisError) as e:
+    except (gls_io.InputError, gls_watch.StageError, gls_memory.MemoryError_, AnalysisError) as e:
         outputs.discard()
         return fail('%s; no results written' % e)
+    except (gls_watch.Interrupted, KeyboardInterrupt):
+        outputs.discard()
+        return fail('interrupted; no results written', 130)
     except BaseException as e:
         outputs.discard()
-        if isinstance(e, (KeyboardInterrupt, SystemExit)):
+        if isinstance(e, SystemExit):
             raise
         traceback.print_exc()
         return fail('internal error (the traceback above); no results written', 1)

@@ -52,17 +52,97 @@ class Outputs:
         shutil.rmtree(self.staging, ignore_errors=True)
 
 
+# The default output's GLS arrays (docs/main-job.md, "Outputs"): float32 (7 significant digits, far below what a
+# picture or a threshold on them can show), the count as uint8; the per-scale arrays only with --per-scale.
+SUMMARY_FLOAT32 = ('Normals', 'NormalQuality', 'GLSFeature', 'GLSStableScale', 'GLSStableTau', 'GLSStableKappa',
+                   'GLSStablePhi', 'GLSMaxVariation', 'GLSMaxVariationScale', 'GLSDissimilarity')
+SUMMARY_UINT8 = ('GLSPertinentScaleCount',)
+# Arrays of the analysis left out of the default output (the normal estimation's neighbour count).
+SUMMARY_DROPPED = ('NormalNeighbors',)
+# Points are written as float32 when its rounding (2^-24 of the largest coordinate) stays below this fraction of the
+# typical point spacing; otherwise (georeferenced coordinates far from the origin) as doubles.
+FLOAT32_POINT_ROUNDING = 0.01
+
+
+def float32_points_suffice(points):
+    """Whether float32 positions stay within FLOAT32_POINT_ROUNDING of the typical spacing (the diagonal over the
+    square root of the point count, the spacing of a surface)."""
+    import numpy as np
+    if len(points) < 2:
+        return True
+    low, high = points.min(axis=0), points.max(axis=0)
+    spacing = float(np.linalg.norm(high - low)) / np.sqrt(len(points))
+    largest = float(max(np.abs(low).max(), np.abs(high).max()))
+    return largest * 2.0 ** -24 <= FLOAT32_POINT_ROUNDING * spacing
+
+
+def compact(polydata, keep_cells):
+    """The default output: the points (float32 where that suffices), the input's own arrays as they are, the GLS
+    arrays in SUMMARY_FLOAT32 / SUMMARY_UINT8 precision, and the cells when keep_cells (a mesh), else one
+    poly-vertex cell of every point (so that ParaView shows the cloud: 4 bytes a point before compression, where a
+    vertex cell per point takes 16). Returns (polydata, description of what was narrowed)."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray
+    out = vtkPolyData()
+    points = vtk_to_numpy(polydata.GetPoints().GetData())
+    narrowed = []
+    pts = vtkPoints()
+    if points.dtype != np.float32 and float32_points_suffice(points):
+        pts.SetData(numpy_to_vtk(np.ascontiguousarray(points, dtype=np.float32), deep=True))
+        narrowed.append('points')
+    else:
+        pts.SetData(polydata.GetPoints().GetData())
+    out.SetPoints(pts)
+    if keep_cells:
+        for kind in ('Verts', 'Lines', 'Polys', 'Strips'):
+            getattr(out, 'Set' + kind)(getattr(polydata, 'Get' + kind)())
+    else:
+        cells = vtkCellArray()
+        n = polydata.GetNumberOfPoints()
+        cells.SetData(numpy_to_vtkIdTypeArray(np.array([0, n], dtype=np.int64), deep=True),
+                      numpy_to_vtkIdTypeArray(np.arange(n, dtype=np.int64), deep=True))
+        out.SetVerts(cells)
+    out.GetFieldData().ShallowCopy(polydata.GetFieldData())
+    source, target = polydata.GetPointData(), out.GetPointData()
+    for i in range(source.GetNumberOfArrays()):
+        array = source.GetAbstractArray(i)
+        name = array.GetName()
+        if name in SUMMARY_DROPPED:
+            continue
+        kind = np.float32 if name in SUMMARY_FLOAT32 else np.uint8 if name in SUMMARY_UINT8 else None
+        values = vtk_to_numpy(array) if kind is not None else None
+        if kind is None or values.dtype == kind or (kind == np.uint8 and values.max(initial=0) > 255):
+            target.AddArray(array)
+            continue
+        narrow = numpy_to_vtk(np.ascontiguousarray(values, dtype=kind), deep=True)
+        narrow.SetName(name)
+        target.AddArray(narrow)
+        narrowed.append(name)
+    if source.GetScalars() is not None:
+        target.SetActiveScalars(source.GetScalars().GetName())
+    if target.GetArray('Normals') is not None:
+        target.SetActiveNormals('Normals')
+    return out, narrowed
+
+
 def write_vtp(path, polydata):
-    """Inline binary VTK XML (ParaView 5.11's reader fails on some appended files). Reading it back, ParaView 5.11
-    prints a harmless "Error reading InformationKey ... L2_NORM_RANGE" for the vector arrays: its writer stores
-    that range cache and its reader does not know the key; the data are read correctly."""
+    """VTK XML polydata, zlib-compressed, its data appended raw after the XML (inline binary would be base64: a
+    third larger). Reading it back, ParaView 5.11 prints a harmless "Error reading InformationKey ...
+    L2_NORM_RANGE" for the vector arrays: its writer stores that range cache and its reader does not know the key;
+    the data are read correctly."""
     from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
     writer = vtkXMLPolyDataWriter()
     writer.SetFileName(path)
     writer.SetInputData(polydata)
-    writer.SetDataModeToBinary()
+    writer.SetDataModeToAppended()
+    writer.EncodeAppendedDataOff()
     writer.SetCompressorTypeToZLib()
     writer.SetHeaderTypeToUInt64()
+    if polydata.GetNumberOfPoints() < 2 ** 31 - 1 and polydata.GetNumberOfCells() < 2 ** 31 - 1:
+        writer.SetIdTypeToInt32()  # the cells' ids in 4 bytes
     if writer.Write() != 1:
         raise OSError('cannot write %s' % path)
 

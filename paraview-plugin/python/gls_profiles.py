@@ -20,8 +20,21 @@ def select_profile_points(feature, pertinent_count):
     return picks
 
 
-def plot_profiles(path, title, table, picks, pertinent):
-    """kappa and nu against scale for the picked points, from a GLS Scale Profiles table (finely sampled)."""
+# nu differences below this are rounding noise (gls::kVariationNoise: nu is about 1e-20 on a sphere).
+VARIATION_NOISE = 1e-12
+
+
+def profile_minima(nu, count=3):
+    """The indices of the `count` lowest strict local minima of a profile's nu (gls::isPertinentScale's rule),
+    in increasing order: the pertinent scales of the finely sampled profile."""
+    inner = np.arange(1, len(nu) - 1)
+    minima = inner[(nu[inner] < nu[inner - 1] - VARIATION_NOISE) & (nu[inner] <= nu[inner + 1] + VARIATION_NOISE)]
+    return np.sort(minima[np.argsort(nu[minima], kind='stable')][:count])
+
+
+def plot_profiles(path, title, table, picks):
+    """kappa and nu against scale for the picked points, from a GLS Scale Profiles table (finely sampled), with
+    the pertinent scales of each profile dotted."""
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
@@ -34,10 +47,10 @@ def plot_profiles(path, title, table, picks, pertinent):
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
     for label, pid in picks.items():
         line, = ax1.plot(t, column('t*kappa (%d)' % pid) / t, label='%s (point %d)' % (label, pid))
-        ax2.semilogy(t, np.maximum(column('nu (%d)' % pid), 1e-12), color=line.get_color())
-        for scale in pertinent[pid]:
-            if np.isfinite(scale):
-                ax2.axvline(scale, color=line.get_color(), ls=':', lw=1)
+        nu = column('nu (%d)' % pid)
+        ax2.semilogy(t, np.maximum(nu, 1e-12), color=line.get_color())
+        for k in profile_minima(nu):
+            ax2.axvline(t[k], color=line.get_color(), ls=':', lw=1)
     ax1.set_ylabel('kappa (1/length)')
     ax1.axhline(0, color='gray', lw=0.5)
     ax1.legend(fontsize=8)
