@@ -18,6 +18,9 @@ done
 # Real scan sizes: the multi-resolution evaluation, L1-L3 and the accuracy table (about 40 minutes on 2 cores;
 # docs/performance.md, "Large scans").
 "${1:-build}/bin/glsLargeScanBenchmark" --case all
+# The main job end to end at 10M points beside L1 and the normals (M1, M3; docs/performance.md, "The main job at
+# scale"; about 10 minutes for the two models).
+"$(dirname "$0")/run-main-job-benchmark.sh" "${1:-build}"
 # The CUDA backend against the CPU engine (docs/performance.md, "Backends: CPU and CUDA"): without a usable device its
 # rows say why and only the CPU is timed.
 "${1:-build}/bin/glsCudaBenchmark" --points 1000000 --repeat 3
