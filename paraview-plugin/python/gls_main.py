@@ -149,14 +149,16 @@ def per_scale_pipeline(args, upstream, watch):
     return summary_pipeline(args, variation, watch)
 
 
-def query_dissimilarity(args, upstream, watch, count):
-    """GLSDissimilarity of every point to --query (a fused pass at the analysis' scales), or None."""
+def query_dissimilarity(args, upstream, watch, count, merged):
+    """GLSDissimilarity of every point to --query (a point id of the input file; a fused pass at the analysis'
+    scales), or None."""
     if args.query is None:
         return None
     if not 0 <= args.query < count:
-        raise gls_io.InputError('--query %d is not a point of the analysed cloud (0 to %d)' % (args.query, count - 1))
+        raise gls_io.InputError('--query %d is not a point of the input (0 to %d)' % (args.query, count - 1))
+    query = int(merged.inverse[args.query]) if merged is not None else args.query  # its distinct position
     dissimilarity = watch.watch(gls_filter('GLSMultiScaleDissimilarity', registrationName='Dissimilarity',
-                                           Input=upstream, Normals=NORMALS, QueryPointId=args.query,
+                                           Input=upstream, Normals=NORMALS, QueryPointId=query,
                                            NumberOfScales=args.scales, MinScale=args.min_scale,
                                            MaxScale=args.max_scale, ScaleSampling='Quadratic',
                                            PriorMinScale=args.min_scale, PriorMaxScale=args.max_scale),
@@ -205,7 +207,7 @@ def analyze(args, outputs):
     print('GLS pipeline: %.2f s; %d scales from %.4g to %.4g (length units of the data); feature in [%.3f, %.3f], '
           'median %.3f' % (elapsed, len(scales), scales[0], scales[-1], np.nanmin(feature), np.nanmax(feature),
                            np.nanmedian(feature)))
-    dissimilarity = query_dissimilarity(args, upstream, watch, result.GetNumberOfPoints())
+    dissimilarity = query_dissimilarity(args, upstream, watch, count, merged)
     if dissimilarity is not None:
         pd.AddArray(dissimilarity)
 
