@@ -134,9 +134,7 @@ int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)
   {
     return ABORTED;
   }
-  vtkNew<vtkDoubleArray> feature;
-  feature->SetName(vtkGLSArrayNames::Feature);
-  feature->SetNumberOfTuples(run.Input->GetNumberOfPoints());
+  const auto feature = NewPointArray(vtkGLSArrayNames::Feature, run.Input->GetNumberOfPoints());
   if (!this->ComputeFeatureAndSummary(run, sigma, feature))
   {
     return ABORTED; // no partial arrays
@@ -151,9 +149,9 @@ int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)
   return COMPLETED;
 }
 
-bool vtkGLSContinuousFeatures::ComputeFeatureAndSummary(vtkGLSRun& run, double sigma, vtkDataArray* featureArray)
+bool vtkGLSContinuousFeatures::ComputeFeatureAndSummary(vtkGLSRun& run, double sigma, vtkDoubleArray* featureArray)
 {
-  double* feature = static_cast<vtkDoubleArray*>(featureArray)->GetPointer(0);
+  double* feature = featureArray->GetPointer(0);
   const gls::FeatureMeasure measure = static_cast<gls::FeatureMeasure>(this->FeatureMeasure);
   const std::vector<double>& t = run.Scales;
   if (!this->ScaleSummary)

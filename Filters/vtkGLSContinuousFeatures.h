@@ -32,7 +32,7 @@
 #include "vtkGLSFiltersModule.h"
 #include "vtkGLSVariationFilterBase.h"
 
-class vtkDataArray;
+class vtkDoubleArray;
 
 class VTKGLSFILTERS_EXPORT vtkGLSContinuousFeatures : public vtkGLSVariationFilterBase
 {
@@ -117,7 +117,7 @@ protected:
   bool RelativeSigma(vtkGLSRun& run, double& sigma);
 
   /// GLSFeature, and the scale summary with ScaleSummary on, from the samples in one fused pass. False if aborted.
-  bool ComputeFeatureAndSummary(vtkGLSRun& run, double sigma, vtkDataArray* feature);
+  bool ComputeFeatureAndSummary(vtkGLSRun& run, double sigma, vtkDoubleArray* feature);
 
   bool ReuseInputScaleSpace;
   bool ScaleSummary;

@@ -11,6 +11,7 @@ d fares worse still (a ball of 2 d holds about 3 points there)."""
 import numpy as np
 
 import gls_cloud
+import gls_io
 import gls_render
 import gls_watch
 
@@ -84,31 +85,18 @@ MAX_DENOISED_POINTS = 500000
 
 
 def every_kth(polydata, stride):
-    """The points (and point arrays) of every stride-th point, without cells."""
-    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-    from vtkmodules.vtkCommonCore import vtkPoints
-    from vtkmodules.vtkCommonDataModel import vtkPolyData
-    out = vtkPolyData()
-    pts = vtkPoints()
-    pts.SetData(numpy_to_vtk(np.ascontiguousarray(vtk_to_numpy(polydata.GetPoints().GetData())[::stride]),
-                             deep=True))
-    out.SetPoints(pts)
+    """A vertex cloud of every stride-th point with its numeric point arrays."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
     arrays = polydata.GetPointData()
-    for i in range(arrays.GetNumberOfArrays()):
-        array = arrays.GetArray(i)
-        if array is None:
-            continue
-        values = vtk_to_numpy(array)[::stride]
-        copy = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
-        copy.SetName(array.GetName())
-        out.GetPointData().AddArray(copy)
-    return out
+    return gls_cloud.vertex_cloud(
+        vtk_to_numpy(polydata.GetPoints().GetData())[::stride],
+        {arrays.GetArrayName(i): vtk_to_numpy(arrays.GetArray(i))[::stride]
+         for i in range(arrays.GetNumberOfArrays()) if arrays.GetArray(i) is not None})
 
 
 def sample_note(stage):
     """' (every k-th point)' when the stage ran on a subsample, else ''."""
-    k = stage['stride']
-    return ' (every %d%s point)' % (k, {2: 'nd', 3: 'rd'}.get(k, 'th')) if k > 1 else ''
+    return ' (%s)' % gls_cloud.every_kth_note(stage['stride']) if stage['stride'] > 1 else ''
 
 
 def denoise(make_proxy, upstream, noise, watch):
@@ -118,7 +106,7 @@ def denoise(make_proxy, upstream, noise, watch):
     gls_watch.StageError when a stage reports an error or the points have no distinct neighbours."""
     import time
     from paraview import simple
-    stride = max(1, -(-upstream.GetNumberOfPoints() // MAX_DENOISED_POINTS))
+    stride = gls_cloud.stride_for(upstream.GetNumberOfPoints(), MAX_DENOISED_POINTS)
     if stride > 1:
         upstream = every_kth(upstream, stride)
     diagonal = float(np.sqrt(sum((upstream.GetBounds()[2 * a + 1] - upstream.GetBounds()[2 * a]) ** 2
@@ -130,13 +118,12 @@ def denoise(make_proxy, upstream, noise, watch):
     start = time.time()
     source = gls_cloud.producer(noisy)
     bandwidth = make_proxy('GLSAdaptiveBandwidth', registrationName='Bandwidth', Input=source, Normals=NORMALS,
-                           ScaleUnits='Absolute', MinScale=MIN_BANDWIDTH * d, MaxScale=MAX_BANDWIDTH * d, NumberOfScales=40,
-                           ScaleSampling='Logarithmic', SmoothingRadius=SMOOTHING * d)
+                           ScaleUnits='Absolute', MinScale=MIN_BANDWIDTH * d, MaxScale=MAX_BANDWIDTH * d,
+                           NumberOfScales=40, ScaleSampling='Logarithmic', SmoothingRadius=SMOOTHING * d)
     watch.watch(bandwidth, 'adaptive bandwidth')
     projection = make_proxy('GLSProjection', registrationName='Denoised', Input=bandwidth, Normals=NORMALS)
     watch.watch(projection, 'projection')
     watch.update(projection)
-    import gls_io
     result = gls_io.output_of(projection)
     elapsed = time.time() - start
     for proxy in (projection, bandwidth, source):

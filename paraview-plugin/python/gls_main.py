@@ -212,11 +212,11 @@ def analyze(args, outputs):
         pd.AddArray(dissimilarity)
 
     output = merged.scatter(result) if merged is not None else result
+    if output.GetNumberOfCells() == 0:  # a cloud without cells: one poly-vertex, so that ParaView shows the .vtp
+        output.SetVerts(gls_cloud.poly_vertex_cell(output.GetNumberOfPoints()))
     if not args.per_scale:
-        output, narrowed = gls_outputs.compact(output, keep_cells=output.GetNumberOfCells() > 0)
+        output, narrowed = gls_outputs.compact(output)
         print('output: per-point summaries; narrowed to float32 (uint8 for the count): %s' % ', '.join(narrowed))
-    elif output.GetNumberOfCells() == 0:  # a cloud without cells: vertices, so that ParaView shows the .vtp
-        output.SetVerts(gls_cloud.vertex_cells(output.GetNumberOfPoints()))
     vtp = outputs.path('-gls.vtp')
     gls_outputs.write_vtp(vtp, output)
     print('wrote the data: %.1f bytes per point' % (os.path.getsize(vtp) / float(count)))
@@ -277,7 +277,7 @@ def main(argv):
         return fail(e)
     try:
         analyze(args, outputs)
-    except (gls_io.InputError, gls_watch.StageError, gls_memory.MemoryError_, AnalysisError) as e:
+    except (gls_io.InputError, gls_watch.StageError, gls_memory.BudgetError, AnalysisError) as e:
         outputs.discard()
         return fail('%s; no results written' % e)
     except (gls_watch.Interrupted, KeyboardInterrupt):

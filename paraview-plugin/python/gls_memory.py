@@ -13,7 +13,7 @@ PER_SCALE_BYTES_PER_POINT_SCALE = 240.0
 GIB = 1024.0 ** 3
 
 
-class MemoryError_(Exception):
+class BudgetError(Exception):
     """The analysis would not fit (one line: the figure and what to change)."""
 
 
@@ -36,7 +36,7 @@ def needed_bytes(points, scales, per_scale):
 
 
 def check(points, scales, per_scale, budget_gib=None):
-    """Raises MemoryError_ when the estimate exceeds the budget (GiB; default: the memory available now).
+    """Raises BudgetError when the estimate exceeds the budget (GiB; default: the memory available now).
     Returns (needed bytes, budget bytes or None)."""
     budget = budget_gib * GIB if budget_gib is not None else available_bytes()
     needed = needed_bytes(points, scales, per_scale)
@@ -49,7 +49,7 @@ def check(points, scales, per_scale, budget_gib=None):
         advice = 'drop --per-scale (the per-point summaries need about %.1f GiB)' % (default / GIB)
         if fitting >= 2:
             advice += ', or keep it with --scales %d' % fitting
-        raise MemoryError_('storing every scale (--per-scale) of %d points at %d scales needs about %.1f GiB, '
+        raise BudgetError('storing every scale (--per-scale) of %d points at %d scales needs about %.1f GiB, '
                            'above the %.1f GiB %s: %s' % (points, scales, needed / GIB, budget / GIB, where, advice))
-    raise MemoryError_('the analysis of %d points needs about %.1f GiB, above the %.1f GiB %s: analyse a part of '
+    raise BudgetError('the analysis of %d points needs about %.1f GiB, above the %.1f GiB %s: analyse a part of '
                        'the cloud, or a machine with more memory' % (points, needed / GIB, budget / GIB, where))

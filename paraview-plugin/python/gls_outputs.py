@@ -76,16 +76,13 @@ def float32_points_suffice(points):
     return largest * 2.0 ** -24 <= FLOAT32_POINT_ROUNDING * spacing
 
 
-def compact(polydata, keep_cells):
-    """The default output: the points (float32 where that suffices), the input's own arrays as they are, the GLS
-    arrays in SUMMARY_FLOAT32 / SUMMARY_UINT8 precision, and the cells when keep_cells (a mesh), else one
-    poly-vertex cell of every point (so that ParaView shows the cloud: 4 bytes a point before compression, where a
-    vertex cell per point takes 16). Returns (polydata, description of what was narrowed)."""
+def compact(polydata):
+    """The default output: the points (float32 where that suffices), the cells, the input's own arrays as they are
+    and the GLS arrays in SUMMARY_FLOAT32 / SUMMARY_UINT8 precision. Returns (polydata, the arrays narrowed)."""
     import numpy as np
     from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
     from vtkmodules.vtkCommonCore import vtkPoints
-    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
-    from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray
+    from vtkmodules.vtkCommonDataModel import vtkPolyData
     out = vtkPolyData()
     points = vtk_to_numpy(polydata.GetPoints().GetData())
     narrowed = []
@@ -96,15 +93,8 @@ def compact(polydata, keep_cells):
     else:
         pts.SetData(polydata.GetPoints().GetData())
     out.SetPoints(pts)
-    if keep_cells:
-        for kind in ('Verts', 'Lines', 'Polys', 'Strips'):
-            getattr(out, 'Set' + kind)(getattr(polydata, 'Get' + kind)())
-    else:
-        cells = vtkCellArray()
-        n = polydata.GetNumberOfPoints()
-        cells.SetData(numpy_to_vtkIdTypeArray(np.array([0, n], dtype=np.int64), deep=True),
-                      numpy_to_vtkIdTypeArray(np.arange(n, dtype=np.int64), deep=True))
-        out.SetVerts(cells)
+    for kind in ('Verts', 'Lines', 'Polys', 'Strips'):
+        getattr(out, 'Set' + kind)(getattr(polydata, 'Get' + kind)())
     out.GetFieldData().ShallowCopy(polydata.GetFieldData())
     source, target = polydata.GetPointData(), out.GetPointData()
     for i in range(source.GetNumberOfArrays()):

@@ -15,14 +15,10 @@ TERRAIN_SPREAD_RATIO = 0.04     # smallest / largest eigenvalue of the covarianc
 TERRAIN_AXIS_COSINE = math.cos(math.radians(30.0))  # ...whose thin direction is within 30 degrees of Z is terrain
 
 
-def subsample_stride(count):
-    """k such that every k-th of `count` points is at most MAX_SHOWN_POINTS."""
-    return max(1, -(-count // MAX_SHOWN_POINTS))
-
-
 def camera_from_data(points, normals=None):
     """(direction from the focal point to the camera, view up) for points (n x 3) and their normals (or None)."""
-    sample = np.asarray(points[::max(1, len(points) // 200000)], dtype=float)
+    every = max(1, len(points) // 200000)  # the covariance and the facing from at most about 200,000 points
+    sample = np.asarray(points[::every], dtype=float)
     if len(sample) < 3:
         return np.array([0.0, 0.0, 1.0]), np.array([0.0, 1.0, 0.0])
     centred = sample - sample.mean(axis=0)
@@ -31,7 +27,7 @@ def camera_from_data(points, normals=None):
     if abs(thin[2]) >= TERRAIN_AXIS_COSINE and values[0] <= TERRAIN_SPREAD_RATIO * values[2]:
         return np.array([0.0, 0.0, 1.0]), np.array([0.0, 1.0, 0.0])
     if normals is not None:
-        facing = np.asarray(normals[::max(1, len(normals) // 200000)], dtype=float) @ thin
+        facing = np.asarray(normals[::every], dtype=float) @ thin
         if np.count_nonzero(facing < 0) > np.count_nonzero(facing > 0):
             thin = -thin
     elif thin[np.argmax(np.abs(thin))] < 0:
@@ -78,9 +74,9 @@ def render_features(path, polydata, title):
     points = vtk_to_numpy(polydata.GetPoints().GetData())
     normals_array = polydata.GetPointData().GetArray('Normals')
     normals = vtk_to_numpy(normals_array) if normals_array is not None else None
-    stride = 1 if surface else subsample_stride(len(points))
+    stride = 1 if surface else gls_cloud.stride_for(len(points), MAX_SHOWN_POINTS)
     if stride > 1:
-        title += ' (every %d%s point shown)' % (stride, {2: 'nd', 3: 'rd'}.get(stride, 'th'))
+        title += ' (%s shown)' % gls_cloud.every_kth_note(stride)
     shown = polydata if surface else gls_cloud.vertex_cloud(
         points[::stride], {'GLSFeature': vtk_to_numpy(polydata.GetPointData().GetArray('GLSFeature'))[::stride]})
     source = gls_cloud.producer(shown)

@@ -54,7 +54,7 @@ private:
 class ScaleSummarySink : public ScaleSampleSink
 {
 public:
-  /// Where each point's values go (one per point; null pointers are skipped).
+  /// Where each point's values go (arrays of one value per point).
   struct Outputs
   {
     double* feature = nullptr;
@@ -89,20 +89,14 @@ public:
       nu[i] = geometricVariation(s[k], this->Scales[i], this->Weights);
     }
     const ScaleSummary summary = summarizeScales(s, nu.data(), this->Scales.data(), count);
-    const auto put = [id](auto* array, auto value) {
-      if (array)
-      {
-        array[id] = value;
-      }
-    };
-    put(this->Out.feature, continuousFeature(nu.data(), this->Scales.data(), count, this->Sigma, this->Measure));
-    put(this->Out.pertinentCount, summary.pertinentCount);
-    put(this->Out.stableScale, summary.stableScale);
-    put(this->Out.tau, summary.tau);
-    put(this->Out.kappa, summary.kappa);
-    put(this->Out.phi, summary.phi);
-    put(this->Out.maxVariation, summary.maxVariation);
-    put(this->Out.maxVariationScale, summary.maxVariationScale);
+    this->Out.feature[id] = continuousFeature(nu.data(), this->Scales.data(), count, this->Sigma, this->Measure);
+    this->Out.pertinentCount[id] = summary.pertinentCount;
+    this->Out.stableScale[id] = summary.stableScale;
+    this->Out.tau[id] = summary.tau;
+    this->Out.kappa[id] = summary.kappa;
+    this->Out.phi[id] = summary.phi;
+    this->Out.maxVariation[id] = summary.maxVariation;
+    this->Out.maxVariationScale[id] = summary.maxVariationScale;
   }
 
 private:
