@@ -175,6 +175,35 @@ class MainJob(unittest.TestCase):
         self.assertNotIn('%', result.stderr)  # no stage reported progress
         self.assertEqual(os.listdir(out), [])
 
+    def test_ctrl_c_stops_within_seconds_and_writes_nothing(self):
+        import re
+        import signal
+        import subprocess
+        import time
+        ply = os.path.join(WORK, 'torus-interrupted.ply')
+        write_torus_ply(ply, 1000000)
+        out = os.path.join(WORK, 'interrupted')
+        env = dict(os.environ)
+        env.pop('DISPLAY', None)
+        process = subprocess.Popen([ANALYZE, ply, '--output-dir', out], stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True, env=env, start_new_session=True)
+        seen, running = '', False
+        for line in process.stderr:  # wait until the fused pass has reported a step short of its end
+            seen += line
+            step = re.match(r'\s*features and summary\s+(\d+)%', line)
+            if step and 0 < int(step.group(1)) < 100:
+                running = True
+                break
+        self.assertTrue(running, 'the fused pass never reported progress:\n' + seen)
+        interrupted = time.time()
+        os.killpg(process.pid, signal.SIGINT)  # as a terminal's Ctrl-C: the whole process group
+        output, rest = process.communicate(timeout=60)
+        self.assertLess(time.time() - interrupted, 10.0, seen + rest)
+        self.assertEqual(process.returncode, 130, seen + rest)
+        self.assertIn('gls-analyze: interrupted; no results written', rest)
+        self.assertNotIn('GLS pipeline', output)  # it stopped in the fused pass, not after it
+        self.assertEqual(os.listdir(out), [])  # neither results nor the staging folder
+
     def test_ply_and_vtp_inputs(self):
         from vtkmodules.vtkIOPLY import vtkPLYWriter
         from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
