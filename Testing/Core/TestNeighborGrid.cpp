@@ -134,6 +134,79 @@ TEST(NeighborGrid, KNearestMatchesBruteForce)
   EXPECT_EQ(out.size(), 2000u);
 }
 
+TEST(NeighborGrid, KNearestBreaksTiesByOriginalIndexAndHonoursTheMask)
+{
+  // A lattice (many equal distances) with repeated points, in a shuffled order, queried at lattice points, between
+  // them and outside, on several cell sizes (the pruned cells and rows must never drop a tie).
+  std::vector<double> xyz;
+  for (int z = 0; z < 4; ++z)
+    for (int y = 0; y < 9; ++y)
+      for (int x = 0; x < 9; ++x)
+      {
+        xyz.insert(xyz.end(), { 0.1 * x, 0.1 * y, 0.1 * z });
+        if ((x + y + z) % 7 == 0)
+        {
+          xyz.insert(xyz.end(), { 0.1 * x, 0.1 * y, 0.1 * z }); // a repeated point
+        }
+      }
+  const std::size_t n = xyz.size() / 3;
+  std::mt19937_64 rng(7);
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    order[i] = i;
+  }
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<double> shuffled(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    std::copy(&xyz[3 * order[i]], &xyz[3 * order[i]] + 3, &shuffled[3 * i]);
+  }
+  std::vector<unsigned char> keep(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    keep[i] = i % 3 != 1;
+  }
+  for (double cell : { 0.03, 0.1, 0.25, 2.0 })
+  {
+    gls::NeighborGrid grid;
+    grid.build(shuffled.data(), nullptr, n, cell);
+    const gls::GridView& g = grid.view();
+    std::vector<unsigned char> keepSorted(g.count);
+    for (std::size_t s = 0; s < g.count; ++s)
+    {
+      keepSorted[s] = keep[g.ids[s]];
+    }
+    std::vector<std::pair<double, std::uint64_t>> out;
+    for (const gls::Vec3 c : { gls::Vec3{ 0.4, 0.4, 0.1 }, gls::Vec3{ 0.45, 0.35, 0.15 }, gls::Vec3{ 0.0, 0.8, 0.3 },
+           gls::Vec3{ -0.5, 0.2, 2.0 } })
+    {
+      for (int k : { 1, 6, 7, 27, 60 })
+      {
+        for (bool masked : { false, true })
+        {
+          grid.kNearest(c, k, out, masked ? keepSorted.data() : nullptr);
+          std::vector<std::pair<double, std::uint64_t>> all;
+          for (std::size_t i = 0; i < n; ++i)
+          {
+            if (!masked || keep[i])
+            {
+              all.emplace_back(dist2(shuffled, i, c), i);
+            }
+          }
+          std::sort(all.begin(), all.end());
+          ASSERT_EQ(out.size(), std::min<std::size_t>(k, all.size()));
+          for (std::size_t j = 0; j < out.size(); ++j)
+          {
+            ASSERT_EQ(g.ids[out[j].second], all[j].second) << "cell " << cell << " k " << k << " rank " << j;
+            ASSERT_EQ(out[j].first, all[j].first);
+          }
+        }
+      }
+    }
+  }
+}
+
 TEST(NeighborGrid, LeavesOutNonFinitePointsAndMaskedPoints)
 {
   std::vector<double> xyz = { 0, 0, 0, 1, 0, 0, std::nan(""), 0, 0, 0, 1, 0, 0, 0, INFINITY };

@@ -117,6 +117,89 @@ TEST(NormalEstimation, DegenerateNeighbourhoodsGiveNaN)
   EXPECT_TRUE(std::isnan(r.normals[15]));
 }
 
+TEST(NormalEstimation, TheEstimatesTreeIsTheStandaloneTreeWhateverTheThreads)
+{
+  // Two spheres, a line sticking out of one of them (without growth most of its points get no normal, so the graph
+  // lists of the sphere's points near it are queried again among the points with a normal; with growth, the grown
+  // points' lists are), a lattice plane (equal costs everywhere), a NaN point and repeated points.
+  Cloud c = sphere(3000, 1.0);
+  const Cloud d = sphere(1500, 0.5, false, 3.0, 0.0, 0.0);
+  const Cloud flat = plane(30, 2.0);
+  c.points.insert(c.points.end(), d.points.begin(), d.points.end());
+  for (std::size_t i = 0; i < flat.size(); ++i)
+  {
+    c.points.insert(c.points.end(), { flat.points[3 * i], flat.points[3 * i + 1] + 5.0, flat.points[3 * i + 2] });
+  }
+  for (int i = 1; i <= 60; ++i)
+  {
+    c.points.insert(c.points.end(), { 0.001, 1.0 + 0.02 * i, 0.002 });
+  }
+  c.points.insert(c.points.end(), { std::nan(""), 0.0, 0.0 });
+  c.points.insert(c.points.end(), c.points.begin(), c.points.begin() + 30); // ten repeated points
+  const std::size_t n = c.points.size() / 3;
+
+  for (double growth : { 1.0, 8.0 })
+  {
+    gls::NormalEstimationSettings s;
+    s.parallel.threads = 1;
+    s.maximumGrowth = growth;
+    gls::NormalEstimationResult oriented;
+    ASSERT_TRUE(gls::estimateNormals(c.points.data(), n, s, oriented));
+    // The same estimate unoriented, then oriented on its own (the distributed runs' path: its own grid, every graph
+    // list queried).
+    s.orientation = gls::NormalOrientation::None;
+    gls::NormalEstimationResult unoriented;
+    ASSERT_TRUE(gls::estimateNormals(c.points.data(), n, s, unoriented));
+    std::size_t components = 0;
+    std::vector<double> standalone = unoriented.normals;
+    ASSERT_TRUE(gls::orientByMinimumSpanningTree(c.points.data(), n, s.graphNeighbors, standalone.data(), s.parallel,
+      components, unoriented.graphDegree.data()));
+    EXPECT_EQ(components, oriented.components);
+    EXPECT_GE(components, 3u);
+    std::size_t undefined = 0;
+    for (std::size_t i = 0; i < 3 * n; ++i)
+    {
+      undefined += std::isnan(oriented.normals[i]) ? 1 : 0;
+      if (!(std::isnan(oriented.normals[i]) && std::isnan(standalone[i])))
+      {
+        ASSERT_EQ(oriented.normals[i], standalone[i]) << i / 3;
+      }
+    }
+    if (growth == 1.0)
+    {
+      EXPECT_GE(undefined, 3u * 40u); // most of the line's points
+    }
+    // Any thread count: the same bits.
+    s.orientation = gls::NormalOrientation::MinimumSpanningTree;
+    s.parallel.threads = 3;
+    s.parallel.chunk = 17;
+    gls::NormalEstimationResult threaded;
+    ASSERT_TRUE(gls::estimateNormals(c.points.data(), n, s, threaded));
+    for (std::size_t i = 0; i < 3 * n; ++i)
+    {
+      if (!(std::isnan(oriented.normals[i]) && std::isnan(threaded.normals[i])))
+      {
+        ASSERT_EQ(oriented.normals[i], threaded.normals[i]) << i / 3;
+      }
+    }
+    // Outward on both spheres, one side on the plane.
+    for (std::size_t i = 0; i < 4500; ++i)
+    {
+      const double* p = &c.points[3 * i];
+      const double centre = i < 3000 ? 0.0 : 3.0;
+      const double radial[3] = { p[0] - centre, p[1], p[2] };
+      if (std::isfinite(oriented.normals[3 * i]))
+      {
+        ASSERT_GT(dot3(&oriented.normals[3 * i], radial), 0.0) << i;
+      }
+    }
+    for (std::size_t i = 4500; i + 1 < 4500 + flat.size(); ++i)
+    {
+      ASSERT_GT(oriented.normals[3 * i + 2] * oriented.normals[3 * 4500 + 2], 0.99) << i;
+    }
+  }
+}
+
 TEST(NormalEstimation, AbortStopsTheRun)
 {
   const Cloud c = sphere(20000, 1.0);

@@ -29,19 +29,6 @@ bool admitted(const double* xyz, const unsigned char* include, std::size_t i)
   return (include == nullptr || include[i] != 0) && finitePoint(xyz + 3 * i);
 }
 
-// Ordering of k-nearest candidates: distance first, then original index (deterministic ties).
-struct Candidate
-{
-  double d2;
-  std::uint64_t sorted;
-  std::uint64_t id;
-};
-
-bool closer(const Candidate& a, const Candidate& b)
-{
-  return a.d2 < b.d2 || (a.d2 == b.d2 && a.id < b.id);
-}
-
 } // namespace
 
 void NeighborGrid::build(
@@ -186,7 +173,8 @@ double surfaceSpacingOfBox(const double low[3], const double high[3], std::size_
   return std::sqrt(area / static_cast<double>(std::max<std::size_t>(count, 1)));
 }
 
-void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, std::uint64_t>>& out) const
+void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, std::uint64_t>>& out,
+  const unsigned char* admitSorted) const
 {
   out.clear();
   const GridView& g = this->View;
@@ -195,27 +183,54 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
     return;
   }
   const std::size_t want = std::min<std::size_t>(static_cast<std::size_t>(k), g.count);
-  std::vector<Candidate> heap; // max-heap on `closer`: the worst kept candidate on top
-  heap.reserve(want + 1);
+  out.reserve(want);
+  // `out` is kept sorted by (squared distance, original index), nearest first: a candidate enters by insertion
+  // (the few that beat the current k-th), most are rejected by one comparison with the k-th's distance.
+  const auto closerThan = [&g](double d2, std::uint64_t i, const std::pair<double, std::uint64_t>& o) {
+    return d2 < o.first || (d2 == o.first && g.ids[i] < g.ids[o.second]);
+  };
+  const auto offer = [&](double d2, std::uint64_t i) {
+    if (out.size() == want)
+    {
+      if (d2 > out.back().first || !closerThan(d2, i, out.back()))
+      {
+        return;
+      }
+      out.pop_back();
+    }
+    std::size_t j = out.size();
+    out.emplace_back(d2, i);
+    for (; j > 0 && closerThan(d2, i, out[j - 1]); --j)
+    {
+      out[j] = out[j - 1];
+    }
+    out[j] = { d2, i };
+  };
+  // The squared distance below which no unvisited point can beat the k-th kept one (infinity until k are kept).
+  const auto worst = [&]() {
+    return out.size() == want ? out.back().first : std::numeric_limits<double>::infinity();
+  };
+
   const std::int64_t cc[3] = { gridCellCoordinate(c.x, g.origin.x, g.invCellSize, g.dims[0]),
     gridCellCoordinate(c.y, g.origin.y, g.invCellSize, g.dims[1]),
     gridCellCoordinate(c.z, g.origin.z, g.invCellSize, g.dims[2]) };
   const std::int64_t maxRing = std::max({ g.dims[0], g.dims[1], g.dims[2] });
-
-  auto visitRun = [&](std::int64_t row, std::int64_t xa, std::int64_t xb) {
+  // Cells and rows farther from c than the k-th kept point are skipped. Their distance is computed from the cell
+  // bounds origin + index * cellSize, less a margin far above the rounding of those bounds and of the cells the
+  // points were sorted into (that of ballCellBlock), so no point that could enter is skipped.
+  const CellBlock bounds = ballCellBlock(g, c, 0.0);
+  const bool prune = bounds.margin >= 0.0;
+  const auto axisGap = [&](double v, double origin, std::int64_t cell) {
+    const double lo = origin + static_cast<double>(cell) * g.cellSize;
+    const double d = distanceToInterval(v, lo, lo + g.cellSize) - bounds.margin;
+    return d > 0.0 ? d * d : 0.0;
+  };
+  const auto visitRun = [&](std::int64_t row, std::int64_t xa, std::int64_t xb) {
     for (std::uint64_t i = g.cellStart[row + xa]; i < g.cellStart[row + xb + 1]; ++i)
     {
-      const Candidate cand{ squaredNorm(g.points[i] - c), i, g.ids[i] };
-      if (heap.size() < want)
+      if (admitSorted == nullptr || admitSorted[i] != 0)
       {
-        heap.push_back(cand);
-        std::push_heap(heap.begin(), heap.end(), closer);
-      }
-      else if (closer(cand, heap.front()))
-      {
-        std::pop_heap(heap.begin(), heap.end(), closer);
-        heap.back() = cand;
-        std::push_heap(heap.begin(), heap.end(), closer);
+        offer(squaredNorm(g.points[i] - c), i);
       }
     }
   };
@@ -228,39 +243,65 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
     const std::int64_t x0 = std::max<std::int64_t>(xl, 0), x1 = std::min(xh, g.dims[0] - 1);
     for (std::int64_t z = z0; z <= z1; ++z)
     {
+      const double gz = prune ? axisGap(c.z, g.origin.z, z) : 0.0;
       for (std::int64_t y = y0; y <= y1; ++y)
       {
+        const double gyz = prune ? gz + axisGap(c.y, g.origin.y, y) : 0.0;
+        if (gyz > worst())
+        {
+          continue; // the whole row is farther than the k-th kept point
+        }
         const std::int64_t row = (z * g.dims[1] + y) * g.dims[0];
         const bool shell = std::abs(z - cc[2]) == ring || std::abs(y - cc[1]) == ring;
+        const auto visitCell = [&](std::int64_t x) {
+          if (!prune || gyz + axisGap(c.x, g.origin.x, x) <= worst())
+          {
+            visitRun(row, x, x);
+          }
+        };
         if (shell)
         {
-          visitRun(row, x0, x1);
+          // One run of the row's cells, less those at its ends that are too far.
+          std::int64_t a = x0, b = x1;
+          while (prune && a <= b && gyz + axisGap(c.x, g.origin.x, a) > worst())
+          {
+            ++a;
+          }
+          while (prune && b >= a && gyz + axisGap(c.x, g.origin.x, b) > worst())
+          {
+            --b;
+          }
+          if (a <= b)
+          {
+            visitRun(row, a, b);
+          }
         }
         else
         {
           if (xl >= 0)
           {
-            visitRun(row, xl, xl);
+            visitCell(xl);
           }
           if (xh < g.dims[0] && xh != xl)
           {
-            visitRun(row, xh, xh);
+            visitCell(xh);
           }
         }
       }
     }
+    // Every point outside this ring's block of cells is at least `ring` cells away from c's cell.
     const double reach = static_cast<double>(ring) * g.cellSize;
-    if (heap.size() == want && heap.front().d2 <= reach * reach)
+    if (out.size() == want && out.back().first <= reach * reach)
     {
       break;
     }
   }
-  std::sort(heap.begin(), heap.end(), closer);
-  out.reserve(heap.size());
-  for (const Candidate& cand : heap)
-  {
-    out.emplace_back(cand.d2, cand.sorted);
-  }
+}
+
+void NeighborGrid::releaseCells()
+{
+  std::vector<std::uint64_t>().swap(this->CellStart);
+  this->View.cellStart = nullptr;
 }
 
 void normalizeAndAdmit(const double* points, const double* normals, std::size_t n, std::vector<double>& unitNormals,

@@ -5,14 +5,14 @@
 #include "gls/Planarity.h"
 #include "gls/PointScaleSpace.h"
 
+#include "MinimumSpanningOrientation.h"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <queue>
-#include <tuple>
 
 namespace gls
 {
@@ -179,6 +179,53 @@ ParallelOptions progressStage(const ParallelOptions& parallel, double begin, dou
   return o;
 }
 
+/// The per-point values of an estimate in the grid's order, and their scatter to the points' order.
+struct PointEstimates
+{
+  std::vector<Vec3> normals;
+  std::vector<int> neighborCounts;
+  std::vector<double> spread;
+  std::vector<double> reach;
+  std::vector<int> graphDegree;
+  int graphNeighbors;
+
+  PointEstimates(std::size_t count, int graphNeighbors)
+    : normals(count, Vec3{ kNaN, kNaN, kNaN })
+    , neighborCounts(count, 0)
+    , spread(count, kNaN)
+    , reach(count, kNaN)
+    , graphDegree(count, graphNeighbors) // the tree's graph grows with the neighbourhood
+    , graphNeighbors(graphNeighbors)
+  {
+  }
+
+  /// Fills the result's arrays (n points; those left out of the grid keep NaN, 0 neighbours and the graph's k).
+  void scatter(const std::uint64_t* ids, std::size_t n, NormalEstimationResult& result, int threads) const
+  {
+    result.normals.assign(3 * n, kNaN);
+    result.neighborCounts.assign(n, 0);
+    result.spread.assign(n, kNaN);
+    result.reach.assign(n, kNaN);
+    result.graphDegree.assign(n, graphNeighbors);
+    ParallelOptions options;
+    options.threads = threads;
+    options.chunk = 65536;
+    parallelFor(normals.size(), options, [&](std::size_t begin, std::size_t end, int) {
+      for (std::size_t s = begin; s < end; ++s)
+      {
+        const std::uint64_t id = ids[s];
+        result.normals[3 * id] = normals[s].x;
+        result.normals[3 * id + 1] = normals[s].y;
+        result.normals[3 * id + 2] = normals[s].z;
+        result.neighborCounts[id] = neighborCounts[s];
+        result.spread[id] = spread[s];
+        result.reach[id] = reach[s];
+        result.graphDegree[id] = graphDegree[s];
+      }
+    });
+  }
+};
+
 } // namespace
 
 double reachableRadius(const NormalEstimationSettings& settings)
@@ -194,13 +241,7 @@ int reachableNeighbors(const NormalEstimationSettings& settings)
 bool estimateNormals(
   const double* xyz, std::size_t n, const NormalEstimationSettings& settings, NormalEstimationResult& result)
 {
-  result.normals.assign(3 * n, kNaN);
-  result.neighborCounts.assign(n, 0);
-  result.spread.assign(n, kNaN);
-  result.reach.assign(n, kNaN);
-  result.graphDegree.assign(n, settings.graphNeighbors); // the tree's graph grows with the neighbourhood
   result.components = 0;
-
   const bool byRadius = settings.neighborhood == NeighborhoodType::Radius;
   // 2D input: every finite point in one plane z = const (a curve); its normals are in that plane.
   const bool planar = commonZ(xyz, n).planar;
@@ -210,16 +251,27 @@ bool estimateNormals(
   grid.build(xyz, nullptr, n, cellSize);
   const GridView& g = grid.view();
 
+  // Every per-point value is computed in the grid's order (a point's neighbours and its own values lie near it in
+  // memory) and scattered to the points' order once, at the end.
+  PointEstimates est(g.count, settings.graphNeighbors);
   // On planar input, also the in-plane normals and how curve-like each neighbourhood is.
-  std::vector<double> inPlane(planar ? 3 * n : 0, kNaN), curveRatio(planar ? n : 0, kNaN);
+  std::vector<Vec3> inPlane(planar ? g.count : 0, Vec3{ kNaN, kNaN, kNaN });
+  std::vector<double> curveRatio(planar ? g.count : 0, kNaN);
 
   const int threads = resolveThreadCount(settings.parallel.threads);
   std::vector<std::vector<std::uint64_t>> scratch(static_cast<std::size_t>(threads));
   std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
+  // The minimum spanning tree's graph links each point to its nearest others: the k-nearest neighbourhoods found
+  // here hold them (nearest first), so they are kept for the orientation, which queries only the points they do not
+  // answer (32-bit indices: larger grids are queried whole).
+  const bool tree = settings.orientation == NormalOrientation::MinimumSpanningTree;
+  const std::size_t graphWidth = static_cast<std::size_t>(std::max(settings.graphNeighbors, 1));
+  const bool keepNearest = tree && !byRadius && g.count < kNoNeighbor;
+  std::vector<std::uint32_t> nearestOthers(keepNearest ? g.count * graphWidth : 0, kNoNeighbor);
 
   // Progress: the first neighbourhoods [0, 0.5], the grown ones [0.5, 0.6], the orientation [0.6, 1] (when it is
   // the minimum spanning tree; else the estimate is the whole range).
-  const double estimateEnd = settings.orientation == NormalOrientation::MinimumSpanningTree ? 0.6 : 1.0;
+  const double estimateEnd = tree ? 0.6 : 1.0;
   const ParallelOptions firstStage = progressStage(settings.parallel, 0.0, 5.0 / 6.0 * estimateEnd);
   const bool completed =
     parallelFor(g.count, firstStage, [&](std::size_t begin, std::size_t end, int t) {
@@ -228,21 +280,27 @@ bool estimateNormals(
       {
         const Vec3 p = g.points[s];
         gatherNeighbors(grid, p, byRadius, settings.k, settings.radius, knn[t], nb);
-        const std::uint64_t id = g.ids[s];
-        result.neighborCounts[id] = static_cast<int>(nb.size());
-        result.reach[id] = farthest(g, p, nb);
-        Vec3 normal;
-        if (pcaNormal(g, p, nb, normal, result.spread[id]))
+        if (keepNearest)
         {
-          result.normals[3 * id] = normal.x;
-          result.normals[3 * id + 1] = normal.y;
-          result.normals[3 * id + 2] = normal.z;
+          std::size_t j = 0;
+          for (std::size_t i = 0; i < nb.size() && j < graphWidth; ++i)
+          {
+            if (nb[i] != s)
+            {
+              nearestOthers[s * graphWidth + j++] = static_cast<std::uint32_t>(nb[i]);
+            }
+          }
         }
-        if (planar && pcaNormal2D(g, p, nb, normal, curveRatio[id]))
+        est.neighborCounts[s] = static_cast<int>(nb.size());
+        est.reach[s] = farthest(g, p, nb);
+        Vec3 normal;
+        if (pcaNormal(g, p, nb, normal, est.spread[s]))
         {
-          inPlane[3 * id] = normal.x;
-          inPlane[3 * id + 1] = normal.y;
-          inPlane[3 * id + 2] = normal.z;
+          est.normals[s] = normal;
+        }
+        if (planar && pcaNormal2D(g, p, nb, normal, curveRatio[s]))
+        {
+          inPlane[s] = normal;
         }
       }
     });
@@ -268,7 +326,7 @@ bool estimateNormals(
       std::nth_element(finiteRatios.begin(), finiteRatios.begin() + finiteRatios.size() / 2, finiteRatios.end());
       if (finiteRatios[finiteRatios.size() / 2] < 0.05)
       {
-        result.normals = inPlane;
+        est.normals = inPlane;
         curve = true;
       }
     }
@@ -281,8 +339,7 @@ bool estimateNormals(
   std::vector<std::uint64_t> degenerate;
   for (std::size_t s = 0; !curve && s < g.count; ++s)
   {
-    const std::uint64_t id = g.ids[s];
-    if (!finite3(&result.normals[3 * id]) || !(result.spread[id] >= settings.minimumSpread))
+    if (!finite3(&est.normals[s].x) || !(est.spread[s] >= settings.minimumSpread))
     {
       degenerate.push_back(s);
     }
@@ -295,25 +352,22 @@ bool estimateNormals(
       {
         const std::size_t s = degenerate[d];
         const Vec3 p = g.points[s];
-        const std::uint64_t id = g.ids[s];
         Vec3 normal{ kNaN, kNaN, kNaN };
         bool found = false;
         for (int step = 1; step <= steps && !found; ++step)
         {
-          result.graphDegree[id] = grownCount(settings.graphNeighbors, step);
+          est.graphDegree[s] = grownCount(settings.graphNeighbors, step);
           const int k = grownCount(settings.k, step);
           gatherNeighbors(grid, p, byRadius, k, grownRadius(settings.radius, step), knn[t], nb);
-          result.neighborCounts[id] = static_cast<int>(nb.size());
-          result.reach[id] = farthest(g, p, nb);
-          found = pcaNormal(g, p, nb, normal, result.spread[id]) && result.spread[id] >= settings.minimumSpread;
+          est.neighborCounts[s] = static_cast<int>(nb.size());
+          est.reach[s] = farthest(g, p, nb);
+          found = pcaNormal(g, p, nb, normal, est.spread[s]) && est.spread[s] >= settings.minimumSpread;
           if (!byRadius && nb.size() < static_cast<std::size_t>(k))
           {
             break; // every point is already in the neighbourhood
           }
         }
-        result.normals[3 * id] = found ? normal.x : kNaN;
-        result.normals[3 * id + 1] = found ? normal.y : kNaN;
-        result.normals[3 * id + 2] = found ? normal.z : kNaN;
+        est.normals[s] = found ? normal : Vec3{ kNaN, kNaN, kNaN };
       }
     });
   if (!grown)
@@ -321,8 +375,6 @@ bool estimateNormals(
     return false;
   }
 
-  grid = NeighborGrid(); // the estimate's grid is not needed by the orientation, which builds its own
-  double* normals = result.normals.data();
   switch (settings.orientation)
   {
     case NormalOrientation::None:
@@ -331,37 +383,47 @@ bool estimateNormals(
     case NormalOrientation::AwayFromPoint:
     {
       const double sign = settings.orientation == NormalOrientation::TowardsPoint ? 1.0 : -1.0;
-      for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t s = 0; s < g.count; ++s)
       {
-        const double* p = xyz + 3 * i;
-        const double toView[3] = { settings.viewpoint.x - p[0], settings.viewpoint.y - p[1],
-          settings.viewpoint.z - p[2] };
-        double* ni = normals + 3 * i;
-        flipIfNegative(ni, sign * (ni[0] * toView[0] + ni[1] * toView[1] + ni[2] * toView[2]));
+        const Vec3 toView = settings.viewpoint - g.points[s];
+        flipIfNegative(&est.normals[s].x, sign * dot(est.normals[s], toView));
       }
       break;
     }
     case NormalOrientation::AgreeWithReference:
-      for (std::size_t i = 0; settings.reference && i < n; ++i)
+      for (std::size_t s = 0; settings.reference && s < g.count; ++s)
       {
-        const double* r = settings.reference + 3 * i;
-        double* ni = normals + 3 * i;
+        const double* r = settings.reference + 3 * g.ids[s];
         if (finite3(r))
         {
-          flipIfNegative(ni, ni[0] * r[0] + ni[1] * r[1] + ni[2] * r[2]);
+          flipIfNegative(&est.normals[s].x, est.normals[s].x * r[0] + est.normals[s].y * r[1] + est.normals[s].z * r[2]);
         }
       }
       break;
     case NormalOrientation::MinimumSpanningTree:
     {
-      if (!orientByMinimumSpanningTree(xyz, n, settings.graphNeighbors, normals,
-            progressStage(settings.parallel, 0.6, 1.0), result.components, result.graphDegree.data()))
+      // The graph's nodes: the grid's points with a normal.
+      std::vector<unsigned char> nodes(g.count, 0);
+      for (std::size_t s = 0; s < g.count; ++s)
+      {
+        nodes[s] = finite3(&est.normals[s].x) ? 1 : 0;
+      }
+      OrientationGraph graph;
+      graph.grid = &grid;
+      graph.n = n;
+      graph.graphNeighbors = settings.graphNeighbors;
+      graph.sortedDegrees = est.graphDegree.data();
+      graph.nodes = nodes.data();
+      graph.nearestOthers = std::move(nearestOthers);
+      if (!orientAlongSpanningTree(
+            graph, est.normals.data(), progressStage(settings.parallel, 0.6, 1.0), result.components))
       {
         return false;
       }
       break;
     }
   }
+  est.scatter(g.ids, n, result, settings.parallel.threads);
   return true;
 }
 
@@ -482,268 +544,9 @@ double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOpti
   return std::sqrt(*std::max_element(reach.begin(), reach.end()));
 }
 
-namespace
-{
-
-/// orientByMinimumSpanningTree with the graph's nodes numbered in the grid's order (Index: 32 bits where they fit),
-/// so that a node's neighbours lie near it in memory. Every choice (the components' seeds, the order in which a
-/// component is collected, the queue's order) is still made on the points' original indices, so the orientation is
-/// the one of the original numbering, bit for bit.
-template <typename Index>
-bool orientInGridOrder(NeighborGrid& grid, std::size_t n, int graphNeighbors, double* normals,
-  const ParallelOptions& parallel, std::size_t& components, const int* degrees)
-{
-  const GridView& g = grid.view();
-  const std::size_t count = g.count;
-  const Index none = std::numeric_limits<Index>::max();
-
-  // Each node's out-degree (graphNeighbors, or its own larger count) and its slots in `nearest`.
-  std::vector<std::size_t> slot(count + 1, 0);
-  for (std::size_t s = 0; s < count; ++s)
-  {
-    const int d = degrees ? std::max(graphNeighbors, degrees[g.ids[s]]) : graphNeighbors;
-    slot[s + 1] = slot[s] + static_cast<std::size_t>(std::max(d, 1));
-  }
-  std::vector<Index> nearest(slot[count], none); // the nearest other nodes of each node
-  const int threads = resolveThreadCount(parallel.threads);
-  std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
-  const ParallelOptions queryStage = progressStage(parallel, 0.0, 0.4);
-  const bool queried = parallelFor(count, queryStage, [&](std::size_t begin, std::size_t end, int t) {
-    for (std::size_t s = begin; s < end; ++s)
-    {
-      const std::size_t k = slot[s + 1] - slot[s];
-      grid.kNearest(g.points[s], static_cast<int>(k) + 1, knn[t]);
-      std::size_t j = 0;
-      for (const auto& c : knn[t])
-      {
-        if (c.second != s && j < k)
-        {
-          nearest[slot[s] + j++] = static_cast<Index>(c.second);
-        }
-      }
-    }
-  });
-  if (!queried)
-  {
-    return false;
-  }
-  // The grid's cells are no longer needed: keep its nodes' positions and original indices, and the normals in the
-  // same order.
-  std::vector<Vec3> position(g.points, g.points + count);
-  std::vector<std::uint64_t> original(g.ids, g.ids + count);
-  grid = NeighborGrid();
-  std::vector<Vec3> normal(count);
-  for (std::size_t s = 0; s < count; ++s)
-  {
-    const double* ni = normals + 3 * original[s];
-    normal[s] = { ni[0], ni[1], ni[2] };
-  }
-
-  // Symmetric adjacency in CSR form, each list sorted by original index and without repeats.
-  std::vector<std::size_t> start(count + 1, 0);
-  for (std::size_t s = 0; s < count; ++s)
-  {
-    for (std::size_t j = slot[s]; j < slot[s + 1] && nearest[j] != none; ++j)
-    {
-      ++start[s + 1];
-      ++start[static_cast<std::size_t>(nearest[j]) + 1];
-    }
-  }
-  for (std::size_t s = 0; s < count; ++s)
-  {
-    start[s + 1] += start[s];
-  }
-  if (parallel.progress && parallel.progress(0.4))
-  {
-    return false;
-  }
-  std::vector<Index> adjacency(start[count]);
-  for (std::size_t s = 0; s < count; ++s)
-  {
-    for (std::size_t j = slot[s]; j < slot[s + 1] && nearest[j] != none; ++j)
-    {
-      const Index v = nearest[j];
-      adjacency[start[s]++] = v;
-      adjacency[start[v]++] = static_cast<Index>(s);
-    }
-  }
-  restoreBucketStarts(start);
-  std::vector<Index>().swap(nearest);
-  std::vector<std::size_t>().swap(slot);
-  std::vector<Index> kept(count, 0);
-  ParallelOptions sortOptions = progressStage(parallel, 0.4, 0.5);
-  sortOptions.chunk = 4096;
-  const auto byOriginal = [&original](Index a, Index b) { return original[a] < original[b]; };
-  const bool sorted = parallelFor(count, sortOptions, [&](std::size_t begin, std::size_t end, int) {
-    for (std::size_t u = begin; u < end; ++u)
-    {
-      auto first = adjacency.begin() + static_cast<std::ptrdiff_t>(start[u]);
-      auto last = adjacency.begin() + static_cast<std::ptrdiff_t>(start[u + 1]);
-      std::sort(first, last, byOriginal);
-      kept[u] = static_cast<Index>(std::unique(first, last) - first);
-    }
-  });
-  if (!sorted)
-  {
-    return false;
-  }
-  std::size_t write = 0;
-  for (std::size_t u = 0; u < count; ++u)
-  {
-    const std::size_t from = start[u];
-    start[u] = write;
-    std::copy(adjacency.begin() + static_cast<std::ptrdiff_t>(from),
-      adjacency.begin() + static_cast<std::ptrdiff_t>(from + kept[u]),
-      adjacency.begin() + static_cast<std::ptrdiff_t>(write));
-    write += kept[u];
-  }
-  start[count] = write;
-  adjacency.resize(write);
-  adjacency.shrink_to_fit();
-  std::vector<Index>().swap(kept);
-
-  // The node of each original index (none for the points left out of the graph).
-  std::vector<Index> nodeOf(n, none);
-  for (std::size_t s = 0; s < count; ++s)
-  {
-    nodeOf[original[s]] = static_cast<Index>(s);
-  }
-  auto agreement = [&](Index a, Index b) { return dot(normal[a], normal[b]); };
-  auto cost = [&](Index a, Index b) { return 1.0 - std::abs(agreement(a, b)); };
-  auto flip = [&](Index a, double sign) {
-    if (sign < 0.0)
-    {
-      normal[a] = { -normal[a].x, -normal[a].y, -normal[a].z };
-    }
-  };
-
-  // A queue entry: cost, then the node's and its parent's original indices (the order of the original numbering),
-  // then their nodes.
-  struct Entry
-  {
-    double cost;
-    std::uint64_t node, parent;
-    Index nodeIndex, parentIndex;
-    bool operator>(const Entry& o) const
-    {
-      return std::tie(cost, node, parent) > std::tie(o.cost, o.node, o.parent);
-    }
-  };
-  std::vector<unsigned char> visited(count, 0);
-  std::vector<Index> component;
-  std::size_t oriented = 0, popped = 0;
-  for (std::size_t seed = 0; seed < n; ++seed)
-  {
-    const Index root0 = nodeOf[seed];
-    if (root0 == none || visited[root0])
-    {
-      continue;
-    }
-    // Collect the component (breadth first) and pick its root: the point farthest from its centroid.
-    component.assign(1, root0);
-    visited[root0] = 1;
-    for (std::size_t head = 0; head < component.size(); ++head)
-    {
-      const Index u = component[head];
-      for (std::size_t e = start[u]; e < start[u + 1]; ++e)
-      {
-        const Index v = adjacency[e];
-        if (!visited[v])
-        {
-          visited[v] = 1;
-          component.push_back(v);
-        }
-      }
-    }
-    double centroid[3] = { 0, 0, 0 };
-    for (Index u : component)
-    {
-      const double p[3] = { position[u].x, position[u].y, position[u].z };
-      for (int a = 0; a < 3; ++a)
-      {
-        centroid[a] += p[a] / static_cast<double>(component.size());
-      }
-    }
-    Index root = component[0];
-    double farthest = -1.0;
-    for (Index u : component)
-    {
-      const double p[3] = { position[u].x, position[u].y, position[u].z };
-      double d2 = 0.0;
-      for (int a = 0; a < 3; ++a)
-      {
-        d2 += (p[a] - centroid[a]) * (p[a] - centroid[a]);
-      }
-      if (d2 > farthest)
-      {
-        farthest = d2;
-        root = u;
-      }
-    }
-    const double r[3] = { position[root].x, position[root].y, position[root].z };
-    const double nr[3] = { normal[root].x, normal[root].y, normal[root].z };
-    double outward = 0.0;
-    for (int a = 0; a < 3; ++a)
-    {
-      outward += nr[a] * (r[a] - centroid[a]);
-    }
-    flip(root, outward);
-
-    // Prim's algorithm from the root; each node takes the orientation of the tree node that reached it.
-    for (Index u : component)
-    {
-      visited[u] = 0;
-    }
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> frontier;
-    frontier.push({ 0.0, original[root], original[root], root, root });
-    while (!frontier.empty())
-    {
-      const Entry top = frontier.top();
-      frontier.pop();
-      // Progress per 65536 entries taken from the queue (the stale ones after the last node included).
-      if (++popped % 65536 == 0 && parallel.progress &&
-        parallel.progress(0.5 + 0.5 * static_cast<double>(oriented) / static_cast<double>(count)))
-      {
-        return false;
-      }
-      const Index u = top.nodeIndex;
-      if (visited[u])
-      {
-        continue;
-      }
-      visited[u] = 1;
-      ++oriented;
-      if (u != top.parentIndex)
-      {
-        flip(u, agreement(top.parentIndex, u));
-      }
-      for (std::size_t e = start[u]; e < start[u + 1]; ++e)
-      {
-        const Index v = adjacency[e];
-        if (!visited[v])
-        {
-          frontier.push({ cost(u, v), original[v], original[u], v, u });
-        }
-      }
-    }
-    ++components;
-  }
-  for (std::size_t s = 0; s < count; ++s)
-  {
-    double* ni = normals + 3 * original[s];
-    ni[0] = normal[s].x;
-    ni[1] = normal[s].y;
-    ni[2] = normal[s].z;
-  }
-  return true;
-}
-
-} // namespace
-
 bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,
   const ParallelOptions& parallel, std::size_t& components, const int* degrees)
 {
-  components = 0;
   // Graph nodes: points with a finite position and a finite normal.
   std::vector<unsigned char> usable(n, 0);
   for (std::size_t i = 0; i < n; ++i)
@@ -751,14 +554,32 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
     usable[i] = finite3(xyz + 3 * i) && finite3(normals + 3 * i);
   }
   NeighborGrid grid;
-  grid.build(xyz, nullptr, n, NeighborGrid::suggestCellSizeForKNearest(xyz, n, graphNeighbors + 1), usable.data());
+  grid.build(xyz, normals, n, NeighborGrid::suggestCellSizeForKNearest(xyz, n, graphNeighbors + 1), usable.data());
   std::vector<unsigned char>().swap(usable);
-  // Node indices of 32 bits where every node and the "none" mark fit (half the graph's memory).
-  if (grid.view().count < std::numeric_limits<std::uint32_t>::max())
+  const GridView& g = grid.view();
+  std::vector<Vec3> sortedNormals(g.normals, g.normals + g.count);
+  std::vector<int> sortedDegrees(degrees ? g.count : 0);
+  for (std::size_t s = 0; s < sortedDegrees.size(); ++s)
   {
-    return orientInGridOrder<std::uint32_t>(grid, n, graphNeighbors, normals, parallel, components, degrees);
+    sortedDegrees[s] = degrees[g.ids[s]];
   }
-  return orientInGridOrder<std::uint64_t>(grid, n, graphNeighbors, normals, parallel, components, degrees);
+  OrientationGraph graph;
+  graph.grid = &grid;
+  graph.n = n;
+  graph.graphNeighbors = graphNeighbors;
+  graph.sortedDegrees = degrees ? sortedDegrees.data() : nullptr;
+  if (!orientAlongSpanningTree(graph, sortedNormals.data(), parallel, components))
+  {
+    return false;
+  }
+  for (std::size_t s = 0; s < g.count; ++s)
+  {
+    double* ni = normals + 3 * g.ids[s];
+    ni[0] = sortedNormals[s].x;
+    ni[1] = sortedNormals[s].y;
+    ni[2] = sortedNormals[s].z;
+  }
+  return true;
 }
 
 } // namespace gls

@@ -29,8 +29,15 @@ public:
   static double suggestCellSizeForKNearest(const double* xyz, std::size_t n, int k);
 
   /// The k nearest grid points to c (fewer if the grid holds fewer), as (squared distance, sorted index), nearest
-  /// first, ties broken by the original index. `out` is reused scratch.
-  void kNearest(const Vec3& c, int k, std::vector<std::pair<double, std::uint64_t>>& out) const;
+  /// first, ties broken by the original index. `out` is reused scratch. admitSorted (count flags in the grid's sorted
+  /// order, or null): only the points whose flag is non-zero are candidates (the query then visits every cell when
+  /// fewer than k are admitted).
+  void kNearest(const Vec3& c, int k, std::vector<std::pair<double, std::uint64_t>>& out,
+    const unsigned char* admitSorted = nullptr) const;
+
+  /// Frees the cells (the largest part of a grid over a surface) and keeps the sorted points and their ids, for a
+  /// caller that needs no more queries; view() then has no cellStart and must not be queried.
+  void releaseCells();
 
 private:
   std::vector<std::uint64_t> CellStart;

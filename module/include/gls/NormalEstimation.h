@@ -31,7 +31,8 @@ enum class NormalOrientation
   None = 0,                ///< the eigen solver's sign (deterministic, not consistent)
   TowardsPoint = 1,        ///< n . (viewpoint - p) >= 0
   AwayFromPoint = 2,       ///< n . (p - viewpoint) >= 0
-  MinimumSpanningTree = 3, ///< Hoppe 1992: propagate along the MST of the k-NN graph with cost 1 - |n_i . n_j|;
+  MinimumSpanningTree = 3, ///< Hoppe 1992: propagate along the MST of the k-NN graph with cost 1 - |n_i . n_j|
+                           ///< (edges of equal cost ordered by their ends' point indices, so the tree is unique);
                            ///< each connected component starts from its point farthest from its centroid, oriented
                            ///< away from that centroid (outward on closed shapes)
   AgreeWithReference = 4   ///< n . reference >= 0 where the reference normal is finite and non-zero
