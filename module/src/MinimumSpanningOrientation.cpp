@@ -386,24 +386,34 @@ private:
     }
   }
 
-  /// The component of `seed` in the graph, breadth first (marks its nodes visited).
-  void Collect(Index seed)
+  /// Breadth first from `seed` over a CSR graph, into Component: each node reached for the first time (its mark
+  /// below `mark`) gets the mark and reached(parent, node) is called.
+  template <typename Reached>
+  void BreadthFirst(Index seed, const std::vector<std::size_t>& start, const std::vector<Index>& adjacency,
+    unsigned char mark, Reached&& reached)
   {
     this->Component.assign(1, seed);
-    this->Visited[seed] = 1;
+    this->Visited[seed] = mark;
     for (std::size_t head = 0; head < this->Component.size(); ++head)
     {
       const Index u = this->Component[head];
-      for (std::size_t e = this->Start[u]; e < this->Start[u + 1]; ++e)
+      for (std::size_t e = start[u]; e < start[u + 1]; ++e)
       {
-        const Index v = this->Adjacency[e];
-        if (!this->Visited[v])
+        const Index v = adjacency[e];
+        if (this->Visited[v] < mark)
         {
-          this->Visited[v] = 1;
+          this->Visited[v] = mark;
+          reached(u, v);
           this->Component.push_back(v);
         }
       }
     }
+  }
+
+  /// The component of `seed` in the graph (marks its nodes 1).
+  void Collect(Index seed)
+  {
+    this->BreadthFirst(seed, this->Start, this->Adjacency, 1, [](Index, Index) {});
   }
 
   /// The component's point farthest from its centroid, oriented away from the centroid.
@@ -437,26 +447,11 @@ private:
     return root;
   }
 
-  /// Breadth first along the forest from the root: each node agrees with its parent (the component's nodes are
-  /// marked visited by Collect; this walk marks them with 2).
+  /// Along the forest from the root: each node agrees with its parent (marks the component's nodes 2).
   void Propagate(Index root)
   {
-    this->Component.assign(1, root);
-    this->Visited[root] = 2;
-    for (std::size_t head = 0; head < this->Component.size(); ++head)
-    {
-      const Index u = this->Component[head];
-      for (std::size_t e = this->ForestStart[u]; e < this->ForestStart[u + 1]; ++e)
-      {
-        const Index v = this->Forest[e];
-        if (this->Visited[v] != 2)
-        {
-          this->Visited[v] = 2;
-          this->Flip(v, this->Agreement(u, v));
-          this->Component.push_back(v);
-        }
-      }
-    }
+    this->BreadthFirst(root, this->ForestStart, this->Forest, 2,
+      [this](Index parent, Index node) { this->Flip(node, this->Agreement(parent, node)); });
   }
 
   const GridView& G;
