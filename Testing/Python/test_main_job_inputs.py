@@ -11,6 +11,8 @@ import unittest
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'paraview-plugin', 'python'))
+import gls_coincident  # noqa: E402 (the main job's own modules, beside the plugin)
 import main_job_helpers as helpers
 from main_job_helpers import central_background, error_lines, failure_text, point_array, read_vtp
 from shapes import sphere
@@ -34,6 +36,56 @@ def write_text(name, lines, first=None):
             f.write(first + '\n')
         f.write('\n'.join(lines) + '\n')
     return path(name)
+
+
+class DistinctPositions(unittest.TestCase):
+    """The coincident-point check's grouping (gls_coincident.distinct_positions) against np.unique(axis=0), the rule
+    it replaced, on clouds with repeated rows, -0.0 and infinite coordinates, and through its fallback for positions
+    that share a hash (forced here by a hash that maps everything to one key)."""
+
+    @staticmethod
+    def reference(points):
+        _, first, inverse = np.unique(points, axis=0, return_index=True, return_inverse=True)
+        order = np.argsort(first, kind='stable')
+        rank = np.empty_like(order)
+        rank[order] = np.arange(len(order))
+        return first[order], rank[inverse.reshape(-1)]
+
+    def check(self, points):
+        first, inverse = gls_coincident.distinct_positions(points)
+        expected_first, expected_inverse = self.reference(points)
+        np.testing.assert_array_equal(first, expected_first)
+        np.testing.assert_array_equal(inverse, expected_inverse)
+
+    def clouds(self):
+        rng = np.random.default_rng(3)
+        for trial in range(12):
+            n = int(rng.integers(1, 2000))
+            points = rng.integers(0, 12, size=(n, 3)).astype(float) * 0.25
+            points[rng.integers(0, n, size=n // 5)] *= -0.0 if trial % 2 else 1.0
+            if trial % 3 == 0:
+                points[rng.integers(0, n, size=3), 1] = np.inf
+            yield points
+
+    def test_equals_numpy_unique(self):
+        for points in self.clouds():
+            self.check(points)
+        self.check(np.random.default_rng(5).random((50000, 3)).astype(np.float32).astype(float))
+
+    def test_positions_that_share_a_hash(self):
+        mixed = gls_coincident._mixed
+        gls_coincident._mixed = lambda z: z * np.uint64(0)
+        try:
+            for points in self.clouds():
+                self.check(points)
+        finally:
+            gls_coincident._mixed = mixed
+
+    def test_a_row_with_a_nan_equals_no_other(self):
+        rows = np.array([[np.nan, 0, 0], [np.nan, 0, 0], [1, 2, 3], [1, 2, 3], [0.0, 0, 0], [-0.0, 0, 0]])
+        first, inverse = gls_coincident.distinct_positions(rows)
+        np.testing.assert_array_equal(first, [0, 1, 2, 4])
+        np.testing.assert_array_equal(inverse, [0, 1, 2, 2, 3, 3])
 
 
 class Inputs(unittest.TestCase):
