@@ -85,6 +85,15 @@ class MainJob(unittest.TestCase):
             state = f.read()
         self.assertIn('XMLPolyDataReader', state)
         self.assertIn(os.path.abspath(files['-gls.vtp']), state)
+        self.assertNotIn('stand-in', state)  # built on a small stand-in, the state names the written file
+        from paraview import simple
+        simple.LoadState(files['-gls.pvsm'])
+        reader = simple.FindSource(os.path.basename(files['-gls.vtp']))
+        reader.UpdatePipeline()
+        self.assertEqual(reader.GetDataInformation().GetNumberOfPoints(), pd.GetNumberOfPoints())
+        self.assertEqual(list(reader.GetDataInformation().GetBounds()), list(pd.GetBounds()))
+        self.assertEqual(simple.GetDisplayProperties(reader).ColorArrayName[1], 'GLSFeature')
+        simple.ResetSession()
 
     def test_xyz_with_normals_and_csv_without(self):
         xyz = os.path.join(WORK, 'sphere.xyz')

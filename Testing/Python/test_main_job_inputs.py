@@ -88,6 +88,44 @@ class DistinctPositions(unittest.TestCase):
         np.testing.assert_array_equal(inverse, [0, 1, 2, 2, 3, 3])
 
 
+class WrittenFileCheck(unittest.TestCase):
+    """gls_outputs.check_written, the read-back of the written .vtp's header: a good file passes, a file cut short,
+    one with fewer points and one without an array fail with a StageError."""
+
+    def test_good_short_and_different_files(self):
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        from vtkmodules.vtkCommonCore import vtkPoints
+        from vtkmodules.vtkCommonDataModel import vtkPolyData
+        import gls_outputs
+        import gls_watch
+        os.makedirs(WORK, exist_ok=True)
+
+        def cloud(count, arrays):
+            polydata = vtkPolyData()
+            points = vtkPoints()
+            points.SetData(numpy_to_vtk(np.random.default_rng(1).random((count, 3)), deep=True))
+            polydata.SetPoints(points)
+            for name in arrays:
+                values = numpy_to_vtk(np.arange(count, dtype=np.float32), deep=True)
+                values.SetName(name)
+                polydata.GetPointData().AddArray(values)
+            return polydata
+        good = cloud(100, ('GLSFeature', 'GLSStableTau'))
+        vtp = path('check.vtp')
+        gls_outputs.write_vtp(vtp, good)
+        gls_outputs.check_written(vtp, good)
+        with self.assertRaisesRegex(gls_watch.StageError, '100 points instead of 101'):
+            gls_outputs.check_written(vtp, cloud(101, ('GLSFeature', 'GLSStableTau')))
+        with self.assertRaisesRegex(gls_watch.StageError, 'point arrays'):
+            gls_outputs.check_written(vtp, cloud(100, ('GLSFeature', 'GLSStableTau', 'GLSStableKappa')))
+        with open(vtp, 'rb') as f:
+            head = f.read(200)
+        with open(vtp, 'wb') as f:
+            f.write(head)
+        with self.assertRaises(gls_watch.StageError):
+            gls_outputs.check_written(vtp, good)
+
+
 class Inputs(unittest.TestCase):
     @classmethod
     def setUpClass(cls):

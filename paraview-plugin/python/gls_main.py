@@ -251,7 +251,7 @@ def analyze(args, outputs):
         gls_cross_section.plot(outputs.path('-scale-space.png'),
                                'GLS scale-space image of the central cross-section of %s (%d points)'
                                % (outputs.name, curve.GetNumberOfPoints()), curve, axis, image, crossings)
-    gls_outputs.save_state(outputs.path('-gls.pvsm'), vtp, outputs.final('-gls.vtp'))
+    gls_outputs.save_state(outputs.path('-gls.pvsm'), vtp, outputs.final('-gls.vtp'), output)
 
 
 def fail(message, status=2):

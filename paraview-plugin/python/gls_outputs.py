@@ -137,22 +137,88 @@ def write_vtp(path, polydata):
         raise OSError('cannot write %s' % path)
 
 
-def save_state(path, vtp, final_vtp):
-    """A ParaView state that opens the .vtp (staged at `vtp`, committed to `final_vtp`) coloured by the features
-    (no plugin needed to open it)."""
-    from paraview import simple
-    simple.ResetSession()
-    reader = simple.XMLPolyDataReader(registrationName=os.path.basename(final_vtp), FileName=[os.path.abspath(vtp)])
+# The most points of the stand-in cloud that the state is built on (save_state).
+STATE_STAND_IN_POINTS = 20000
+
+
+def stand_in(polydata, limit=STATE_STAND_IN_POINTS):
+    """A small cloud with the arrays, the field data and the bounds of `polydata`: every k-th point (at most about
+    `limit`) and the points at the extremes of each axis, in one poly-vertex cell."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkPolyData
+
+    import gls_cloud
+    count = polydata.GetNumberOfPoints()
+    positions = vtk_to_numpy(polydata.GetPoints().GetData())
+    with np.errstate(invalid='ignore'):
+        extremes = np.concatenate([np.nanargmin(positions, axis=0), np.nanargmax(positions, axis=0)]) \
+            if np.isfinite(positions).any() else np.zeros(0, dtype=np.int64)
+    keep = np.unique(np.concatenate([np.arange(0, count, max(1, count // limit)), extremes]))
+    out = vtkPolyData()
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(positions[keep]), deep=True))
+    out.SetPoints(points)
+    out.SetVerts(gls_cloud.poly_vertex_cell(len(keep)))
+    source, target = polydata.GetPointData(), out.GetPointData()
+    for a in range(source.GetNumberOfArrays()):
+        array = source.GetArray(a)
+        if array is None:  # not a numeric array
+            continue
+        values = numpy_to_vtk(np.ascontiguousarray(vtk_to_numpy(array)[keep]), deep=True)
+        values.SetName(array.GetName())
+        target.AddArray(values)
+    if source.GetScalars() is not None:
+        target.SetActiveScalars(source.GetScalars().GetName())
+    if target.GetArray('Normals') is not None:
+        target.SetActiveNormals('Normals')
+    for a in range(polydata.GetFieldData().GetNumberOfArrays()):
+        out.GetFieldData().AddArray(polydata.GetFieldData().GetAbstractArray(a))
+    return out
+
+
+def check_written(vtp, polydata):
+    """Reads the written file's XML header back (not its data: a 10M-point file would take seconds): the reader
+    must parse it without an error and find the points and point arrays of `polydata`."""
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
     errors = []
 
     @calldata_type(VTK_STRING)
     def on_error(_obj, _event, message):  # the harmless unknown-key message of write_vtp's files is dropped
         if 'InformationKey' not in message:
             errors.append(gls_watch.one_line(message))
-    algorithm = reader.GetClientSideObject()  # a vtkFileSeriesReader around the vtkXMLPolyDataReader
-    for target in (algorithm, getattr(algorithm, 'GetReader', lambda: None)()):
-        if target is not None:
-            target.AddObserver('ErrorEvent', on_error)
+    reader = vtkXMLPolyDataReader()
+    reader.AddObserver('ErrorEvent', on_error)
+    reader.SetFileName(vtp)
+    reader.UpdateInformation()
+    expected = sorted(polydata.GetPointData().GetArrayName(a) for a in range(polydata.GetPointData().GetNumberOfArrays()))
+    found = sorted(reader.GetPointArrayName(a) for a in range(reader.GetNumberOfPointArrays()))
+    parser = reader.GetXMLParser()
+    root = parser.GetRootElement() if parser is not None else None
+    poly = root.FindNestedElementWithName('PolyData') if root is not None else None
+    piece = poly.FindNestedElementWithName('Piece') if poly is not None else None
+    points = piece.GetAttribute('NumberOfPoints') if piece is not None else None
+    if not errors and points != str(polydata.GetNumberOfPoints()):
+        errors.append('%s points instead of %d' % (points, polydata.GetNumberOfPoints()))
+    if not errors and found != expected:
+        errors.append('point arrays %s instead of %s' % (', '.join(found), ', '.join(expected)))
+    if errors:
+        raise gls_watch.StageError('reading the written %s back: %s' % (os.path.basename(vtp), errors[0]))
+
+
+def save_state(path, vtp, final_vtp, polydata):
+    """A ParaView state that opens the .vtp (staged at `vtp`, committed to `final_vtp`) coloured by the features
+    (no plugin needed to open it). The state is built on a stand-in of `polydata` (its arrays and bounds, at most
+    about 20,000 points: ParaView reads and draws what a state shows) and then names the final file; the written
+    file's header is checked first (check_written)."""
+    from paraview import simple
+    check_written(vtp, polydata)
+    stand_in_vtp = os.path.join(os.path.dirname(vtp), '.state-stand-in.vtp')
+    write_vtp(stand_in_vtp, stand_in(polydata))
+    simple.ResetSession()
+    reader = simple.XMLPolyDataReader(registrationName=os.path.basename(final_vtp),
+                                      FileName=[os.path.abspath(stand_in_vtp)])
     view = simple.GetActiveViewOrCreate('RenderView')
     display = simple.Show(reader, view)
     simple.ColorBy(display, ('POINTS', 'GLSFeature'))
@@ -161,10 +227,9 @@ def save_state(path, vtp, final_vtp):
     lut.RescaleTransferFunction(0.0, 1.0)
     display.SetScalarBarVisibility(view, True)
     view.ResetCamera()
-    if errors:
-        raise gls_watch.StageError('reading the written %s back: %s' % (os.path.basename(final_vtp), errors[0]))
     simple.SaveState(path)
+    os.remove(stand_in_vtp)
     with open(path) as f:
         state = f.read()
     with open(path, 'w') as f:
-        f.write(state.replace(os.path.abspath(vtp), os.path.abspath(final_vtp)))
+        f.write(state.replace(os.path.abspath(stand_in_vtp), os.path.abspath(final_vtp)))
