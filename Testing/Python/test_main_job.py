@@ -10,6 +10,8 @@ import unittest
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'paraview-plugin', 'python'))
+import gls_outputs  # noqa: E402 (the main job's own module, beside the plugin)
 import main_job_helpers as helpers
 from main_job_helpers import denoising_rms, failure_text, image_stats, polydata_from, read_vtp, write_sphere
 
@@ -125,8 +127,10 @@ class MainJob(unittest.TestCase):
         write_sphere(xyz, 3000, 1.0, False, ' ')
         quick = ('--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2')
         summary_dir, per_scale_dir = os.path.join(WORK, 'summary'), os.path.join(WORK, 'per-scale')
+        full_dir = os.path.join(WORK, 'full-precision')
         result = run(xyz, '--output-dir', summary_dir, '--query', '7', *quick)
         self.assertEqual(result.returncode, 0, failure_text(result))
+        run_output = result.stdout
         result = run(xyz, '--output-dir', per_scale_dir, '--per-scale', *quick)
         self.assertEqual(result.returncode, 0, failure_text(result))
         summary = read_vtp(os.path.join(summary_dir, 'scales-gls.vtp'))
@@ -140,11 +144,21 @@ class MainJob(unittest.TestCase):
         self.assertEqual(dissimilarity[7], 0.0)
         self.assertLess(np.nanmax(dissimilarity), 1e-3)
         self.assertEqual(run(xyz, '--output-dir', summary_dir, '--query', '3000', *quick).returncode, 2)
-        # The summary of the stored scales is the fused pass's (float32 of the same doubles).
-        for name in ('GLSFeature', 'GLSStableKappa', 'GLSStableScale', 'GLSMaxVariation'):
-            a = vtk_to_numpy(summary.GetPointData().GetArray(name))
-            b = vtk_to_numpy(per_scale.GetPointData().GetArray(name)).astype(np.float32)
-            np.testing.assert_array_equal(a, b, name)
+        # The summary of the stored scales is the fused pass's: float32 of the same doubles with --full-precision,
+        # rounded to the documented mantissa bits by default (within 2^-13 relative of the doubles).
+        result = run(xyz, '--output-dir', full_dir, '--full-precision', *quick)
+        self.assertEqual(result.returncode, 0, failure_text(result))
+        self.assertIn('rounded to a relative 1.2e-4', run_output)
+        full = read_vtp(os.path.join(full_dir, 'scales-gls.vtp'))
+        for name in ('GLSFeature', 'GLSStableKappa', 'GLSStableScale', 'GLSMaxVariation', 'Normals'):
+            doubles = vtk_to_numpy(per_scale.GetPointData().GetArray(name))
+            np.testing.assert_array_equal(vtk_to_numpy(full.GetPointData().GetArray(name)),
+                                          doubles.astype(np.float32), name)
+            bits = gls_outputs.SUMMARY_MANTISSA_BITS.get(name, 23)
+            rounded = vtk_to_numpy(summary.GetPointData().GetArray(name))
+            np.testing.assert_array_equal(rounded, gls_outputs.rounded_float32(doubles, bits), name)
+            finite = np.isfinite(doubles) & (doubles != 0)
+            self.assertLessEqual(np.max(np.abs(rounded[finite] / doubles[finite] - 1)), 2.0 ** -(bits + 1) + 1e-7)
 
     def test_a_million_points_give_compact_summaries(self):
         ply = os.path.join(WORK, 'torus-1m.ply')
@@ -160,10 +174,10 @@ class MainJob(unittest.TestCase):
         for name, kind in DEFAULT_ARRAYS.items():
             self.assertEqual(pd.GetPointData().GetArray(name).GetDataTypeAsString(), kind, name)
         self.assertEqual(pd.GetPoints().GetData().GetDataTypeAsString(), 'float')
-        # 12 bytes of positions, 12 of normals and 8 float32 summaries, zlib-compressed, one poly-vertex cell:
-        # about 47 bytes a point on points in random order (docs/main-job.md).
+        # 12 bytes of positions, 12 of normals and 8 float32 summaries, the rounded ones' low bits zero,
+        # zlib-compressed, one poly-vertex cell: at most 40 bytes a point on points in random order (issue 40).
         size = os.path.getsize(vtp) / 1e6
-        self.assertLess(size, 49.0)
+        self.assertLessEqual(size, 40.0)
         self.assertIn('%.1f bytes per point' % size, result.stdout)
         # A torus of tube radius 0.3: kappa at the most stable scale is about the mean curvature, between the outer
         # (1/0.3 + 1/1.3) / 2 = 2.05 and the inner (1/0.3 - 1/0.7) / 2 = 0.95 equators' (a ball of radius t on the
