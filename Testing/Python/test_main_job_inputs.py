@@ -88,6 +88,28 @@ class DistinctPositions(unittest.TestCase):
         np.testing.assert_array_equal(inverse, [0, 1, 2, 2, 3, 3])
 
 
+class ProfilePoints(unittest.TestCase):
+    """gls_profiles.select_profile_points against its rule written as a stable sort: the points at ranks 0, n // 2
+    and n - 1 of the finite features in (value, index) order, on features with many ties and NaN."""
+
+    def test_ranks_of_the_stable_order(self):
+        import gls_profiles
+        rng = np.random.default_rng(2)
+        for _ in range(200):
+            n = int(rng.integers(1, 60))
+            feature = rng.integers(0, 4, size=n).astype(float)
+            feature[rng.random(n) < 0.2] = np.nan
+            feature[0] = 1.0 if not np.isfinite(feature).any() else feature[0]
+            valid = np.where(np.isfinite(feature))[0]
+            order = valid[np.argsort(feature[valid], kind='stable')]
+            expected = {}
+            for label, pid in zip(('lowest feature', 'median feature', 'highest feature'),
+                                  (order[0], order[len(order) // 2], order[-1])):
+                if int(pid) not in expected.values():
+                    expected[label] = int(pid)
+            self.assertEqual(gls_profiles.select_profile_points(feature, np.zeros(n, dtype=int)), expected)
+
+
 class WrittenFileCheck(unittest.TestCase):
     """gls_outputs.check_written, the read-back of the written .vtp's header: a good file passes, a file cut short,
     one with fewer points and one without an array fail with a StageError."""

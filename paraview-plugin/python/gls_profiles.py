@@ -7,9 +7,15 @@ def select_profile_points(feature, pertinent_count):
     """A few telling points, each once: the flattest, the most featured, a median one, one with several pertinent
     scales. `feature` must have a finite value."""
     valid = np.where(np.isfinite(feature))[0]
-    order = valid[np.argsort(feature[valid], kind='stable')]
-    candidates = [('lowest feature', order[0]), ('median feature', order[len(order) // 2]),
-                  ('highest feature', order[-1])]
+    values = feature[valid]
+    # The points at ranks 0, n // 2 and n - 1 of the stable order by feature (ties in index order), without sorting:
+    # the k-th value by partition, then the right one among the points of that value.
+    def at_rank(k):
+        value = np.partition(values, k)[k]
+        ties = valid[values == value]
+        return ties[k - np.count_nonzero(values < value)]
+    candidates = [('lowest feature', at_rank(0)), ('median feature', at_rank(len(valid) // 2)),
+                  ('highest feature', at_rank(len(valid) - 1))]
     several = np.where(pertinent_count >= 2)[0]
     if len(several):
         candidates.append(('2+ pertinent scales', several[len(several) // 2]))
