@@ -200,6 +200,40 @@ TEST(NormalEstimation, TheEstimatesTreeIsTheStandaloneTreeWhateverTheThreads)
   }
 }
 
+TEST(NormalEstimation, AGrownPointOfASmallCloudLinksToEveryOtherPoint)
+{
+  // Forty points on a line and three off it, a graph of 30 neighbours: the line's neighbourhoods grow twice (their
+  // graph degree doubles twice, to 120), beyond the 42 other points there are; such a point links to all of them.
+  std::vector<double> xyz;
+  for (int i = 0; i < 40; ++i)
+  {
+    xyz.insert(xyz.end(), { 0.1 * i, 0.0, 0.0 });
+  }
+  xyz.insert(xyz.end(), { 2.0, 3.0, 0.0, 1.0, -3.0, 0.5, 3.0, 2.5, -0.5 });
+  gls::NormalEstimationSettings s;
+  s.graphNeighbors = 30;
+  gls::NormalEstimationResult r;
+  ASSERT_TRUE(gls::estimateNormals(xyz.data(), 43, s, r));
+  EXPECT_GT(*std::max_element(r.graphDegree.begin(), r.graphDegree.end()), 42);
+  EXPECT_EQ(r.components, 1u);
+  std::vector<double> standalone = r.normals;
+  s.orientation = gls::NormalOrientation::None;
+  gls::NormalEstimationResult unoriented;
+  ASSERT_TRUE(gls::estimateNormals(xyz.data(), 43, s, unoriented));
+  std::size_t components = 0;
+  standalone = unoriented.normals;
+  ASSERT_TRUE(gls::orientByMinimumSpanningTree(
+    xyz.data(), 43, s.graphNeighbors, standalone.data(), s.parallel, components, unoriented.graphDegree.data()));
+  EXPECT_EQ(components, 1u);
+  for (std::size_t i = 0; i < 3 * 43; ++i)
+  {
+    if (!(std::isnan(r.normals[i]) && std::isnan(standalone[i])))
+    {
+      EXPECT_EQ(r.normals[i], standalone[i]) << i / 3;
+    }
+  }
+}
+
 TEST(NormalEstimation, AbortStopsTheRun)
 {
   const Cloud c = sphere(20000, 1.0);

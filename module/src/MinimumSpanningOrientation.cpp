@@ -24,8 +24,9 @@ ParallelOptions stageOf(const ParallelOptions& parallel, double begin, double en
 }
 
 /// Each node's nearest other nodes (directed, nearest first), numbered in the grid's order (Index: 32 bits where
-/// they fit): `width` per node in `fixed` (padded with the largest Index), and for the nodes that need more (their
-/// degree), the rest in `extra`, [extraStart[e], extraStart[e + 1]) for extraNodes[e] (ascending).
+/// they fit): `width` per node in `fixed`, and for the nodes that need more (their degree), the rest in `extra`,
+/// [extraStart[e], extraStart[e + 1]) for extraNodes[e] (ascending). Both are padded with the largest Index where a
+/// cloud has fewer other nodes than a node's degree.
 template <typename Index>
 struct NearestLists
 {
@@ -48,7 +49,7 @@ struct NearestLists
     if (e != extraNodes.end() && *e == s)
     {
       const std::size_t k = static_cast<std::size_t>(e - extraNodes.begin());
-      for (std::size_t j = extraStart[k]; j < extraStart[k + 1]; ++j)
+      for (std::size_t j = extraStart[k]; j < extraStart[k + 1] && extra[j] != none; ++j)
       {
         f(extra[j]);
       }
