@@ -289,9 +289,12 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
         }
       }
     }
-    // Every point outside this ring's block of cells is at least `ring` cells away from c's cell.
+    // Every point outside this ring's block of cells is at least `ring` cells away from c's cell; once the block
+    // covers the grid, every point was offered (what ends a masked query that admits fewer than k).
     const double reach = static_cast<double>(ring) * g.cellSize;
-    if (out.size() == want && out.back().first <= reach * reach)
+    const bool covered = ring >= std::max({ cc[0], g.dims[0] - 1 - cc[0], cc[1], g.dims[1] - 1 - cc[1], cc[2],
+                                   g.dims[2] - 1 - cc[2] });
+    if ((out.size() == want && out.back().first <= reach * reach) || covered)
     {
       break;
     }
