@@ -241,52 +241,64 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
     const std::int64_t y0 = std::max<std::int64_t>(cc[1] - ring, 0), y1 = std::min(cc[1] + ring, g.dims[1] - 1);
     const std::int64_t xl = cc[0] - ring, xh = cc[0] + ring;
     const std::int64_t x0 = std::max<std::int64_t>(xl, 0), x1 = std::min(xh, g.dims[0] - 1);
+    // The ring's cells: whole rows where the row is on the ring's shell (z or y at the ring's distance), only the
+    // two end cells of the rows inside it (none where both ends are off the grid: a thin grid costs O(1) a ring).
+    const bool ends = xl >= 0 || xh < g.dims[0];
+    const auto visitRow = [&](std::int64_t z, std::int64_t y, double gz, bool shell) {
+      const double gyz = prune ? gz + axisGap(c.y, g.origin.y, y) : 0.0;
+      if (gyz > worst())
+      {
+        return; // the whole row is farther than the k-th kept point
+      }
+      const std::int64_t row = (z * g.dims[1] + y) * g.dims[0];
+      if (shell)
+      {
+        // One run of the row's cells, less those at its ends that are too far.
+        std::int64_t a = x0, b = x1;
+        while (prune && a <= b && gyz + axisGap(c.x, g.origin.x, a) > worst())
+        {
+          ++a;
+        }
+        while (prune && b >= a && gyz + axisGap(c.x, g.origin.x, b) > worst())
+        {
+          --b;
+        }
+        if (a <= b)
+        {
+          visitRun(row, a, b);
+        }
+        return;
+      }
+      for (const std::int64_t x : { xl, xh })
+      {
+        if (x >= 0 && x < g.dims[0] && (x == xl || xh != xl) &&
+          (!prune || gyz + axisGap(c.x, g.origin.x, x) <= worst()))
+        {
+          visitRun(row, x, x);
+        }
+      }
+    };
     for (std::int64_t z = z0; z <= z1; ++z)
     {
       const double gz = prune ? axisGap(c.z, g.origin.z, z) : 0.0;
-      for (std::int64_t y = y0; y <= y1; ++y)
+      if (std::abs(z - cc[2]) == ring)
       {
-        const double gyz = prune ? gz + axisGap(c.y, g.origin.y, y) : 0.0;
-        if (gyz > worst())
+        for (std::int64_t y = y0; y <= y1; ++y)
         {
-          continue; // the whole row is farther than the k-th kept point
+          visitRow(z, y, gz, true);
         }
-        const std::int64_t row = (z * g.dims[1] + y) * g.dims[0];
-        const bool shell = std::abs(z - cc[2]) == ring || std::abs(y - cc[1]) == ring;
-        const auto visitCell = [&](std::int64_t x) {
-          if (!prune || gyz + axisGap(c.x, g.origin.x, x) <= worst())
-          {
-            visitRun(row, x, x);
-          }
-        };
-        if (shell)
+        continue;
+      }
+      for (const std::int64_t y : { cc[1] - ring, cc[1] + ring })
+      {
+        if (y >= 0 && y < g.dims[1] && (y == cc[1] - ring || ring > 0))
         {
-          // One run of the row's cells, less those at its ends that are too far.
-          std::int64_t a = x0, b = x1;
-          while (prune && a <= b && gyz + axisGap(c.x, g.origin.x, a) > worst())
-          {
-            ++a;
-          }
-          while (prune && b >= a && gyz + axisGap(c.x, g.origin.x, b) > worst())
-          {
-            --b;
-          }
-          if (a <= b)
-          {
-            visitRun(row, a, b);
-          }
+          visitRow(z, y, gz, true);
         }
-        else
-        {
-          if (xl >= 0)
-          {
-            visitCell(xl);
-          }
-          if (xh < g.dims[0] && xh != xl)
-          {
-            visitCell(xh);
-          }
-        }
+      }
+      for (std::int64_t y = std::max(y0, cc[1] - ring + 1); ends && y <= std::min(y1, cc[1] + ring - 1); ++y)
+      {
+        visitRow(z, y, gz, false);
       }
     }
     // Every point outside this ring's block of cells is at least `ring` cells away from c's cell; once the block
