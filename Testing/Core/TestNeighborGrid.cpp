@@ -207,6 +207,47 @@ TEST(NeighborGrid, KNearestBreaksTiesByOriginalIndexAndHonoursTheMask)
   }
 }
 
+TEST(NeighborGrid, KNearestOnThinGridsWithFewerAdmittedPointsThanAsked)
+{
+  // Points along one axis with a tiny cell size: the grid is 1 x 1 x ~65000 cells (or 1 x ~65000 x 1, ~65000 x 1 x 1)
+  // and a masked query admitting 5 points of 300 must walk to the grid's far end in rings that each cost O(1) (it
+  // took O(R^2) row visits a query before: minutes for these queries).
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    std::vector<double> xyz(3 * 300, 0.0);
+    for (int i = 0; i < 300; ++i)
+    {
+      xyz[3 * i + axis] = std::pow(i / 299.0, 3.0); // crowded at one end
+    }
+    gls::NeighborGrid grid;
+    grid.build(xyz.data(), nullptr, 300, 1e-9);
+    const gls::GridView& g = grid.view();
+    ASSERT_GT(g.dims[axis], 60000);
+    std::vector<unsigned char> admit(g.count, 0);
+    for (std::size_t s = 0; s < g.count; ++s)
+    {
+      admit[s] = g.ids[s] % 60 == 7;
+    }
+    std::vector<std::pair<double, std::uint64_t>> out;
+    for (std::size_t q : { 0u, 150u, 299u })
+    {
+      const gls::Vec3 c{ xyz[3 * q], xyz[3 * q + 1], xyz[3 * q + 2] };
+      grid.kNearest(c, 40, out, admit.data());
+      std::vector<std::pair<double, std::uint64_t>> all;
+      for (std::size_t i = 7; i < 300; i += 60)
+      {
+        all.emplace_back(dist2(xyz, i, c), i);
+      }
+      std::sort(all.begin(), all.end());
+      ASSERT_EQ(out.size(), all.size()) << axis;
+      for (std::size_t j = 0; j < out.size(); ++j)
+      {
+        ASSERT_EQ(g.ids[out[j].second], all[j].second) << axis;
+      }
+    }
+  }
+}
+
 TEST(NeighborGrid, LeavesOutNonFinitePointsAndMaskedPoints)
 {
   std::vector<double> xyz = { 0, 0, 0, 1, 0, 0, std::nan(""), 0, 0, 0, 1, 0, 0, 0, INFINITY };

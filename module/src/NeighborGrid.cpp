@@ -278,8 +278,7 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
         }
       }
     };
-    for (std::int64_t z = z0; z <= z1; ++z)
-    {
+    const auto visitLayer = [&](std::int64_t z) {
       const double gz = prune ? axisGap(c.z, g.origin.z, z) : 0.0;
       if (std::abs(z - cc[2]) == ring)
       {
@@ -287,11 +286,11 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
         {
           visitRow(z, y, gz, true);
         }
-        continue;
+        return;
       }
       for (const std::int64_t y : { cc[1] - ring, cc[1] + ring })
       {
-        if (y >= 0 && y < g.dims[1] && (y == cc[1] - ring || ring > 0))
+        if (y >= 0 && y < g.dims[1])
         {
           visitRow(z, y, gz, true);
         }
@@ -299,6 +298,25 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
       for (std::int64_t y = std::max(y0, cc[1] - ring + 1); ends && y <= std::min(y1, cc[1] + ring - 1); ++y)
       {
         visitRow(z, y, gz, false);
+      }
+    };
+    // The layers inside the ring's z range hold ring cells only on the y shell or at the x ends: where neither is
+    // on the grid, only the two shell layers are walked.
+    if (ring == 0 || cc[1] - ring >= 0 || cc[1] + ring < g.dims[1] || ends)
+    {
+      for (std::int64_t z = z0; z <= z1; ++z)
+      {
+        visitLayer(z);
+      }
+    }
+    else
+    {
+      for (const std::int64_t z : { cc[2] - ring, cc[2] + ring })
+      {
+        if (z >= 0 && z < g.dims[2])
+        {
+          visitLayer(z);
+        }
       }
     }
     // Every point outside this ring's block of cells is at least `ring` cells away from c's cell; once the block
