@@ -82,20 +82,26 @@ def float32_points_suffice(points):
     return largest * 2.0 ** -24 <= FLOAT32_POINT_ROUNDING * spacing
 
 
-def rounded_float32(values, bits):
+def rounded_float32(values, bits, chunk=1 << 20):
     """float32 copies of `values` with `bits` of their 23 mantissa bits kept, rounded to nearest (ties away from
-    zero); NaN and infinities stay, and a finite value that would round past the largest float32 is cut instead."""
+    zero); NaN and infinities stay, and a finite value that would round past the largest float32 is cut instead.
+    Rounded `chunk` values at a time, so that the temporaries stay small beside a 10^8-value array."""
     import numpy as np
     narrow = np.array(values, dtype=np.float32)
     if bits >= 23:
         return narrow
-    raw = narrow.view(np.uint32)
     drop = 23 - bits
     mask = np.uint32((0xFFFFFFFF << drop) & 0xFFFFFFFF)
-    finite = np.isfinite(narrow)
-    rounded = (raw + np.uint32(1 << (drop - 1))) & mask
-    overflow = finite & ~np.isfinite(rounded.view(np.float32))
-    raw[finite] = np.where(overflow[finite], raw[finite] & mask, rounded[finite])
+    half = np.uint32(1 << (drop - 1))
+    exponent = np.uint32(0x7F800000)
+    flat = narrow.reshape(-1).view(np.uint32)
+    for start in range(0, len(flat), chunk):
+        raw = flat[start:start + chunk]
+        finite = (raw & exponent) != exponent
+        rounded = (raw + half) & mask
+        overflow = (rounded & exponent) == exponent
+        np.copyto(raw, rounded, where=finite & ~overflow)
+        np.bitwise_and(raw, mask, out=raw, where=finite & overflow)
     return narrow
 
 
