@@ -12,17 +12,6 @@ namespace gls
 namespace
 {
 
-/// The options of one stage: the same threads, progress mapped to [begin, end] of the caller's.
-ParallelOptions stageOf(const ParallelOptions& parallel, double begin, double end)
-{
-  ParallelOptions o = parallel;
-  if (parallel.progress)
-  {
-    o.progress = [&parallel, begin, end](double f) { return parallel.progress(begin + f * (end - begin)); };
-  }
-  return o;
-}
-
 /// Each node's nearest other nodes (directed, nearest first), numbered in the grid's order (Index: 32 bits where
 /// they fit): `width` per node in `fixed`, and for the nodes that need more (their degree), the rest in `extra`,
 /// [extraStart[e], extraStart[e + 1]) for extraNodes[e] (ascending). Both are padded with the largest Index where a
@@ -469,7 +458,7 @@ template <typename Index>
 bool orientWith(OrientationGraph& graph, Vec3* normal, const ParallelOptions& parallel, std::size_t& components)
 {
   NearestLists<Index> lists;
-  if (!nearestLists(graph, lists, stageOf(parallel, 0.0, 0.4)))
+  if (!nearestLists(graph, lists, progressStage(parallel, 0.0, 0.4)))
   {
     return false;
   }
@@ -479,7 +468,7 @@ bool orientWith(OrientationGraph& graph, Vec3* normal, const ParallelOptions& pa
   std::vector<std::size_t> start;
   std::vector<Index> adjacency;
   if ((parallel.progress && parallel.progress(0.4)) ||
-    !symmetricAdjacency(lists, g.ids, count, start, adjacency, stageOf(parallel, 0.4, 0.5)))
+    !symmetricAdjacency(lists, g.ids, count, start, adjacency, progressStage(parallel, 0.4, 0.5)))
   {
     return false;
   }
@@ -496,7 +485,7 @@ bool orientWith(OrientationGraph& graph, Vec3* normal, const ParallelOptions& pa
   }
   std::vector<std::size_t> forestStart;
   std::vector<Index> forest;
-  if (!spanningForest(g, start, adjacency, normal, forestStart, forest, stageOf(parallel, 0.5, 0.95)))
+  if (!spanningForest(g, start, adjacency, normal, forestStart, forest, progressStage(parallel, 0.5, 0.95)))
   {
     return false;
   }

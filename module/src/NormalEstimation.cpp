@@ -168,17 +168,6 @@ double grownRadius(double radius, int step)
   return radius * std::sqrt(std::ldexp(1.0, step));
 }
 
-/// The options of one stage of a run: the same threads, progress mapped to [begin, end] of the caller's.
-ParallelOptions progressStage(const ParallelOptions& parallel, double begin, double end)
-{
-  ParallelOptions o = parallel;
-  if (parallel.progress)
-  {
-    o.progress = [&parallel, begin, end](double f) { return parallel.progress(begin + f * (end - begin)); };
-  }
-  return o;
-}
-
 /// The per-point values of an estimate in the grid's order, and their scatter to the points' order.
 struct PointEstimates
 {

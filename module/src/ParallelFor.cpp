@@ -77,4 +77,14 @@ bool parallelFor(std::size_t n, const ParallelOptions& options,
   return true;
 }
 
+ParallelOptions progressStage(const ParallelOptions& parallel, double begin, double end)
+{
+  ParallelOptions o = parallel;
+  if (parallel.progress)
+  {
+    o.progress = [&parallel, begin, end](double f) { return parallel.progress(begin + f * (end - begin)); };
+  }
+  return o;
+}
+
 } // namespace gls

@@ -19,6 +19,10 @@ struct ParallelOptions
   ProgressCallback progress;   ///< optional; called from the calling thread only
 };
 
+/// The options of one stage of a longer run: the same threads and chunk, progress mapped to [begin, end] of the
+/// caller's (no progress when the caller has none). The caller's options must outlive the result.
+ParallelOptions progressStage(const ParallelOptions& parallel, double begin, double end);
+
 /// Number of threads a loop with these options will use (at least 1).
 int resolveThreadCount(int requested);
 
