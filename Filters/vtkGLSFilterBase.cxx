@@ -519,6 +519,13 @@ void vtkGLSFilterBase::WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd)
     ghosts->InsertNextValue(static_cast<vtkIdType>(run.GhostPoints));
     fd->AddArray(ghosts);
   }
+  if (run.TilesUsed > 1)
+  {
+    vtkNew<vtkIdTypeArray> tiles;
+    tiles->SetName(vtkGLSArrayNames::Tiles);
+    tiles->InsertNextValue(static_cast<vtkIdType>(run.TilesUsed));
+    fd->AddArray(tiles);
+  }
   if (run.CoincidentPoints > 0)
   {
     vtkNew<vtkIdTypeArray> coincident;

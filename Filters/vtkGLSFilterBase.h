@@ -153,8 +153,9 @@ protected:
   bool Heartbeat();
 
   /// Writes what the run reports in the output's field data: GLSGhostPoints (the ghosts this rank used, in a
-  /// distributed run that exchanged them), GLSCoincidentPoints (points merged into another, when some were) and
-  /// GLSBackend (where the fits ran, when a fit ran).
+  /// distributed run that exchanged them), GLSTiles (the spatial tiles of a fit cut to its MemoryBudget, when more
+  /// than one), GLSCoincidentPoints (points merged into another, when some were) and GLSBackend (where the fits ran,
+  /// when a fit ran).
   static void WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd);
 
   /// Copies the first n tuples of `triples` (3 components, any value type) into out (3 n doubles): one block copy

@@ -87,14 +87,20 @@ bool vtkGLSFitFilterBase::AddGhosts(vtkGLSRun& run, double reach)
   return true;
 }
 
+double vtkGLSFitFilterBase::MemoryBudgetBytes() const
+{
+  const double budget = this->MemoryBudget * 1024.0 * 1024.0;
+  if (budget > 0.0)
+  {
+    return budget;
+  }
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && pageSize > 0 ? 0.5 * static_cast<double>(pages) * static_cast<double>(pageSize) : 4e9;
+}
+
 bool vtkGLSFitFilterBase::CheckMemoryBudget(double needed, const char* what, const char* advice)
 {
-  double budget = this->MemoryBudget * 1024.0 * 1024.0;
-  if (!(budget > 0.0))
-  {
-    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
-    budget = pages > 0 && pageSize > 0 ? 0.5 * static_cast<double>(pages) * static_cast<double>(pageSize) : 4e9;
-  }
+  const double budget = this->MemoryBudgetBytes();
   if (needed <= budget)
   {
     return true;

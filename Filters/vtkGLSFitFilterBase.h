@@ -52,7 +52,9 @@ public:
   ///@{
   /// Memory this filter may allocate for its outputs and scratch, in MiB (0, the default: half of the physical
   /// memory). Before allocating, the filter estimates what it needs; above the budget it stops with an error that
-  /// says how much it needs and what to change.
+  /// says how much it needs and what to change. A filter that takes scales fits the cloud in spatial tiles, one
+  /// after the other, when its fitting engine alone would not fit: each tile with the points within reach of its
+  /// largest scale, results bit for bit those of one engine (the output field data GLSTiles says how many).
   vtkSetClampMacro(MemoryBudget, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MemoryBudget, double);
   ///@}
@@ -81,6 +83,9 @@ protected:
 
   /// False (with an error naming `needed`, `what` and `advice`) when `needed` bytes exceed the MemoryBudget.
   bool CheckMemoryBudget(double needed, const char* what, const char* advice);
+
+  /// The MemoryBudget in bytes (0 resolved to half of the physical memory).
+  double MemoryBudgetBytes() const;
 
   /// False on every rank when `ok` is false on some rank; a rank that was fine then says why it stopped.
   bool AgreeToContinue(const vtkGLSRun& run, bool ok);

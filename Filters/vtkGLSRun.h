@@ -53,6 +53,7 @@ struct vtkGLSRun
   // Built by vtkGLSScaleFilterBase.
   std::vector<double> Scales;            ///< absolute scales (length)
   std::unique_ptr<vtkGLSSampleSource> Samples; ///< a fit of the cloud, or the arrays of an upstream scale space
+  std::unique_ptr<vtkGLSSampleSource> TiledSamples; ///< the tiled fit ChooseTiles planned, until it becomes Samples
   vtkDataArray* StoredVariation = nullptr; ///< an upstream GLSGeometricVariation at Scales, when it can be used
 
   // The filter's own.
@@ -63,6 +64,7 @@ struct vtkGLSRun
   std::string EvaluationUsed;            ///< how the fits evaluated the moments ("" when none ran)
   double AccuracyUsed = 0.0;             ///< epsilon of a multi-resolution fit
   long long GhostPoints = -1;            ///< ghosts this rank used (-1: no exchange)
+  long long TilesUsed = 0;               ///< spatial tiles of this rank's fit (0: no fit ran)
   long long CoincidentPoints = 0;        ///< this piece's input points merged into another
 };
 

@@ -60,7 +60,7 @@ private:
 }
 
 std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Fit(
-  const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings)
+  const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings, std::size_t tiles)
 {
   std::unique_ptr<vtkGLSSampleSource> source(new vtkGLSSampleSource);
   source->PointCount = cloud.Owned;
@@ -70,18 +70,8 @@ std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Fit(
   {
     return source; // an empty piece of a distributed input: nothing to fit
   }
-  source->Engine = std::make_unique<gls::ScaleSpaceEngine>(
-    cloud.Points.data(), cloud.Normals.data(), cloud.Size(), std::move(settings));
-  if (cloud.Ghosts() > 0)
-  {
-    for (std::uint64_t id : source->Engine->evaluationOrder())
-    {
-      if (id < cloud.Owned)
-      {
-        source->OwnedOrder.push_back(id);
-      }
-    }
-  }
+  source->Engine = std::make_unique<gls::TiledScaleSpace>(
+    cloud.Points.data(), cloud.Normals.data(), cloud.Size(), cloud.Owned, std::move(settings), tiles);
   return source;
 }
 
@@ -145,13 +135,11 @@ bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std:
       }
     }
     CopiesSink copies(sink, *this->Cloud, ids ? &requested : nullptr);
-    const std::vector<std::uint64_t>* order = ids ? &positions : (this->OwnedOrder.empty() ? nullptr : &this->OwnedOrder);
-    return this->Engine->run(copies, order, gls::EvaluationMethod::OnePass, &parallel, backend, &report);
+    return this->Engine->run(copies, ids ? &positions : nullptr, parallel, backend, report);
   }
   if (this->Engine)
   {
-    const std::vector<std::uint64_t>* order = ids || this->OwnedOrder.empty() ? ids : &this->OwnedOrder;
-    return this->Engine->run(sink, order, gls::EvaluationMethod::OnePass, &parallel, backend, &report);
+    return this->Engine->run(sink, ids, parallel, backend, report);
   }
   report.used = gls::Backend::CPU;
   const std::size_t n = ids ? ids->size() : this->PointCount;

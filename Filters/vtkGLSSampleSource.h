@@ -7,6 +7,7 @@
 
 #include "gls/Backend.h"
 #include "gls/ScaleSpaceEngine.h"
+#include "gls/TiledScaleSpace.h"
 
 #include <cstdint>
 #include <memory>
@@ -22,8 +23,10 @@ public:
   /// A fit of the cloud's points and normals (owned points, then ghosts) at settings.scales. Only the owned points
   /// are evaluated; the ghosts are neighbours only. An empty piece has nothing to fit. When the cloud merged
   /// coincident points, each distinct position is evaluated once and its samples go to every copy; the sink sees
-  /// the input's point ids either way. The cloud must outlive the source.
-  static std::unique_ptr<vtkGLSSampleSource> Fit(const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings);
+  /// the input's point ids either way. tiles > 1: the cloud is evaluated one spatial tile at a time (with the same
+  /// samples: gls::TiledScaleSpace), at most that many. The cloud must outlive the source.
+  static std::unique_ptr<vtkGLSSampleSource> Fit(
+    const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings, std::size_t tiles = 1);
 
   /// The arrays a vtkGLSScaleSpace stored for `scaleCount` scales: the descriptors (GLSTau, GLSKappa, GLSFitness)
   /// and/or the derivatives (GLSdTau, GLSdEta, GLSdKappa), as asked. Null when any asked array is missing or has
@@ -47,11 +50,14 @@ public:
   /// Bytes of the engine's buffers for n points (ghosts included) and S scales on `threads` threads.
   static double EngineBytes(std::size_t n, std::size_t S, int threads);
 
+  /// Tiles of the fit (1 when it is not tiled or is no fit) and points of its largest tile, ghosts included.
+  std::size_t TileCount() const { return this->Engine ? this->Engine->tileCount() : 1; }
+  std::size_t LargestTile() const { return this->Engine ? this->Engine->largestTile() : this->PointCount; }
+
 private:
   vtkGLSSampleSource() = default;
 
-  std::unique_ptr<gls::ScaleSpaceEngine> Engine; ///< null for an empty piece
-  std::vector<std::uint64_t> OwnedOrder;         ///< with ghosts: the engine's order without them
+  std::unique_ptr<gls::TiledScaleSpace> Engine; ///< null for an empty piece
   const vtkGLSCloud* Cloud = nullptr;            ///< the fitted cloud (its merge of coincident points)
   std::size_t PointCount = 0;
   std::size_t ScaleCount = 0;

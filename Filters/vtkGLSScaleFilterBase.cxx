@@ -176,16 +176,14 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
     }
   }
 
-  // A fit of the points and normals at this filter's scales.
+  // A fit of the points and normals at this filter's scales: the outputs must fit in the budget; the engine too, or
+  // else its largest tile (ChooseTiles, once the cloud is complete).
   bool ok = this->ResolveScales(run);
   const std::size_t owned = run.Cloud.Owned;
-  const int threads = gls::resolveThreadCount(this->NumberOfThreads);
-  ok = ok &&
-    budget(static_cast<double>(owned) * static_cast<double>(run.Scales.size()) *
-          (request.BytesPerPointScale + CoverageBytesPerPointScale) +
-        vtkGLSSampleSource::EngineBytes(owned, run.Scales.size(), threads),
-      static_cast<double>(run.Scales.size())) &&
-    this->GatherFitCloud(run);
+  const double S = static_cast<double>(run.Scales.size());
+  const double outputs = static_cast<double>(owned) * S * (request.BytesPerPointScale + CoverageBytesPerPointScale);
+  const double fixed = outputs + static_cast<double>(n) * request.BytesPerPoint + S * request.BytesPerScale;
+  ok = ok && budget(outputs, S) && this->GatherFitCloud(run);
   if (!this->AgreeToContinue(run, ok))
   {
     return false;
@@ -207,9 +205,56 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   // aborted.
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 0.02); };
   this->ChooseEvaluation(run, settings);
-  run.Samples = vtkGLSSampleSource::Fit(run.Cloud, settings);
+  std::size_t tiles = 1;
+  if (!this->AgreeToContinue(run, this->ChooseTiles(run, settings, fixed, request, tiles)))
+  {
+    return false;
+  }
+  run.Samples = tiles > 1 ? std::move(run.TiledSamples) : vtkGLSSampleSource::Fit(run.Cloud, settings);
+  run.TilesUsed = static_cast<long long>(run.Samples->TileCount());
   this->Heartbeat();
   return true;
+}
+
+bool vtkGLSScaleFilterBase::ChooseTiles(vtkGLSRun& run, const gls::ScaleSpaceSettings& settings, double fixed,
+  const SampleRequest& request, std::size_t& tiles)
+{
+  const std::size_t S = settings.scales.size();
+  const int threads = gls::resolveThreadCount(this->NumberOfThreads);
+  const double budget = this->MemoryBudgetBytes();
+  const double cloud = static_cast<double>(run.Cloud.Size());
+  tiles = 1;
+  if (fixed + vtkGLSSampleSource::EngineBytes(run.Cloud.Size(), S, threads) <= budget || run.Cloud.Owned == 0)
+  {
+    return true;
+  }
+  // Twice the tiles until the largest (with its ghost band) fits, while cutting still makes tiles smaller.
+  double need = 0.0;
+  std::size_t previous = run.Cloud.Size();
+  for (std::size_t want = 2; want <= kMaximumTiles; want *= 2)
+  {
+    gls::ScaleSpaceSettings planning = settings;
+    planning.parallel.progress = nullptr;
+    run.TiledSamples = vtkGLSSampleSource::Fit(run.Cloud, planning, want);
+    const std::size_t largest = run.TiledSamples->LargestTile();
+    need = fixed + cloud + vtkGLSSampleSource::EngineBytes(largest, S, threads) +
+      static_cast<double>(largest) * gls::TiledScaleSpace::kBytesPerTilePoint;
+    if (need <= budget)
+    {
+      tiles = run.TiledSamples->TileCount();
+      return true;
+    }
+    if (largest >= previous || run.TiledSamples->TileCount() < want)
+    {
+      break; // the tiles' ghost bands (the largest scale) or identical points keep them this large
+    }
+    previous = largest;
+  }
+  run.TiledSamples.reset();
+  std::ostringstream advice;
+  advice << "Even cut into spatial tiles (each with the points within the largest scale of it) the fit does not fit. "
+         << request.Advice << " Or raise MemoryBudget, or use smaller scales.";
+  return this->CheckMemoryBudget(need, request.What, advice.str().c_str());
 }
 
 double vtkGLSScaleFilterBase::GhostReach(const vtkGLSRun& run) const

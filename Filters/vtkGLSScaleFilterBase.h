@@ -174,6 +174,15 @@ protected:
   /// What the filter needs of the samples (called after CheckParameters).
   virtual SampleRequest GetSampleRequest(const vtkGLSRun& run) const = 0;
 
+  /// The most spatial tiles a fit is cut into to meet the MemoryBudget.
+  static constexpr std::size_t kMaximumTiles = 4096;
+
+  /// How many spatial tiles the fit of run.Cloud takes: 1 when the engine fits in the MemoryBudget beside `fixed`
+  /// bytes, else the fewest (doubling) whose largest tile fits (its source then in run.TiledSamples). False (with an
+  /// error naming the budget) when none does.
+  bool ChooseTiles(vtkGLSRun& run, const gls::ScaleSpaceSettings& settings, double fixed,
+    const SampleRequest& request, std::size_t& tiles);
+
   /// Sets run.Scales for a fit: by default the scale list at the run's diagonal. False (with an error) on invalid
   /// scale parameters.
   virtual bool ResolveScales(vtkGLSRun& run);

@@ -31,8 +31,8 @@ bool admitted(const double* xyz, const unsigned char* include, std::size_t i)
 
 } // namespace
 
-void NeighborGrid::build(
-  const double* xyz, const double* normals, std::size_t n, double cellSize, const unsigned char* include)
+GridLattice NeighborGrid::chooseLattice(
+  const double* xyz, std::size_t n, double cellSize, const unsigned char* include)
 {
   double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
   std::size_t admittedCount = 0;
@@ -63,7 +63,7 @@ void NeighborGrid::build(
   // Keep the cell array proportional to the point count. Extents that overflow (finite points 1e308 apart) or a
   // cell size that cannot be fitted get a single cell: slow on such data, but never wrong and never a hang.
   const double maxCells = std::max(8.0 * static_cast<double>(admittedCount), 65536.0);
-  std::int64_t dims[3] = { 1, 1, 1 };
+  GridLattice lattice;
   bool fitted = false;
   for (int attempt = 0; attempt < 256 && isFinite(cellSize) && cellSize > 0.0; ++attempt)
   {
@@ -72,7 +72,7 @@ void NeighborGrid::build(
     {
       const double d = std::floor((hi[a] - lo[a]) / cellSize) + 1.0;
       cells *= d;
-      dims[a] = isFinite(d) ? static_cast<std::int64_t>(std::min(d, 4.0e9)) : 1;
+      lattice.dims[a] = isFinite(d) ? static_cast<std::int64_t>(std::min(d, 4.0e9)) : 1;
     }
     if (isFinite(cells) && cells <= maxCells)
     {
@@ -83,23 +83,66 @@ void NeighborGrid::build(
   }
   if (!fitted)
   {
-    dims[0] = dims[1] = dims[2] = 1;
+    lattice.dims[0] = lattice.dims[1] = lattice.dims[2] = 1;
     cellSize = std::numeric_limits<double>::infinity();
   }
+  lattice.origin = { lo[0], lo[1], lo[2] };
+  lattice.cellSize = cellSize;
+  return lattice;
+}
 
+void NeighborGrid::build(
+  const double* xyz, const double* normals, std::size_t n, double cellSize, const unsigned char* include)
+{
+  const GridLattice lattice = chooseLattice(xyz, n, cellSize, include);
+  const std::int64_t low[3] = { 0, 0, 0 };
+  this->sortIntoCells(xyz, normals, n, include, lattice, low, lattice.dims);
+}
+
+void NeighborGrid::buildOnLattice(
+  const double* xyz, const double* normals, std::size_t n, const GridLattice& lattice, const unsigned char* include)
+{
+  // The lattice cells of the admitted points (clamped to the lattice, as the whole cloud's grid clamps them).
+  const double inv = isFinite(lattice.cellSize) ? 1.0 / lattice.cellSize : 0.0;
+  const double origin[3] = { lattice.origin.x, lattice.origin.y, lattice.origin.z };
+  std::int64_t low[3] = { 0, 0, 0 }, high[3] = { 0, 0, 0 };
+  bool any = false;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!admitted(xyz, include, i))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::int64_t c = gridCellCoordinate(xyz[3 * i + a], origin[a], inv, 0, lattice.dims[a]);
+      low[a] = any ? std::min(low[a], c) : c;
+      high[a] = any ? std::max(high[a], c) : c;
+    }
+    any = true;
+  }
+  const std::int64_t dims[3] = { high[0] - low[0] + 1, high[1] - low[1] + 1, high[2] - low[2] + 1 };
+  this->sortIntoCells(xyz, normals, n, include, lattice, low, dims);
+}
+
+void NeighborGrid::sortIntoCells(const double* xyz, const double* normals, std::size_t n,
+  const unsigned char* include, const GridLattice& lattice, const std::int64_t low[3], const std::int64_t dims[3])
+{
   GridView& v = this->View;
-  v.origin = { lo[0], lo[1], lo[2] };
-  v.cellSize = cellSize;
-  v.invCellSize = isFinite(cellSize) ? 1.0 / cellSize : 0.0;
+  v.origin = lattice.origin;
+  v.cellSize = lattice.cellSize;
+  v.invCellSize = isFinite(lattice.cellSize) ? 1.0 / lattice.cellSize : 0.0;
   for (int a = 0; a < 3; ++a)
   {
     v.dims[a] = dims[a];
+    v.low[a] = low[a];
   }
   const std::size_t cellCount = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
 
   // Counting sort by cell, stable in the original index.
   std::vector<std::uint64_t> cellOf(n, 0);
   this->CellStart.assign(cellCount + 1, 0);
+  std::size_t admittedCount = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
     if (!admitted(xyz, include, i))
@@ -107,11 +150,12 @@ void NeighborGrid::build(
       continue;
     }
     const double* p = xyz + 3 * i;
-    const std::int64_t cx = gridCellCoordinate(p[0], v.origin.x, v.invCellSize, dims[0]);
-    const std::int64_t cy = gridCellCoordinate(p[1], v.origin.y, v.invCellSize, dims[1]);
-    const std::int64_t cz = gridCellCoordinate(p[2], v.origin.z, v.invCellSize, dims[2]);
+    const std::int64_t cx = gridCellOf(v, p[0], 0);
+    const std::int64_t cy = gridCellOf(v, p[1], 1);
+    const std::int64_t cz = gridCellOf(v, p[2], 2);
     cellOf[i] = static_cast<std::uint64_t>((cz * dims[1] + cy) * dims[0] + cx);
     ++this->CellStart[cellOf[i] + 1];
+    ++admittedCount;
   }
   for (std::size_t c = 0; c < cellCount; ++c)
   {
@@ -211,17 +255,15 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
     return out.size() == want ? out.back().first : std::numeric_limits<double>::infinity();
   };
 
-  const std::int64_t cc[3] = { gridCellCoordinate(c.x, g.origin.x, g.invCellSize, g.dims[0]),
-    gridCellCoordinate(c.y, g.origin.y, g.invCellSize, g.dims[1]),
-    gridCellCoordinate(c.z, g.origin.z, g.invCellSize, g.dims[2]) };
+  const std::int64_t cc[3] = { gridCellOf(g, c.x, 0), gridCellOf(g, c.y, 1), gridCellOf(g, c.z, 2) };
   const std::int64_t maxRing = std::max({ g.dims[0], g.dims[1], g.dims[2] });
   // Cells and rows farther from c than the k-th kept point are skipped. Their distance is computed from the cell
   // bounds origin + index * cellSize, less a margin far above the rounding of those bounds and of the cells the
   // points were sorted into (that of ballCellBlock), so no point that could enter is skipped.
   const CellBlock bounds = ballCellBlock(g, c, 0.0);
   const bool prune = bounds.margin >= 0.0;
-  const auto axisGap = [&](double v, double origin, std::int64_t cell) {
-    const double lo = origin + static_cast<double>(cell) * g.cellSize;
+  const auto axisGap = [&](double v, int axis, std::int64_t cell) {
+    const double lo = gridCellLowerBound(g, axis, cell);
     const double d = distanceToInterval(v, lo, lo + g.cellSize) - bounds.margin;
     return d > 0.0 ? d * d : 0.0;
   };
@@ -245,7 +287,7 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
     // two end cells of the rows inside it (none where both ends are off the grid: a thin grid costs O(1) a ring).
     const bool ends = xl >= 0 || xh < g.dims[0];
     const auto visitRow = [&](std::int64_t z, std::int64_t y, double gz, bool shell) {
-      const double gyz = prune ? gz + axisGap(c.y, g.origin.y, y) : 0.0;
+      const double gyz = prune ? gz + axisGap(c.y, 1, y) : 0.0;
       if (gyz > worst())
       {
         return; // the whole row is farther than the k-th kept point
@@ -255,11 +297,11 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
       {
         // One run of the row's cells, less those at its ends that are too far.
         std::int64_t a = x0, b = x1;
-        while (prune && a <= b && gyz + axisGap(c.x, g.origin.x, a) > worst())
+        while (prune && a <= b && gyz + axisGap(c.x, 0, a) > worst())
         {
           ++a;
         }
-        while (prune && b >= a && gyz + axisGap(c.x, g.origin.x, b) > worst())
+        while (prune && b >= a && gyz + axisGap(c.x, 0, b) > worst())
         {
           --b;
         }
@@ -272,14 +314,14 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
       for (const std::int64_t x : { xl, xh })
       {
         if (x >= 0 && x < g.dims[0] && (x == xl || xh != xl) &&
-          (!prune || gyz + axisGap(c.x, g.origin.x, x) <= worst()))
+          (!prune || gyz + axisGap(c.x, 0, x) <= worst()))
         {
           visitRun(row, x, x);
         }
       }
     };
     const auto visitLayer = [&](std::int64_t z) {
-      const double gz = prune ? axisGap(c.z, g.origin.z, z) : 0.0;
+      const double gz = prune ? axisGap(c.z, 2, z) : 0.0;
       if (std::abs(z - cc[2]) == ring)
       {
         for (std::int64_t y = y0; y <= y1; ++y)

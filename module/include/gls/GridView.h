@@ -13,10 +13,14 @@ namespace gls
 
 struct GridView
 {
-  Vec3 origin{};                     ///< lower corner of cell (0, 0, 0)
+  Vec3 origin{};                     ///< lower corner of lattice cell (0, 0, 0)
   double cellSize = 1.0;             ///< edge length of a cubic cell (length unit)
   double invCellSize = 1.0;
   std::int64_t dims[3] = { 1, 1, 1 }; ///< cells along x, y, z
+  /// The lattice coordinates of the grid's first cell: 0 for a grid over its own points; a tile's grid on the whole
+  /// cloud's lattice starts where its points do (NeighborGrid::buildOnLattice), so that both sort every point into
+  /// the same lattice cell.
+  std::int64_t low[3] = { 0, 0, 0 };
   const std::uint64_t* cellStart = nullptr; ///< points of cell c are [cellStart[c], cellStart[c + 1])
   const Vec3* points = nullptr;      ///< positions sorted by cell
   const Vec3* normals = nullptr;     ///< normals in the same order (may be null)
@@ -24,19 +28,33 @@ struct GridView
   std::uint64_t count = 0;           ///< number of points in the grid
 };
 
-/// Clamped cell coordinate of a position along one axis.
-GLS_INLINE std::int64_t gridCellCoordinate(double v, double origin, double invCell, std::int64_t dim)
+/// Clamped cell coordinate of a position along one axis, in a grid of `dim` cells whose first is lattice cell `low`.
+GLS_INLINE std::int64_t gridCellCoordinate(double v, double origin, double invCell, std::int64_t low, std::int64_t dim)
 {
   const double c = (v - origin) * invCell;
-  if (!(c >= 0.0))
+  if (!(c >= static_cast<double>(low)))
   {
     return 0;
   }
-  if (c >= static_cast<double>(dim - 1))
+  if (c >= static_cast<double>(low + dim - 1))
   {
     return dim - 1;
   }
-  return static_cast<std::int64_t>(c);
+  return static_cast<std::int64_t>(c) - low;
+}
+
+/// The grid's cell coordinate of a position along axis a (0, 1, 2).
+GLS_INLINE std::int64_t gridCellOf(const GridView& g, double v, int a)
+{
+  const double origin = a == 0 ? g.origin.x : (a == 1 ? g.origin.y : g.origin.z);
+  return gridCellCoordinate(v, origin, g.invCellSize, g.low[a], g.dims[a]);
+}
+
+/// The lower bound along axis a of the grid's cell `cell` (length unit).
+GLS_INLINE double gridCellLowerBound(const GridView& g, int a, std::int64_t cell)
+{
+  const double origin = a == 0 ? g.origin.x : (a == 1 ? g.origin.y : g.origin.z);
+  return origin + static_cast<double>(cell + g.low[a]) * g.cellSize;
 }
 
 /// The block of cells [x0, x1] x [y0, y1] x [z0, z1] that a ball of radius r around c overlaps (clamped to the
@@ -52,16 +70,17 @@ struct CellBlock
 GLS_INLINE CellBlock ballCellBlock(const GridView& g, const Vec3& c, double r)
 {
   CellBlock b;
-  b.x0 = gridCellCoordinate(c.x - r, g.origin.x, g.invCellSize, g.dims[0]);
-  b.x1 = gridCellCoordinate(c.x + r, g.origin.x, g.invCellSize, g.dims[0]);
-  b.y0 = gridCellCoordinate(c.y - r, g.origin.y, g.invCellSize, g.dims[1]);
-  b.y1 = gridCellCoordinate(c.y + r, g.origin.y, g.invCellSize, g.dims[1]);
-  b.z0 = gridCellCoordinate(c.z - r, g.origin.z, g.invCellSize, g.dims[2]);
-  b.z1 = gridCellCoordinate(c.z + r, g.origin.z, g.invCellSize, g.dims[2]);
+  b.x0 = gridCellOf(g, c.x - r, 0);
+  b.x1 = gridCellOf(g, c.x + r, 0);
+  b.y0 = gridCellOf(g, c.y - r, 1);
+  b.y1 = gridCellOf(g, c.y + r, 1);
+  b.z0 = gridCellOf(g, c.z - r, 2);
+  b.z1 = gridCellOf(g, c.z + r, 2);
   b.center = c;
   // A margin far above the rounding of origin + index * cellSize and of the cell assignment of a point.
   const double scale = absolute(c.x) + absolute(c.y) + absolute(c.z) + absolute(g.origin.x) + absolute(g.origin.y) +
-    absolute(g.origin.z) + g.cellSize * static_cast<double>(g.dims[0] + g.dims[1] + g.dims[2]);
+    absolute(g.origin.z) +
+    g.cellSize * static_cast<double>(g.low[0] + g.low[1] + g.low[2] + g.dims[0] + g.dims[1] + g.dims[2]);
   b.margin = 1e-12 * scale + 1e-9 * r;
   b.reach = r + b.margin;
   if (!isFinite(b.margin) || !isFinite(g.cellSize)) // infinite cells or extents: no narrowing
@@ -86,8 +105,8 @@ GLS_INLINE bool blockRow(
   std::int64_t x0 = b.x0, x1 = b.x1;
   if (b.margin >= 0.0)
   {
-    const double ylo = g.origin.y + static_cast<double>(y) * g.cellSize;
-    const double zlo = g.origin.z + static_cast<double>(z) * g.cellSize;
+    const double ylo = gridCellLowerBound(g, 1, y);
+    const double zlo = gridCellLowerBound(g, 2, z);
     double dy = distanceToInterval(b.center.y, ylo, ylo + g.cellSize) - b.margin;
     double dz = distanceToInterval(b.center.z, zlo, zlo + g.cellSize) - b.margin;
     dy = dy > 0.0 ? dy : 0.0;
@@ -98,8 +117,8 @@ GLS_INLINE bool blockRow(
       return false;
     }
     const double half = squareRoot(rest) + b.margin;
-    const std::int64_t lo = gridCellCoordinate(b.center.x - half, g.origin.x, g.invCellSize, g.dims[0]);
-    const std::int64_t hi = gridCellCoordinate(b.center.x + half, g.origin.x, g.invCellSize, g.dims[0]);
+    const std::int64_t lo = gridCellOf(g, b.center.x - half, 0);
+    const std::int64_t hi = gridCellOf(g, b.center.x + half, 0);
     x0 = lo > x0 ? lo : x0;
     x1 = hi < x1 ? hi : x1;
   }

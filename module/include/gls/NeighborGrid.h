@@ -13,13 +13,33 @@
 namespace gls
 {
 
+/// The cells a grid sorts points into: lattice cell (i, j, k) is the cube of edge cellSize whose lower corner is
+/// origin + (i, j, k) cellSize, for 0 <= i < dims[0] and so on (coordinates outside are clamped to the lattice).
+struct GridLattice
+{
+  Vec3 origin{};
+  double cellSize = 1.0; ///< length unit; infinite for a single cell
+  std::int64_t dims[3] = { 1, 1, 1 };
+};
+
 class NeighborGrid
 {
 public:
+  /// The lattice build() takes for these points: cells of cellSize from the admitted points' lowest corner, the
+  /// cell size enlarged if the grid would need more than max(8 n, 65536) cells.
+  static GridLattice chooseLattice(const double* xyz, std::size_t n, double cellSize, const unsigned char* include);
+
   /// Builds the grid. xyz: n interleaved positions; normals: n interleaved normals or null; include: n flags
   /// (non-zero = admit) or null for all finite points. The cell size is enlarged if the grid would need more than
   /// max(8 n, 65536) cells.
   void build(const double* xyz, const double* normals, std::size_t n, double cellSize,
+    const unsigned char* include = nullptr);
+
+  /// Builds a grid over part of a cloud on the whole cloud's lattice (chooseLattice of the whole), covering only the
+  /// cells its points occupy: every point falls in the same lattice cell as in the whole cloud's grid, so a ball
+  /// query that the part answers completely visits its points in the same order (a spatial tile of a run gives the
+  /// same sums as the whole run, bit for bit).
+  void buildOnLattice(const double* xyz, const double* normals, std::size_t n, const GridLattice& lattice,
     const unsigned char* include = nullptr);
 
   const GridView& view() const { return this->View; }
@@ -40,6 +60,9 @@ public:
   void releaseCells();
 
 private:
+  void sortIntoCells(const double* xyz, const double* normals, std::size_t n, const unsigned char* include,
+    const GridLattice& lattice, const std::int64_t low[3], const std::int64_t dims[3]);
+
   std::vector<std::uint64_t> CellStart;
   std::vector<Vec3> Points;
   std::vector<Vec3> Normals;

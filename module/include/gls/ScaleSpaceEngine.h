@@ -54,7 +54,21 @@ struct ScaleSpaceSettings
   std::size_t deviceChunkLimit = 0; ///< CUDA: at most this many points per device pass (0 = as memory allows)
   Evaluation evaluation = Evaluation::Exact; ///< how each ball's moments are evaluated
   MultiresolutionSettings multiresolution;
+  /// The exact evaluation's grid lattice when given (a spatial tile of a larger cloud takes the whole cloud's, so that
+  /// its sums equal the whole run's bit for bit: TiledScaleSpace); else exactGridLattice of the points.
+  bool haveGridLattice = false;
+  GridLattice gridLattice;
 };
+
+/// The lattice of an exact evaluation's grid over these points (admit: the admitOrientedPoints flags): cells of a
+/// quarter of the largest scale, enlarged where the grid would need too many cells (NeighborGrid::chooseLattice).
+GridLattice exactGridLattice(
+  const double* points, std::size_t count, const unsigned char* admit, const std::vector<double>& scales);
+
+/// Fills in what the multi-resolution layout takes from the cloud when the settings leave it out: the box of the
+/// admitted points (haveBounds) and the spacing (surfaceSpacingOfBox of that box and the admitted count).
+void resolvePyramidFrame(
+  MultiresolutionSettings& m, const double* points, std::size_t count, const unsigned char* admit);
 
 /// What a run did: the backend that computed the samples and, when a CUDA run fell back to the CPU, why.
 struct RunReport

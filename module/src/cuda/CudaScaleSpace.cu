@@ -71,8 +71,8 @@ private:
   std::size_t Count = 0;
 };
 
-__global__ void cellKeysKernel(const Vec3* points, std::uint64_t n, Vec3 origin, double invCell, std::int64_t dx,
-  std::int64_t dy, std::int64_t dz, std::uint64_t* keys, std::uint64_t* order)
+__global__ void cellKeysKernel(const Vec3* points, std::uint64_t n, GridView geometry, std::uint64_t* keys,
+  std::uint64_t* order)
 {
   const std::uint64_t i = blockIdx.x * static_cast<std::uint64_t>(blockDim.x) + threadIdx.x;
   if (i >= n)
@@ -80,10 +80,10 @@ __global__ void cellKeysKernel(const Vec3* points, std::uint64_t n, Vec3 origin,
     return;
   }
   const Vec3 p = points[i];
-  const std::int64_t cx = gridCellCoordinate(p.x, origin.x, invCell, dx);
-  const std::int64_t cy = gridCellCoordinate(p.y, origin.y, invCell, dy);
-  const std::int64_t cz = gridCellCoordinate(p.z, origin.z, invCell, dz);
-  keys[i] = static_cast<std::uint64_t>((cz * dy + cy) * dx + cx);
+  const std::int64_t cx = gridCellOf(geometry, p.x, 0);
+  const std::int64_t cy = gridCellOf(geometry, p.y, 1);
+  const std::int64_t cz = gridCellOf(geometry, p.z, 2);
+  keys[i] = static_cast<std::uint64_t>((cz * geometry.dims[1] + cy) * geometry.dims[0] + cx);
   order[i] = i;
 }
 
@@ -266,8 +266,7 @@ bool CudaScaleSpace::prepare(
     const unsigned threads = 256;
     if (n > 0)
     {
-      cellKeysKernel<<<blocksFor(n, threads), threads>>>(points.get(), n, geometry.origin, geometry.invCellSize,
-        geometry.dims[0], geometry.dims[1], geometry.dims[2], keys.get(), order.get());
+      cellKeysKernel<<<blocksFor(n, threads), threads>>>(points.get(), n, geometry, keys.get(), order.get());
       if (!check(cudaGetLastError(), "cell key kernel", error))
       {
         return false;

@@ -1,0 +1,72 @@
+// TiledScaleSpace evaluates a cloud with ScaleSpaceEngine either whole or one spatial tile at a time (SpatialTiles):
+// each tile's engine holds the tile's points and the points within reach of it (its ghost band) and evaluates only
+// the tile's own points, so the engine's memory is that of the largest tile with its band rather than the cloud's.
+// Every tile lays its grid or pyramid on the whole cloud's lattice and lists its points in the cloud's order, so
+// each point gets the samples of the untiled run, bit for bit (the ghost band covers every neighbour and every cell
+// a fit takes whole: ghostReach).
+#pragma once
+
+#include "gls/ScaleSpaceEngine.h"
+#include "gls/SpatialTiles.h"
+#include "gls/UninitializedArray.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace gls
+{
+
+class TiledScaleSpace
+{
+public:
+  /// Bytes a tile needs per point (ghosts included) besides its engine's: its list of cloud indices, its copy of the
+  /// positions and normals while its engine is built, and a flag.
+  static constexpr double kBytesPerTilePoint = 8.0 + 6.0 * 8.0 + 1.0;
+
+  /// points, normals: count interleaved triples. Only the first `evaluated` points are evaluated; the rest (a
+  /// distributed piece's ghosts) are neighbours only. tiles <= 1: one engine over the whole cloud, built here on
+  /// settings.parallel (its progress and abort, as ScaleSpaceEngine). More: at most that many tiles (fewer where the
+  /// points cannot be cut), whose engines are built one after the other inside run(); the points and normals must
+  /// then outlive this object.
+  TiledScaleSpace(const double* points, const double* normals, std::size_t count, std::size_t evaluated,
+    ScaleSpaceSettings settings, std::size_t tiles);
+
+  /// The distance from a tile within which the cloud's points join its engine: the largest scale for the exact
+  /// evaluation (every neighbour is in the ball); for the multi-resolution one, the farthest point of a cell a fit
+  /// takes whole (largest scale times 1 + sqrt(3) accuracy) plus the diagonals of the cubes that share a walk.
+  static double ghostReach(const ScaleSpaceSettings& settings, double finestCellSize);
+
+  std::size_t tileCount() const { return this->Whole ? 1 : this->Tiles.count(); }
+  /// Points (own and ghosts) of the largest tile; the point count for one tile.
+  std::size_t largestTile() const { return this->Largest; }
+  /// True when the whole cloud's engine was stopped while it was built (run() then returns false).
+  bool buildAborted() const { return this->Whole && this->Whole->buildAborted(); }
+
+  /// ScaleSpaceEngine::run over the evaluated points (all when ids is null; ids are cloud indices below
+  /// `evaluated`): each tile's engine built, run and freed in turn, progress over all tiles through
+  /// parallel.progress. The sink sees cloud indices. Returns false if aborted.
+  bool run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const ParallelOptions& parallel,
+    Backend backend, RunReport& report) const;
+
+private:
+  bool runTile(std::size_t k, ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
+    const ParallelOptions& parallel, Backend backend, RunReport& report) const;
+  /// Cloud indices of tile k's points and ghosts, increasing; own[j] says whether members[j] is evaluated here.
+  void members(std::size_t k, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const;
+
+  const double* Points = nullptr;
+  const double* Normals = nullptr;
+  std::size_t Count = 0;
+  std::size_t Evaluated = 0;
+  ScaleSpaceSettings Settings;
+  std::unique_ptr<ScaleSpaceEngine> Whole;    ///< one tile: the engine over the whole cloud
+  std::vector<std::uint64_t> WholeOwnedOrder; ///< one tile with points not evaluated: the engine's order without them
+  SpatialTiles Tiles;
+  UninitializedArray<unsigned char> Admit;    ///< tiles: which points may be neighbours (admitOrientedPoints)
+  double Reach = 0.0;
+  std::size_t Largest = 0;
+};
+
+} // namespace gls

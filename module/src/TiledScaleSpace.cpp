@@ -1,0 +1,239 @@
+#include "gls/TiledScaleSpace.h"
+
+#include "gls/MultiresolutionCloud.h"
+#include "gls/NeighborGrid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace gls
+{
+namespace
+{
+
+/// Passes a tile engine's samples on under the cloud's indices.
+class CloudIndexSink : public ScaleSampleSink
+{
+public:
+  CloudIndexSink(ScaleSampleSink& inner, const std::vector<std::uint64_t>& members)
+    : Inner(inner)
+    , Members(members)
+  {
+  }
+  void consume(std::uint64_t local, const ScaleSample* samples, int thread) override
+  {
+    this->Inner.consume(this->Members[local], samples, thread);
+  }
+
+private:
+  ScaleSampleSink& Inner;
+  const std::vector<std::uint64_t>& Members;
+};
+
+/// The share of a tile's progress its engine's build takes (the rest is its evaluation).
+constexpr double kBuildShare = 0.1;
+
+/// The multiples of the walk region's diagonal a tile's band adds for the multi-resolution evaluation: the cubes that
+/// share a walk are at most 2^kFarRegionLevel finest cells wide, twice that for margin.
+constexpr double kWalkCubeMargin = 2.0 * (1 << kFarRegionLevel);
+
+} // namespace
+
+double TiledScaleSpace::ghostReach(const ScaleSpaceSettings& settings, double finestCellSize)
+{
+  if (settings.scales.empty())
+  {
+    return 0.0;
+  }
+  const double t = settings.scales.back();
+  if (settings.evaluation != Evaluation::Multiresolution)
+  {
+    return t * (1.0 + 1e-9);
+  }
+  const double cellReach = t * (1.0 + std::sqrt(3.0) * settings.multiresolution.accuracy) * (1.0 + 1e-9);
+  return cellReach + std::sqrt(3.0) * kWalkCubeMargin * finestCellSize;
+}
+
+TiledScaleSpace::TiledScaleSpace(const double* points, const double* normals, std::size_t count,
+  std::size_t evaluated, ScaleSpaceSettings settings, std::size_t tiles)
+  : Points(points)
+  , Normals(normals)
+  , Count(count)
+  , Evaluated(std::min(evaluated, count))
+  , Settings(std::move(settings))
+  , Largest(count)
+{
+  if (tiles <= 1 || this->Settings.scales.empty())
+  {
+    this->Whole = std::make_unique<ScaleSpaceEngine>(points, normals, count, this->Settings);
+    if (this->Evaluated < count)
+    {
+      for (std::uint64_t id : this->Whole->evaluationOrder())
+      {
+        if (id < this->Evaluated)
+        {
+          this->WholeOwnedOrder.push_back(id);
+        }
+      }
+    }
+    return;
+  }
+  // What each tile's engine would otherwise take from its own points: the whole cloud's box, spacing and lattice.
+  this->Admit.resize(count);
+  admitOrientedPoints(points, normals, count, this->Admit.data(), this->Settings.parallel.threads);
+  double finestCellSize = 0.0;
+  if (this->Settings.evaluation == Evaluation::Multiresolution)
+  {
+    MultiresolutionSettings& m = this->Settings.multiresolution;
+    resolvePyramidFrame(m, points, count, this->Admit.data());
+    finestCellSize = choosePyramidLayout(m.low, m.high, m.spacing, this->Settings.scales.front(),
+      this->Settings.scales.back(), m.accuracy)
+                       .finestCellSize;
+  }
+  else
+  {
+    this->Settings.gridLattice = exactGridLattice(points, count, this->Admit.data(), this->Settings.scales);
+    this->Settings.haveGridLattice = true;
+  }
+  this->Reach = ghostReach(this->Settings, finestCellSize);
+  this->Tiles = SpatialTiles::plan(points, this->Evaluated, tiles);
+  this->Largest = 0;
+  std::vector<std::uint64_t> members;
+  std::vector<unsigned char> own;
+  for (std::size_t k = 0; k < this->Tiles.count(); ++k)
+  {
+    this->members(k, members, own);
+    this->Largest = std::max(this->Largest, members.size());
+  }
+}
+
+void TiledScaleSpace::members(std::size_t k, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const
+{
+  // Counted per slice, then written per slice: the cloud's order whatever the thread count.
+  const int threads = resolveThreadCount(this->Settings.parallel.threads);
+  const std::size_t slices = static_cast<std::size_t>(threads) * 4;
+  const auto sliceBegin = [this, slices](std::size_t s) { return this->Count * s / slices; };
+  const auto kind = [&](std::size_t i) -> int { // 0: not in the tile, 1: own point, 2: ghost
+    const double* p = this->Points + 3 * i;
+    if (i < this->Evaluated && this->Tiles.holds(k, p))
+    {
+      return 1;
+    }
+    return this->Admit[i] && this->Tiles.near(k, p, this->Reach) ? 2 : 0;
+  };
+  std::vector<std::size_t> first(slices + 1, 0);
+  ParallelOptions bySlice;
+  bySlice.threads = threads;
+  bySlice.chunk = 1;
+  parallelFor(slices, bySlice, [&](std::size_t s, std::size_t, int) {
+    std::size_t n = 0;
+    for (std::size_t i = sliceBegin(s); i < sliceBegin(s + 1); ++i)
+    {
+      n += kind(i) != 0 ? 1 : 0;
+    }
+    first[s + 1] = n;
+  });
+  for (std::size_t s = 0; s < slices; ++s)
+  {
+    first[s + 1] += first[s];
+  }
+  members.resize(first[slices]);
+  own.resize(first[slices]);
+  parallelFor(slices, bySlice, [&](std::size_t s, std::size_t, int) {
+    std::size_t j = first[s];
+    for (std::size_t i = sliceBegin(s); i < sliceBegin(s + 1); ++i)
+    {
+      const int c = kind(i);
+      if (c != 0)
+      {
+        members[j] = i;
+        own[j++] = c == 1 ? 1 : 0;
+      }
+    }
+  });
+}
+
+bool TiledScaleSpace::run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
+  const ParallelOptions& parallel, Backend backend, RunReport& report) const
+{
+  report = RunReport();
+  if (this->Whole)
+  {
+    const std::vector<std::uint64_t>* order = ids || this->WholeOwnedOrder.empty() ? ids : &this->WholeOwnedOrder;
+    return this->Whole->run(sink, order, EvaluationMethod::OnePass, &parallel, backend, &report);
+  }
+  const double tiles = static_cast<double>(this->Tiles.count());
+  for (std::size_t k = 0; k < this->Tiles.count(); ++k)
+  {
+    const ParallelOptions stage = progressStage(parallel, k / tiles, (k + 1) / tiles);
+    if (!this->runTile(k, sink, ids, stage, backend, report))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool TiledScaleSpace::runTile(std::size_t k, ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
+  const ParallelOptions& parallel, Backend backend, RunReport& report) const
+{
+  std::vector<std::uint64_t> members;
+  std::vector<unsigned char> own;
+  this->members(k, members, own);
+  // The tile's evaluation list, in its engine's indices: the requested points it holds, or all its own points.
+  std::vector<std::uint64_t> local;
+  if (ids)
+  {
+    for (std::uint64_t id : *ids)
+    {
+      if (id < this->Evaluated && this->Tiles.holds(k, this->Points + 3 * id))
+      {
+        local.push_back(
+          static_cast<std::uint64_t>(std::lower_bound(members.begin(), members.end(), id) - members.begin()));
+      }
+    }
+    if (local.empty())
+    {
+      return !parallel.progress || !parallel.progress(1.0);
+    }
+  }
+  std::unique_ptr<ScaleSpaceEngine> engine;
+  {
+    UninitializedArray<double> points(3 * members.size()), normals(3 * members.size());
+    for (std::size_t j = 0; j < members.size(); ++j)
+    {
+      std::copy(this->Points + 3 * members[j], this->Points + 3 * members[j] + 3, points.data() + 3 * j);
+      std::copy(this->Normals + 3 * members[j], this->Normals + 3 * members[j] + 3, normals.data() + 3 * j);
+    }
+    ScaleSpaceSettings settings = this->Settings;
+    settings.parallel = progressStage(parallel, 0.0, kBuildShare);
+    engine = std::make_unique<ScaleSpaceEngine>(points.data(), normals.data(), members.size(), std::move(settings));
+  }
+  if (engine->buildAborted())
+  {
+    return false;
+  }
+  if (!ids)
+  {
+    for (std::uint64_t j : engine->evaluationOrder())
+    {
+      if (own[j])
+      {
+        local.push_back(j);
+      }
+    }
+  }
+  CloudIndexSink toCloud(sink, members);
+  const ParallelOptions evaluation = progressStage(parallel, kBuildShare, 1.0);
+  RunReport tileReport;
+  const bool completed =
+    engine->run(toCloud, &local, EvaluationMethod::OnePass, &evaluation, backend, &tileReport);
+  if (k == 0 || tileReport.used != Backend::CUDA)
+  {
+    report = tileReport; // a fallback on any tile is reported
+  }
+  return completed;
+}
+
+} // namespace gls
