@@ -12,6 +12,7 @@
 
 #include "gls/Evaluation.h"
 #include "gls/ScaleSampling.h"
+#include "gls/TiledScaleSpace.h"
 
 #include <algorithm>
 #include <cmath>
@@ -228,7 +229,7 @@ bool vtkGLSScaleFilterBase::ChooseTiles(vtkGLSRun& run, const gls::ScaleSpaceSet
   {
     return true;
   }
-  // Twice the tiles until the largest (with its ghost band) fits, while cutting still makes tiles smaller.
+  // Twice the tiles until the largest (with its ghost band) fits, while cutting still makes tiles clearly smaller.
   double need = 0.0;
   std::size_t previous = run.Cloud.Size();
   for (std::size_t want = 2; want <= kMaximumTiles; want *= 2)
@@ -244,9 +245,10 @@ bool vtkGLSScaleFilterBase::ChooseTiles(vtkGLSRun& run, const gls::ScaleSpaceSet
       tiles = run.TiledSamples->TileCount();
       return true;
     }
-    if (largest >= previous || run.TiledSamples->TileCount() < want)
+    if (static_cast<double>(largest) > kTileShrink * static_cast<double>(previous) ||
+      run.TiledSamples->TileCount() < want)
     {
-      break; // the tiles' ghost bands (the largest scale) or identical points keep them this large
+      break; // the tiles' ghost bands (the largest scale) or identical points keep them about this large
     }
     previous = largest;
   }
@@ -259,8 +261,28 @@ bool vtkGLSScaleFilterBase::ChooseTiles(vtkGLSRun& run, const gls::ScaleSpaceSet
 
 double vtkGLSScaleFilterBase::GhostReach(const vtkGLSRun& run) const
 {
-  const double t = run.Scales.back();
-  return this->Evaluation == EVALUATION_EXACT ? t : t * (1.0 + std::sqrt(3.0) * this->Accuracy) * (1.0 + 1e-9);
+  // Decided before the evaluation is (Auto may take either): the multi-resolution band, the wider, unless Exact.
+  gls::ScaleSpaceSettings settings;
+  settings.scales = run.Scales;
+  settings.evaluation =
+    this->Evaluation == EVALUATION_EXACT ? gls::Evaluation::Exact : gls::Evaluation::Multiresolution;
+  this->LayOutPyramid(run, settings.multiresolution);
+  return gls::ghostReach(settings);
+}
+
+void vtkGLSScaleFilterBase::LayOutPyramid(const vtkGLSRun& run, gls::MultiresolutionSettings& m) const
+{
+  // The layout from global facts only (the whole input's box and point count), so that every piece of a
+  // distributed run lays its pyramid out like the serial run.
+  m.accuracy = this->Accuracy;
+  m.haveBounds = run.HasFinitePoints;
+  for (int a = 0; a < 3; ++a)
+  {
+    m.low[a] = run.Bounds[2 * a];
+    m.high[a] = run.Bounds[2 * a + 1];
+  }
+  const double points = run.Distributed.Sum(static_cast<double>(run.Input->GetNumberOfPoints()));
+  m.spacing = gls::surfaceSpacingOfBox(m.low, m.high, static_cast<std::size_t>(points));
 }
 
 void vtkGLSScaleFilterBase::ChooseEvaluation(vtkGLSRun& run, gls::ScaleSpaceSettings& settings)
@@ -281,18 +303,7 @@ void vtkGLSScaleFilterBase::ChooseEvaluation(vtkGLSRun& run, gls::ScaleSpaceSett
   run.AccuracyUsed = this->Accuracy;
   if (cells)
   {
-    gls::MultiresolutionSettings& m = settings.multiresolution;
-    m.accuracy = this->Accuracy;
-    // The layout from global facts only (the whole input's box and point count), so that every piece of a
-    // distributed run lays its pyramid out like the serial run.
-    m.haveBounds = run.HasFinitePoints;
-    for (int a = 0; a < 3; ++a)
-    {
-      m.low[a] = run.Bounds[2 * a];
-      m.high[a] = run.Bounds[2 * a + 1];
-    }
-    const double points = dist.Sum(static_cast<double>(run.Input->GetNumberOfPoints()));
-    m.spacing = gls::surfaceSpacingOfBox(m.low, m.high, static_cast<std::size_t>(points));
+    this->LayOutPyramid(run, settings.multiresolution);
   }
 }
 

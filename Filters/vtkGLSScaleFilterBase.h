@@ -47,6 +47,7 @@ namespace gls
 {
 class ScaleSampleSink;
 struct ScaleSpaceSettings;
+struct MultiresolutionSettings;
 }
 
 class VTKGLSFILTERS_EXPORT vtkGLSScaleFilterBase : public vtkGLSFitFilterBase
@@ -176,6 +177,9 @@ protected:
 
   /// The most spatial tiles a fit is cut into to meet the MemoryBudget.
   static constexpr std::size_t kMaximumTiles = 4096;
+  /// Doubling the tiles goes on while the largest tile shrinks below this fraction of its size (beyond, the ghost
+  /// bands of the largest scale hold most of each tile, and more tiles cost time without saving memory).
+  static constexpr double kTileShrink = 0.9;
 
   /// How many spatial tiles the fit of run.Cloud takes: 1 when the engine fits in the MemoryBudget beside `fixed`
   /// bytes, else the fewest (doubling) whose largest tile fits (its source then in run.TiledSamples). False (with an
@@ -227,10 +231,13 @@ private:
   /// (scales, memory budget, cloud, ghosts, engine). Collective; false (with an error) on failure.
   bool PrepareSamples(vtkGLSRun& run, const SampleRequest& request);
 
-  /// The largest ghost reach the fit may need: the largest scale, enlarged by the largest cell a multi-resolution
-  /// evaluation may take whole (its edge is below Accuracy times the scale, so its points are within
-  /// (1 + sqrt(3) Accuracy) t of the evaluated point).
+  /// The largest ghost reach the fit may need (gls::ghostReach): the largest scale, or for a multi-resolution
+  /// evaluation (Auto included) the farthest point of a cell a walk may take whole. Collective.
   double GhostReach(const vtkGLSRun& run) const;
+
+  /// The multi-resolution layout's frame (box, spacing, Accuracy) from the whole input: a distributed piece lays out
+  /// its pyramid as the serial run does. Collective.
+  void LayOutPyramid(const vtkGLSRun& run, gls::MultiresolutionSettings& m) const;
 
   /// Resolves Evaluation for the run's cloud (Auto: the ball-count estimate, summed over the pieces) and sets the
   /// engine's evaluation settings and run.EvaluationUsed. Collective.

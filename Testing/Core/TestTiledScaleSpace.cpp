@@ -110,6 +110,17 @@ TEST(SpatialTiles, EveryFinitePointLiesInOneTileAndTheTilesAreBalanced)
         }
       }
       ASSERT_EQ(in, 1) << "point " << i;
+      ASSERT_TRUE(tiles.holds(tiles.tileOf(&c.points[3 * i]), &c.points[3 * i]));
+      // Down the cuts, the same boxes as one test per box, each once.
+      for (double reach : { 0.0, 0.01, 0.05 })
+      {
+        std::vector<int> seen(tiles.count(), 0);
+        tiles.forEachNear(&c.points[3 * i], reach, [&seen](std::size_t k) { ++seen[k]; });
+        for (std::size_t k = 0; k < tiles.count(); ++k)
+        {
+          ASSERT_EQ(seen[k], tiles.near(k, &c.points[3 * i], reach) ? 1 : 0) << "point " << i << ", box " << k;
+        }
+      }
     }
     // Median cuts of the whole sample: a power of two gives equal tiles, others at most twice the smallest.
     const auto [low, high] = std::minmax_element(counts.begin(), counts.end());

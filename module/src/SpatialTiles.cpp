@@ -21,11 +21,14 @@ struct Piece
   double low[3], high[3];
   std::vector<const double*> sample;
   bool splittable = true;
+  long parentCut = -1; ///< the cut whose child this box is (-1: the root)
+  bool above = false;  ///< which child of it
+  int depth = 0;
 };
 
 /// Halves `piece` at the median of its sample along the sample's longest extent into itself and `upper`; false (and
 /// nothing changed) when the sample is one position or the median leaves one side empty.
-bool halve(Piece& piece, Piece& upper)
+bool halve(Piece& piece, Piece& upper, int& axisOut, double& splitOut)
 {
   double lo[3], hi[3];
   for (int a = 0; a < 3; ++a)
@@ -67,6 +70,8 @@ bool halve(Piece& piece, Piece& upper)
       split = v > lo[axis] ? std::min(split, v) : split;
     }
   }
+  axisOut = axis;
+  splitOut = split;
   upper = Piece();
   std::copy(piece.low, piece.low + 3, upper.low);
   std::copy(piece.high, piece.high + 3, upper.high);
@@ -86,6 +91,7 @@ bool halve(Piece& piece, Piece& upper)
 SpatialTiles SpatialTiles::plan(const double* xyz, std::size_t count, std::size_t tiles)
 {
   const double inf = std::numeric_limits<double>::infinity();
+  SpatialTiles result;
   std::vector<Piece> pieces(1);
   for (int a = 0; a < 3; ++a)
   {
@@ -106,7 +112,8 @@ SpatialTiles SpatialTiles::plan(const double* xyz, std::size_t count, std::size_
     std::size_t largest = pieces.size();
     for (std::size_t k = 0; k < pieces.size(); ++k)
     {
-      const bool candidate = pieces[k].splittable && pieces[k].sample.size() >= 2;
+      const bool candidate =
+        pieces[k].splittable && pieces[k].sample.size() >= 2 && pieces[k].depth < kMaximumDepth;
       if (candidate && (largest == pieces.size() || pieces[k].sample.size() > pieces[largest].sample.size()))
       {
         largest = k;
@@ -117,8 +124,23 @@ SpatialTiles SpatialTiles::plan(const double* xyz, std::size_t count, std::size_
       break;
     }
     Piece upper;
-    if (halve(pieces[largest], upper))
+    int axis = 0;
+    double split = 0.0;
+    if (halve(pieces[largest], upper, axis, split))
     {
+      // The box's place in the cuts becomes a cut whose children are it and the new box.
+      const long cut = static_cast<long>(result.Cuts.size());
+      Piece& lower = pieces[largest];
+      if (lower.parentCut >= 0)
+      {
+        Cut& parent = result.Cuts[static_cast<std::size_t>(lower.parentCut)];
+        (lower.above ? parent.above : parent.below) = cut;
+      }
+      result.Cuts.push_back({ axis, split, -static_cast<long>(largest) - 1, -static_cast<long>(pieces.size()) - 1 });
+      lower.parentCut = upper.parentCut = cut;
+      lower.above = false;
+      upper.above = true;
+      lower.depth = upper.depth = lower.depth + 1;
       pieces.push_back(std::move(upper));
     }
     else
@@ -126,7 +148,6 @@ SpatialTiles SpatialTiles::plan(const double* xyz, std::size_t count, std::size_
       pieces[largest].splittable = false;
     }
   }
-  SpatialTiles result;
   for (const Piece& piece : pieces)
   {
     result.Low.push_back({ { piece.low[0], piece.low[1], piece.low[2] } });
@@ -149,6 +170,21 @@ bool SpatialTiles::holds(std::size_t k, const double* p) const
     }
   }
   return true;
+}
+
+std::size_t SpatialTiles::tileOf(const double* p) const
+{
+  if (this->Cuts.empty() || !finitePosition(p))
+  {
+    return 0;
+  }
+  long node = 0;
+  while (node >= 0)
+  {
+    const Cut& c = this->Cuts[static_cast<std::size_t>(node)];
+    node = p[c.axis] < c.split ? c.below : c.above;
+  }
+  return static_cast<std::size_t>(-node - 1);
 }
 
 bool SpatialTiles::near(std::size_t k, const double* p, double reach) const

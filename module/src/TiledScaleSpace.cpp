@@ -34,13 +34,9 @@ private:
 /// The share of a tile's progress its engine's build takes (the rest is its evaluation).
 constexpr double kBuildShare = 0.1;
 
-/// The multiples of the walk region's diagonal a tile's band adds for the multi-resolution evaluation: the cubes that
-/// share a walk are at most 2^kFarRegionLevel finest cells wide, twice that for margin.
-constexpr double kWalkCubeMargin = 2.0 * (1 << kFarRegionLevel);
-
 } // namespace
 
-double TiledScaleSpace::ghostReach(const ScaleSpaceSettings& settings, double finestCellSize)
+double ghostReach(const ScaleSpaceSettings& settings)
 {
   if (settings.scales.empty())
   {
@@ -51,8 +47,18 @@ double TiledScaleSpace::ghostReach(const ScaleSpaceSettings& settings, double fi
   {
     return t * (1.0 + 1e-9);
   }
-  const double cellReach = t * (1.0 + std::sqrt(3.0) * settings.multiresolution.accuracy) * (1.0 + 1e-9);
-  return cellReach + std::sqrt(3.0) * kWalkCubeMargin * finestCellSize;
+  // A walk takes a cell whole when it lies within t of the walk's region (the cube of points that share the walk,
+  // or for the linearized cells the far region around it) and its edge is at most Accuracy times that distance: its
+  // points are at most t (1 + sqrt(3) Accuracy) from the region, plus the region's diagonal from p.
+  const MultiresolutionSettings& m = settings.multiresolution;
+  const PyramidLayout layout =
+    choosePyramidLayout(m.low, m.high, m.spacing, settings.scales.front(), t, m.accuracy);
+  double region = std::sqrt(3.0) * std::ldexp(layout.finestCellSize, layout.walkLevel);
+  if (m.linearizedDistance > 0.0)
+  {
+    region = std::max(region, 2.0 * t / m.linearizedDistance); // far regions: half-diagonal below t / distance
+  }
+  return (t * (1.0 + std::sqrt(3.0) * m.accuracy) + region) * (1.0 + 1e-9);
 }
 
 TiledScaleSpace::TiledScaleSpace(const double* points, const double* normals, std::size_t count,
@@ -82,30 +88,57 @@ TiledScaleSpace::TiledScaleSpace(const double* points, const double* normals, st
   // What each tile's engine would otherwise take from its own points: the whole cloud's box, spacing and lattice.
   this->Admit.resize(count);
   admitOrientedPoints(points, normals, count, this->Admit.data(), this->Settings.parallel.threads);
-  double finestCellSize = 0.0;
   if (this->Settings.evaluation == Evaluation::Multiresolution)
   {
-    MultiresolutionSettings& m = this->Settings.multiresolution;
-    resolvePyramidFrame(m, points, count, this->Admit.data());
-    finestCellSize = choosePyramidLayout(m.low, m.high, m.spacing, this->Settings.scales.front(),
-      this->Settings.scales.back(), m.accuracy)
-                       .finestCellSize;
+    resolvePyramidFrame(this->Settings.multiresolution, points, count, this->Admit.data());
   }
   else
   {
     this->Settings.gridLattice = exactGridLattice(points, count, this->Admit.data(), this->Settings.scales);
     this->Settings.haveGridLattice = true;
   }
-  this->Reach = ghostReach(this->Settings, finestCellSize);
+  this->Reach = ghostReach(this->Settings);
   this->Tiles = SpatialTiles::plan(points, this->Evaluated, tiles);
   this->Largest = 0;
-  std::vector<std::uint64_t> members;
-  std::vector<unsigned char> own;
-  for (std::size_t k = 0; k < this->Tiles.count(); ++k)
+  for (std::size_t size : this->tileSizes())
   {
-    this->members(k, members, own);
-    this->Largest = std::max(this->Largest, members.size());
+    this->Largest = std::max(this->Largest, size);
   }
+}
+
+std::vector<std::size_t> TiledScaleSpace::tileSizes() const
+{
+  // A point joins the tiles it is near (when it may be a neighbour) and its own tile (when it is evaluated).
+  const int threads = resolveThreadCount(this->Settings.parallel.threads);
+  const std::size_t T = this->Tiles.count();
+  std::vector<std::vector<std::size_t>> counts(static_cast<std::size_t>(threads), std::vector<std::size_t>(T, 0));
+  ParallelOptions options;
+  options.threads = threads;
+  options.chunk = 65536;
+  parallelFor(this->Count, options, [&](std::size_t begin, std::size_t end, int thread) {
+    std::vector<std::size_t>& c = counts[static_cast<std::size_t>(thread)];
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const double* p = this->Points + 3 * i;
+      if (this->Admit[i])
+      {
+        this->Tiles.forEachNear(p, this->Reach, [&c](std::size_t k) { ++c[k]; });
+      }
+      else if (i < this->Evaluated)
+      {
+        ++c[this->Tiles.tileOf(p)];
+      }
+    }
+  });
+  std::vector<std::size_t> sizes(T, 0);
+  for (const std::vector<std::size_t>& c : counts)
+  {
+    for (std::size_t k = 0; k < T; ++k)
+    {
+      sizes[k] += c[k];
+    }
+  }
+  return sizes;
 }
 
 void TiledScaleSpace::members(std::size_t k, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const

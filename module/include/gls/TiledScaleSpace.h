@@ -18,6 +18,12 @@
 namespace gls
 {
 
+/// How far from a point the points that can change its samples lie (length unit): the largest scale for the exact
+/// evaluation (its ball); for the multi-resolution one (settings.multiresolution with its box and spacing, as
+/// resolvePyramidFrame leaves them), the farthest point of a cell a walk takes whole, t (1 + sqrt(3) Accuracy),
+/// plus the diagonal of the region the walk is shared by. A spatial tile's band, and a distributed piece's.
+double ghostReach(const ScaleSpaceSettings& settings);
+
 class TiledScaleSpace
 {
 public:
@@ -32,11 +38,6 @@ public:
   /// then outlive this object.
   TiledScaleSpace(const double* points, const double* normals, std::size_t count, std::size_t evaluated,
     ScaleSpaceSettings settings, std::size_t tiles);
-
-  /// The distance from a tile within which the cloud's points join its engine: the largest scale for the exact
-  /// evaluation (every neighbour is in the ball); for the multi-resolution one, the farthest point of a cell a fit
-  /// takes whole (largest scale times 1 + sqrt(3) accuracy) plus the diagonals of the cubes that share a walk.
-  static double ghostReach(const ScaleSpaceSettings& settings, double finestCellSize);
 
   std::size_t tileCount() const { return this->Whole ? 1 : this->Tiles.count(); }
   /// Points (own and ghosts) of the largest tile; the point count for one tile.
@@ -53,6 +54,8 @@ public:
 private:
   bool runTile(std::size_t k, ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
     const ParallelOptions& parallel, Backend backend, RunReport& report) const;
+  /// The points (own and ghosts) of every tile.
+  std::vector<std::size_t> tileSizes() const;
   /// Cloud indices of tile k's points and ghosts, increasing; own[j] says whether members[j] is evaluated here.
   void members(std::size_t k, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const;
 
