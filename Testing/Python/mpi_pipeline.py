@@ -2,6 +2,7 @@
 global point id) to an .npz file for run_mpi_compare.py.
 
     [mpiexec -np N] pvbatch mpi_pipeline.py <plugin.so> <scan.obj> <out.npz> [--stride S] [--all-on-rank0]
+        [--memory-budget MIB FEATURES_MIB]
     pvpython mpi_pipeline.py ... --server HOST:PORT     (a pvserver started with mpiexec -np N pvserver)
 
 The cloud comes from gls_piece_source (a programmable source that honours ParaView's piece requests): every S-th
@@ -35,6 +36,9 @@ parser.add_argument('out')
 parser.add_argument('--stride', type=int, default=3)
 parser.add_argument('--all-on-rank0', action='store_true')
 parser.add_argument('--server', help='HOST:PORT of a running pvserver (the pipeline then runs on its ranks)')
+parser.add_argument('--memory-budget', type=float, nargs=2, default=[0.0, 0.0], metavar=('MIB', 'FEATURES_MIB'),
+                    help='MemoryBudget (MiB) of the fused filters, and of the continuous features (which also hold '
+                         'their relative sigma\'s sample of nu): tight ones cut their fits into spatial tiles')
 args = parser.parse_args()
 
 if args.server:
@@ -42,7 +46,8 @@ if args.server:
     Connect(host, int(port))  # noqa: F405
 LoadPlugin(args.plugin, remote=bool(args.server), ns=globals())
 
-# Per point: the rank that computed it and the ghost points that rank's fit used (field data GLSGhostPoints).
+# Per point: the rank that computed it, the ghost points that rank's fit used (field data GLSGhostPoints) and the
+# spatial tiles it was cut into (GLSTiles).
 TAG_SCRIPT = r'''
 import numpy as np
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
@@ -55,7 +60,9 @@ c = vtkMultiProcessController.GetGlobalController()
 rank = c.GetLocalProcessId() if c else 0
 g = inp.GetFieldData().GetArray('GLSGhostPoints')
 ghosts = g.GetValue(0) if g else 0
-for name, value in (('Rank', rank), ('GhostsOnRank', ghosts)):
+t = inp.GetFieldData().GetArray('GLSTiles')
+tiles = t.GetValue(0) if t else 1
+for name, value in (('Rank', rank), ('GhostsOnRank', ghosts), ('TilesOnRank', tiles)):
     a = numpy_to_vtk(np.full(n, value, dtype=np.float64), deep=1)
     a.SetName(name)
     out.GetPointData().AddArray(a)
@@ -71,6 +78,8 @@ similar = GLSMultiScaleDissimilarity(Input=features, QueryPointId=1234, PriorMin
 fused_variation = GLSGeometricVariation(Input=normals, **scales)  # noqa: F405
 tagged = ProgrammableFilter(Input=fused_variation, OutputDataSetType='vtkPolyData', Script=TAG_SCRIPT)  # noqa: F405
 fused_features = GLSContinuousFeatures(Input=normals, **scales)  # noqa: F405
+tagged_features = ProgrammableFilter(Input=fused_features, OutputDataSetType='vtkPolyData',  # noqa: F405
+                                     Script=TAG_SCRIPT)
 fused_similar = GLSMultiScaleDissimilarity(Input=normals, UseQueryPointCoordinates=1,  # noqa: F405
                                            QueryPoint=[-0.03, 0.12, 0.03], PriorMinScale=0.02, **scales)
 agreeing = GLSNormalEstimation(Input=normals, NeighborhoodType='Radius', Radius=0.006,  # noqa: F405
@@ -83,9 +92,13 @@ adaptive = GLSProjection(Input=bandwidth)  # noqa: F405  (the per-point GLSBandw
 # The multi-resolution evaluation (forced: the bunny is below Auto's limit), whose cells reach past the largest scale.
 cells_space = GLSScaleSpace(Input=normals, Evaluation='Multiresolution', Accuracy=0.3, **scales)  # noqa: F405
 cells_features = GLSContinuousFeatures(Input=normals, Evaluation='Multiresolution', **scales)  # noqa: F405
+for fused in (fused_variation, fused_similar):
+    fused.MemoryBudget = args.memory_budget[0]
+for fused in (fused_features, cells_features):
+    fused.MemoryBudget = args.memory_budget[1]
 
 saved = {}
-for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_features', fused_features),
+for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_features', tagged_features),
                       ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('refined', refined),
                       ('projection', projection), ('adaptive_projection', adaptive), ('cells_space', cells_space),
                       ('cells_features', cells_features)):

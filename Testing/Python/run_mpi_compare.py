@@ -16,6 +16,9 @@ exchange the comparison must fail (relative difference above 1e-6), which shows 
 --all-on-rank0 gives rank 0 the whole cloud and the other ranks empty pieces (a reader that ignores pieces): the
 results must still equal the serial ones, rank 0 computing every point without ghosts.
 --pvserver runs the pipeline on `mpiexec -np N pvserver` driven by a pvpython client instead of pvbatch.
+--tiled-budget B F gives the fused filters a MemoryBudget of B MiB (the continuous features F), which cuts their fits
+into spatial tiles on every rank (checked: GLSTiles > 1 for the variation and the features), and checks every array against the untiled run on as many ranks (DIR/npN.npz, written
+by the plain --np N test) bit for bit.
 """
 import argparse
 import os
@@ -41,20 +44,24 @@ parser.add_argument('--expect-mismatch', action='store_true')
 parser.add_argument('--all-on-rank0', action='store_true')
 parser.add_argument('--pvserver')
 parser.add_argument('--pvpython')
+parser.add_argument('--tiled-budget', type=float, nargs=2, default=[0.0, 0.0])
 args = parser.parse_args()
 
 here = os.path.dirname(os.path.abspath(__file__))
 os.makedirs(args.work, exist_ok=True)
 reference = os.path.join(args.work, 'serial.npz')
 result = reference if args.np == 1 else os.path.join(
-    args.work, 'np%d%s%s%s.npz' % (args.np, '-no-ghosts' if args.expect_mismatch else '',
-                                   '-all-on-rank0' if args.all_on_rank0 else '', '-pvserver' if args.pvserver else ''))
+    args.work, 'np%d%s%s%s%s.npz' % (args.np, '-no-ghosts' if args.expect_mismatch else '',
+                                     '-all-on-rank0' if args.all_on_rank0 else '', '-pvserver' if args.pvserver else '',
+                                     '-tiled' if args.tiled_budget[0] > 0 else ''))
 if os.path.exists(result):
     os.remove(result)
 
 command = [args.pvbatch, os.path.join(here, 'mpi_pipeline.py'), args.plugin, args.scan, result]
 if args.all_on_rank0:
     command.append('--all-on-rank0')
+if args.tiled_budget[0] > 0:
+    command += ['--memory-budget'] + [str(b) for b in args.tiled_budget]
 env = dict(os.environ)
 if args.np > 1:
     launcher = [args.mpiexec, '-np', str(args.np)]
@@ -106,8 +113,30 @@ if args.np == 1:
     print('reference written: %s' % result)
     sys.exit(0)
 
-serial = np.load(reference)
 parallel = np.load(result)
+if args.tiled_budget[0] > 0:
+    untiled = np.load(os.path.join(args.work, 'np%d.npz' % args.np))
+    failures = []
+    if sorted(untiled.files) != sorted(parallel.files):
+        failures.append('different arrays')
+    for key in sorted(set(untiled.files) & set(parallel.files)):
+        if key.endswith('/TilesOnRank'):
+            continue
+        if not np.array_equal(untiled[key], parallel[key], equal_nan=True):
+            failures.append('%s: differs from the untiled run' % key)
+    for fused in ('fused_variation', 'fused_features'):
+        tiles, ranks = parallel[fused + '/TilesOnRank'], parallel[fused + '/Rank']
+        for r in range(args.np):
+            on_rank = np.unique(tiles[ranks == r])
+            print('%s, rank %d: fits in %s tiles' % (fused, r, on_rank))
+            if not (on_rank.size == 1 and on_rank[0] > 1):
+                failures.append('%s, rank %d did not tile (GLSTiles %s)' % (fused, r, on_rank))
+    for f in failures:
+        print('FAIL: ' + f)
+    print('%d ranks, tiled vs untiled, %d arrays: %s' % (args.np, len(parallel.files), 'FAIL' if failures else
+                                                         'PASS (bit for bit)'))
+    sys.exit(1 if failures else 0)
+serial = np.load(reference)
 failures = []
 worst = 0.0
 if sorted(serial.files) != sorted(parallel.files):
@@ -115,7 +144,7 @@ if sorted(serial.files) != sorted(parallel.files):
         sorted(set(serial.files) - set(parallel.files)), sorted(set(parallel.files) - set(serial.files))))
 for key in sorted(set(serial.files) & set(parallel.files)):
     name = key.split('/', 1)[1]
-    if name in ('Rank', 'GhostsOnRank'):
+    if name in ('Rank', 'GhostsOnRank', 'TilesOnRank'):
         continue
     if key.startswith('serial_only/'):
         if not (serial[key][0] > 0 and parallel[key][0] == 0):
