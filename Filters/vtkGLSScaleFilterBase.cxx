@@ -100,6 +100,7 @@ int vtkGLSScaleFilterBase::Execute(vtkGLSRun& run)
 {
   this->LastBackendUsed.clear();
   this->LastEvaluationUsed.clear();
+  this->LastTileCount = 0;
   if (!this->CheckFitParameters() || !this->CheckParameters(run) ||
     !this->PrepareSamples(run, this->GetSampleRequest(run)))
   {
@@ -213,6 +214,7 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   }
   run.Samples = tiles > 1 ? std::move(run.TiledSamples) : vtkGLSSampleSource::Fit(run.Cloud, settings);
   run.TilesUsed = static_cast<long long>(run.Samples->TileCount());
+  this->LastTileCount = static_cast<int>(run.TilesUsed);
   this->Heartbeat();
   return true;
 }

@@ -144,6 +144,11 @@ public:
   /// The backend the last fit of this filter ran on ("CPU", "CUDA"), or "" if it reused stored arrays.
   const char* GetLastBackendUsed() const { return this->LastBackendUsed.c_str(); }
 
+  /// The spatial tiles the last fit was cut into to meet MemoryBudget (1: not cut; 0: no fit was prepared, e.g.
+  /// refused or reusing stored arrays). Known as soon as the fit starts (an observer of the first progress event
+  /// can read it).
+  int GetLastTileCount() const { return this->LastTileCount; }
+
   /// The absolute scales this filter would fit for the given (serial) input, or an empty vector (and an error) when
   /// the parameters are invalid.
   std::vector<double> ComputeAbsoluteScales(vtkPointSet* input);
@@ -224,6 +229,7 @@ protected:
   double Accuracy;
   std::string LastBackendUsed;
   std::string LastEvaluationUsed;
+  int LastTileCount = 0;
   bool WarnedAboutBackend = false;
 
 private:
