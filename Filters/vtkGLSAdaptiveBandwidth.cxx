@@ -99,6 +99,13 @@ int vtkGLSAdaptiveBandwidth::ComputeOutputs(vtkGLSRun& run)
   return COMPLETED;
 }
 
+void vtkGLSAdaptiveBandwidth::DescribeSettings(std::vector<SettingRange>& settings)
+{
+  this->Superclass::DescribeSettings(settings);
+  settings.push_back({ "Threshold", static_cast<double>(this->Threshold), static_cast<double>(0.0), static_cast<double>(VTK_DOUBLE_MAX) });
+  settings.push_back({ "SmoothingRadius", static_cast<double>(this->SmoothingRadius), static_cast<double>(0.0), static_cast<double>(VTK_DOUBLE_MAX) });
+}
+
 void vtkGLSAdaptiveBandwidth::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

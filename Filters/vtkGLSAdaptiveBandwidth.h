@@ -45,18 +45,20 @@ public:
   ///@{
   /// Threshold on the slope -t dnu/dt (dimensionless, >= 0). Default 0.01, the paper's value. Lower values stop
   /// the scan sooner (larger bandwidths).
-  vtkSetClampMacro(Threshold, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Threshold, double);
   vtkGetMacro(Threshold, double);
   ///@}
 
   ///@{
   /// Radius of the spatial smoothing of the raw bandwidths, in ScaleUnits (fraction of the bounding-box diagonal by
   /// default). 0 turns the smoothing off. Default 0.01.
-  vtkSetClampMacro(SmoothingRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(SmoothingRadius, double);
   vtkGetMacro(SmoothingRadius, double);
   ///@}
 
 protected:
+  void DescribeSettings(std::vector<SettingRange>& settings) override;
+
   vtkGLSAdaptiveBandwidth();
   ~vtkGLSAdaptiveBandwidth() override;
 

@@ -128,6 +128,13 @@ vtkGLSScaleFilterBase::SampleRequest vtkGLSContinuousFeatures::GetSampleRequest(
 
 int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)
 {
+  if (run.Scales.size() < 2)
+  {
+    // f integrates nu over the scales (log t): one scale gives no interval, and NaN everywhere.
+    vtkErrorMacro("The continuous features need at least 2 scales (there is " << run.Scales.size()
+                                                                               << "): raise NumberOfScales.");
+    return FAILED;
+  }
   this->LastSigma = std::numeric_limits<double>::quiet_NaN();
   double sigma = this->Sigma;
   if (this->SigmaMode == SIGMA_RELATIVE && !this->RelativeSigma(run, sigma))
@@ -263,6 +270,13 @@ bool vtkGLSContinuousFeatures::RelativeSigma(vtkGLSRun& run, double& sigma)
   }
   sigma = dist.Max(mine);
   return true;
+}
+
+void vtkGLSContinuousFeatures::DescribeSettings(std::vector<SettingRange>& settings)
+{
+  this->Superclass::DescribeSettings(settings);
+  settings.push_back({ "SigmaMode", static_cast<double>(this->SigmaMode), static_cast<double>(SIGMA_ABSOLUTE), static_cast<double>(SIGMA_RELATIVE) });
+  settings.push_back({ "FeatureMeasure", static_cast<double>(this->FeatureMeasure), static_cast<double>(SCALE), static_cast<double>(LOG_SCALE) });
 }
 
 void vtkGLSContinuousFeatures::PrintSelf(ostream& os, vtkIndent indent)

@@ -72,7 +72,7 @@ public:
 
   ///@{
   /// How sigma, the scale of tanh(nu / sigma), is set (default SIGMA_RELATIVE; see the class documentation).
-  vtkSetClampMacro(SigmaMode, int, SIGMA_ABSOLUTE, SIGMA_RELATIVE);
+  vtkSetMacro(SigmaMode, int);
   vtkGetMacro(SigmaMode, int);
   void SetSigmaModeToAbsolute() { this->SetSigmaMode(SIGMA_ABSOLUTE); }
   void SetSigmaModeToRelative() { this->SetSigmaMode(SIGMA_RELATIVE); }
@@ -97,13 +97,15 @@ public:
 
   ///@{
   /// Measure of the scale integral (default SCALE).
-  vtkSetClampMacro(FeatureMeasure, int, SCALE, LOG_SCALE);
+  vtkSetMacro(FeatureMeasure, int);
   vtkGetMacro(FeatureMeasure, int);
   void SetFeatureMeasureToScale() { this->SetFeatureMeasure(SCALE); }
   void SetFeatureMeasureToLogScale() { this->SetFeatureMeasure(LOG_SCALE); }
   ///@}
 
 protected:
+  void DescribeSettings(std::vector<SettingRange>& settings) override;
+
   vtkGLSContinuousFeatures();
   ~vtkGLSContinuousFeatures() override;
 

@@ -24,6 +24,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkStringArray.h"
 
+#include <sstream>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -138,12 +139,75 @@ int vtkGLSFilterBase::MakeDeclaredOutputs(vtkInformationVector* outputVector)
   return 1;
 }
 
+void vtkGLSFilterBase::DescribeSettings(std::vector<SettingRange>& settings)
+{
+  settings.push_back({ "NumberOfThreads", static_cast<double>(this->NumberOfThreads), 0.0, 1024.0 });
+}
+
+double vtkGLSFilterBase::GetSettingMinimum(const char* name)
+{
+  std::vector<SettingRange> settings;
+  this->DescribeSettings(settings);
+  for (const SettingRange& s : settings)
+  {
+    if (name && std::strcmp(s.Name, name) == 0)
+    {
+      return s.Minimum;
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double vtkGLSFilterBase::GetSettingMaximum(const char* name)
+{
+  std::vector<SettingRange> settings;
+  this->DescribeSettings(settings);
+  for (const SettingRange& s : settings)
+  {
+    if (name && std::strcmp(s.Name, name) == 0)
+    {
+      return s.Maximum;
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+bool vtkGLSFilterBase::ValidateSettings()
+{
+  std::vector<SettingRange> settings;
+  this->DescribeSettings(settings);
+  for (const SettingRange& s : settings)
+  {
+    if (s.Value >= s.Minimum && s.Value <= s.Maximum)
+    {
+      continue;
+    }
+    std::ostringstream range;
+    if (s.Maximum >= VTK_INT_MAX)
+    {
+      range << "at least " << s.Minimum;
+    }
+    else
+    {
+      range << "from " << s.Minimum << " to " << s.Maximum;
+    }
+    vtkErrorMacro("Invalid " << s.Name << ": " << s.Value << " (allowed: " << range.str()
+                             << "). Nothing was computed.");
+    return false;
+  }
+  return true;
+}
+
 int vtkGLSFilterBase::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   int ok = 0;
-  if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
+  if (!this->ValidateSettings())
+  {
+    ok = 0;
+  }
+  else if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
   {
     ok = this->RunOnBlocks(composite, outputVector);
   }

@@ -62,8 +62,9 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Worker threads (0 = all hardware threads, the default). Results are bitwise identical for any value.
-  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  /// Worker threads (0 = all hardware threads, the default; at most 1024). Results are bitwise identical for any
+  /// value.
+  vtkSetMacro(NumberOfThreads, int);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
@@ -74,7 +75,30 @@ public:
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
   ///@}
 
+  /// The allowed range of a numeric setting, by its property name (e.g. "Accuracy"; an enumeration's first and last
+  /// values): a value outside it, or NaN, is refused when the filter runs, with an error naming the setting, the value
+  /// given and the range (nothing is clamped). NaN for a name the filter does not check this way.
+  double GetSettingMinimum(const char* name);
+  double GetSettingMaximum(const char* name);
+
 protected:
+  /// A numeric setting, its value and its allowed range [Minimum, Maximum].
+  struct SettingRange
+  {
+    const char* Name;
+    double Value;
+    double Minimum;
+    double Maximum;
+  };
+
+  /// The filter's range-checked settings: a subclass appends its own to its superclass's (the one place their ranges
+  /// are written; the ParaView XML's domains agree, tested).
+  virtual void DescribeSettings(std::vector<SettingRange>& settings);
+
+  /// False (with an error naming the setting, the value given and its range) when a setting is outside its range or
+  /// NaN. Checked before any work, on every rank alike.
+  bool ValidateSettings();
+
   vtkGLSFilterBase();
   ~vtkGLSFilterBase() override;
 

@@ -124,6 +124,13 @@ bool vtkGLSFitFilterBase::AgreeToContinue(const vtkGLSRun& run, bool ok)
   return false;
 }
 
+void vtkGLSFitFilterBase::DescribeSettings(std::vector<SettingRange>& settings)
+{
+  this->Superclass::DescribeSettings(settings);
+  settings.push_back({ "ScaleUnits", static_cast<double>(this->ScaleUnits), static_cast<double>(ABSOLUTE), static_cast<double>(RELATIVE_TO_DIAGONAL) });
+  settings.push_back({ "MemoryBudget", static_cast<double>(this->MemoryBudget), static_cast<double>(0.0), static_cast<double>(VTK_DOUBLE_MAX) });
+}
+
 void vtkGLSFitFilterBase::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -35,7 +35,7 @@ public:
   ///@{
   /// How this filter's lengths (scales, supports, radii) are given. Default RELATIVE_TO_DIAGONAL. In a distributed
   /// run the diagonal is the whole input's.
-  vtkSetClampMacro(ScaleUnits, int, ABSOLUTE, RELATIVE_TO_DIAGONAL);
+  vtkSetMacro(ScaleUnits, int);
   vtkGetMacro(ScaleUnits, int);
   void SetScaleUnitsToAbsolute() { this->SetScaleUnits(ABSOLUTE); }
   void SetScaleUnitsToRelativeToDiagonal() { this->SetScaleUnits(RELATIVE_TO_DIAGONAL); }
@@ -55,11 +55,13 @@ public:
   /// says how much it needs and what to change. A filter that takes scales fits the cloud in spatial tiles, one
   /// after the other, when its fitting engine alone would not fit: each tile with the points within reach of its
   /// largest scale, results bit for bit those of one engine (the output field data GLSTiles says how many).
-  vtkSetClampMacro(MemoryBudget, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(MemoryBudget, double);
   vtkGetMacro(MemoryBudget, double);
   ///@}
 
 protected:
+  void DescribeSettings(std::vector<SettingRange>& settings) override;
+
   vtkGLSFitFilterBase();
   ~vtkGLSFitFilterBase() override;
 

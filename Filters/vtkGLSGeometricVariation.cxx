@@ -105,6 +105,12 @@ int vtkGLSGeometricVariation::ComputeOutputs(vtkGLSRun& run)
   return COMPLETED;
 }
 
+void vtkGLSGeometricVariation::DescribeSettings(std::vector<SettingRange>& settings)
+{
+  this->Superclass::DescribeSettings(settings);
+  settings.push_back({ "MaxNumberOfPertinentScales", static_cast<double>(this->MaxNumberOfPertinentScales), static_cast<double>(1), static_cast<double>(1000) });
+}
+
 void vtkGLSGeometricVariation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

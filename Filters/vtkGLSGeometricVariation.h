@@ -41,11 +41,13 @@ public:
 
   ///@{
   /// How many pertinent scales to report per point (default 3, at least 1).
-  vtkSetClampMacro(MaxNumberOfPertinentScales, int, 1, 1000);
+  vtkSetMacro(MaxNumberOfPertinentScales, int);
   vtkGetMacro(MaxNumberOfPertinentScales, int);
   ///@}
 
 protected:
+  void DescribeSettings(std::vector<SettingRange>& settings) override;
+
   vtkGLSGeometricVariation();
   ~vtkGLSGeometricVariation() override;
 

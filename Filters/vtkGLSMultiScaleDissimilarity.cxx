@@ -93,6 +93,21 @@ vtkGLSMultiScaleDissimilarity::~vtkGLSMultiScaleDissimilarity() = default;
 
 bool vtkGLSMultiScaleDissimilarity::CheckParameters(vtkGLSRun& run)
 {
+  if (!(this->PriorMinScale >= 0.0) || !(this->PriorMaxScale >= 0.0) || !std::isfinite(this->PriorMinScale) ||
+    !std::isfinite(this->PriorMaxScale))
+  {
+    vtkErrorMacro("Invalid scale prior: PriorMinScale " << this->PriorMinScale << " and PriorMaxScale "
+                                                        << this->PriorMaxScale
+                                                        << " must be finite and >= 0 (PriorMaxScale 0: no upper "
+                                                           "limit).");
+    return false;
+  }
+  if (this->PriorMaxScale > 0.0 && this->PriorMinScale > this->PriorMaxScale)
+  {
+    vtkErrorMacro("Invalid scale prior: PriorMinScale " << this->PriorMinScale << " is above PriorMaxScale "
+                                                        << this->PriorMaxScale << ".");
+    return false;
+  }
   vtkPointSet* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
   const vtkGLSDistributedCloud& dist = run.Distributed;
@@ -234,8 +249,12 @@ int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
     gls::scalePrior(scales, static_cast<gls::ScalePriorShape>(this->PriorShape), pmin, pmax, why);
   if (prior.empty())
   {
-    vtkErrorMacro("Invalid scale prior: " << why << " (sampled scales span [" << scales.front() << ", "
-                                          << scales.back() << "]).");
+    // The range the user gave (in ScaleUnits and absolute), not its clipped form, which may come out reversed.
+    vtkErrorMacro("Invalid scale prior: no sampled scale lies in [PriorMinScale, PriorMaxScale] = ["
+      << this->PriorMinScale << ", " << (this->PriorMaxScale > 0.0 ? this->PriorMaxScale : scales.back())
+      << "] (absolute: [" << this->ToAbsoluteLength(run, this->PriorMinScale) << ", "
+      << (this->PriorMaxScale > 0.0 ? this->ToAbsoluteLength(run, this->PriorMaxScale) : scales.back())
+      << "]); the sampled scales span [" << scales.front() << ", " << scales.back() << "] (absolute).");
     return FAILED;
   }
 
@@ -375,6 +394,13 @@ bool vtkGLSMultiScaleDissimilarity::LocateDistributedQuery(const vtkGLSRun& run,
     query = -1; // a duplicated global id: the lowest rank holding it owns the query
   }
   return true;
+}
+
+void vtkGLSMultiScaleDissimilarity::DescribeSettings(std::vector<SettingRange>& settings)
+{
+  this->Superclass::DescribeSettings(settings);
+  settings.push_back({ "PriorShape", static_cast<double>(this->PriorShape), static_cast<double>(BOX), static_cast<double>(LOG_GAUSSIAN) });
+  settings.push_back({ "Threshold", static_cast<double>(this->Threshold), static_cast<double>(0.0), static_cast<double>(VTK_DOUBLE_MAX) });
 }
 
 void vtkGLSMultiScaleDissimilarity::PrintSelf(ostream& os, vtkIndent indent)

@@ -82,7 +82,7 @@ public:
 
   ///@{
   /// Shape of the scale prior (default BOX, the paper's choice).
-  vtkSetClampMacro(PriorShape, int, BOX, LOG_GAUSSIAN);
+  vtkSetMacro(PriorShape, int);
   vtkGetMacro(PriorShape, int);
   void SetPriorShapeToBox() { this->SetPriorShape(BOX); }
   void SetPriorShapeToLogGaussian() { this->SetPriorShape(LOG_GAUSSIAN); }
@@ -90,11 +90,13 @@ public:
 
   ///@{
   /// Points with Delta < Threshold are marked similar (dimensionless, default 0.01).
-  vtkSetClampMacro(Threshold, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Threshold, double);
   vtkGetMacro(Threshold, double);
   ///@}
 
 protected:
+  void DescribeSettings(std::vector<SettingRange>& settings) override;
+
   vtkGLSMultiScaleDissimilarity();
   ~vtkGLSMultiScaleDissimilarity() override;
 

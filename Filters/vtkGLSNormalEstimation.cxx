@@ -386,6 +386,19 @@ bool vtkGLSNormalEstimation::RefineDistributed(
   return true;
 }
 
+void vtkGLSNormalEstimation::DescribeSettings(std::vector<SettingRange>& settings)
+{
+  this->Superclass::DescribeSettings(settings);
+  settings.push_back({ "NeighborhoodType", static_cast<double>(this->NeighborhoodType), static_cast<double>(K_NEAREST), static_cast<double>(RADIUS) });
+  settings.push_back({ "NumberOfNeighbors", static_cast<double>(this->NumberOfNeighbors), static_cast<double>(3), static_cast<double>(100000) });
+  settings.push_back({ "Refinement", static_cast<double>(this->Refinement), static_cast<double>(NO_REFINEMENT), static_cast<double>(GLS_REFINEMENT) });
+  settings.push_back({ "RefinementScale", static_cast<double>(this->RefinementScale), static_cast<double>(0.5), static_cast<double>(10.0) });
+  settings.push_back({ "MinimumSpread", static_cast<double>(this->MinimumSpread), static_cast<double>(0.0), static_cast<double>(1.0) });
+  settings.push_back({ "MaximumGrowth", static_cast<double>(this->MaximumGrowth), static_cast<double>(1.0), static_cast<double>(64.0) });
+  settings.push_back({ "Orientation", static_cast<double>(this->Orientation), static_cast<double>(NONE), static_cast<double>(TOWARDS_VIEWPOINT_ARRAY) });
+  settings.push_back({ "GraphNeighbors", static_cast<double>(this->GraphNeighbors), static_cast<double>(1), static_cast<double>(1000) });
+}
+
 void vtkGLSNormalEstimation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -93,7 +93,7 @@ public:
 
   ///@{
   /// K_NEAREST (default) or RADIUS.
-  vtkSetClampMacro(NeighborhoodType, int, K_NEAREST, RADIUS);
+  vtkSetMacro(NeighborhoodType, int);
   vtkGetMacro(NeighborhoodType, int);
   void SetNeighborhoodTypeToKNearest() { this->SetNeighborhoodType(K_NEAREST); }
   void SetNeighborhoodTypeToRadius() { this->SetNeighborhoodType(RADIUS); }
@@ -101,7 +101,7 @@ public:
 
   ///@{
   /// Neighbours of the K_NEAREST neighbourhood, the point included (default 16, at least 3).
-  vtkSetClampMacro(NumberOfNeighbors, int, 3, 100000);
+  vtkSetMacro(NumberOfNeighbors, int);
   vtkGetMacro(NumberOfNeighbors, int);
   ///@}
 
@@ -120,7 +120,7 @@ public:
   /// curvature that the PCA plane ignores. A point whose fit is undefined keeps its PCA normal. In a distributed run
   /// each piece fetches the oriented normals of the points within its largest refinement scale (a second ghost
   /// exchange), so the result equals the serial one.
-  vtkSetClampMacro(Refinement, int, NO_REFINEMENT, GLS_REFINEMENT);
+  vtkSetMacro(Refinement, int);
   vtkGetMacro(Refinement, int);
   void SetRefinementToNone() { this->SetRefinement(NO_REFINEMENT); }
   void SetRefinementToGLS() { this->SetRefinement(GLS_REFINEMENT); }
@@ -129,14 +129,14 @@ public:
   ///@{
   /// The scale of the GLS refinement, as a factor on each point's PCA neighbourhood radius (dimensionless, default
   /// 1.5, from 0.5 to 10).
-  vtkSetClampMacro(RefinementScale, double, 0.5, 10.0);
+  vtkSetMacro(RefinementScale, double);
   vtkGetMacro(RefinementScale, double);
   ///@}
 
   ///@{
   /// The spread (middle over largest covariance eigenvalue) below which a neighbourhood is degenerate and grows;
   /// dimensionless in [0, 1], default 0.05. 0 treats only exact lines as degenerate.
-  vtkSetClampMacro(MinimumSpread, double, 0.0, 1.0);
+  vtkSetMacro(MinimumSpread, double);
   vtkGetMacro(MinimumSpread, double);
   ///@}
 
@@ -145,13 +145,13 @@ public:
   /// the Radius multiplied by sqrt(2), per step), default 8 (three steps: 128 neighbours for the default 16);
   /// 1 = no growth (degenerate neighbourhoods give NaN at once). A distributed run's ghost band covers the grown
   /// neighbourhoods.
-  vtkSetClampMacro(MaximumGrowth, double, 1.0, 64.0);
+  vtkSetMacro(MaximumGrowth, double);
   vtkGetMacro(MaximumGrowth, double);
   ///@}
 
   ///@{
   /// Orientation mode (default MINIMUM_SPANNING_TREE).
-  vtkSetClampMacro(Orientation, int, NONE, TOWARDS_VIEWPOINT_ARRAY);
+  vtkSetMacro(Orientation, int);
   vtkGetMacro(Orientation, int);
   void SetOrientationToNone() { this->SetOrientation(NONE); }
   void SetOrientationToTowardsPoint() { this->SetOrientation(TOWARDS_POINT); }
@@ -169,11 +169,13 @@ public:
 
   ///@{
   /// k of the nearest-neighbour graph of MINIMUM_SPANNING_TREE (default 10, at least 1).
-  vtkSetClampMacro(GraphNeighbors, int, 1, 1000);
+  vtkSetMacro(GraphNeighbors, int);
   vtkGetMacro(GraphNeighbors, int);
   ///@}
 
 protected:
+  void DescribeSettings(std::vector<SettingRange>& settings) override;
+
   vtkGLSNormalEstimation();
   ~vtkGLSNormalEstimation() override;
 

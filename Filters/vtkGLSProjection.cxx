@@ -251,6 +251,15 @@ bool vtkGLSProjection::ProjectDistributed(vtkGLSRun& run, const std::vector<doub
   }
 }
 
+void vtkGLSProjection::DescribeSettings(std::vector<SettingRange>& settings)
+{
+  this->Superclass::DescribeSettings(settings);
+  settings.push_back({ "ScaleMode", static_cast<double>(this->ScaleMode), static_cast<double>(AUTOMATIC), static_cast<double>(BANDWIDTH_ARRAY) });
+  settings.push_back({ "Scale", static_cast<double>(this->Scale), static_cast<double>(0.0), static_cast<double>(VTK_DOUBLE_MAX) });
+  settings.push_back({ "MaxIterations", static_cast<double>(this->MaxIterations), static_cast<double>(1), static_cast<double>(100000) });
+  settings.push_back({ "Tolerance", static_cast<double>(this->Tolerance), static_cast<double>(0.0), static_cast<double>(1.0) });
+}
+
 void vtkGLSProjection::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

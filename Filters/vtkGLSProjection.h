@@ -57,7 +57,7 @@ public:
 
   ///@{
   /// Where the support of each point comes from (default AUTOMATIC).
-  vtkSetClampMacro(ScaleMode, int, AUTOMATIC, BANDWIDTH_ARRAY);
+  vtkSetMacro(ScaleMode, int);
   vtkGetMacro(ScaleMode, int);
   void SetScaleModeToAutomatic() { this->SetScaleMode(AUTOMATIC); }
   void SetScaleModeToFixedScale() { this->SetScaleMode(FIXED_SCALE); }
@@ -66,19 +66,19 @@ public:
 
   ///@{
   /// The single support t of FIXED_SCALE mode, in ScaleUnits (default 0.01: 1% of the bounding-box diagonal).
-  vtkSetClampMacro(Scale, double, 0.0, VTK_DOUBLE_MAX);
+  vtkSetMacro(Scale, double);
   vtkGetMacro(Scale, double);
   ///@}
 
   ///@{
   /// Fits per point at most (default 50, at least 1: 1 = one projection step, no iteration).
-  vtkSetClampMacro(MaxIterations, int, 1, 100000);
+  vtkSetMacro(MaxIterations, int);
   vtkGetMacro(MaxIterations, int);
   ///@}
 
   ///@{
   /// The iteration stops when a step is at most Tolerance times the point's scale (dimensionless, default 1e-6).
-  vtkSetClampMacro(Tolerance, double, 0.0, 1.0);
+  vtkSetMacro(Tolerance, double);
   vtkGetMacro(Tolerance, double);
   ///@}
 
@@ -86,6 +86,8 @@ public:
   vtkGetMacro(LastScaleMode, int);
 
 protected:
+  void DescribeSettings(std::vector<SettingRange>& settings) override;
+
   vtkGLSProjection();
   ~vtkGLSProjection() override;
 

@@ -518,6 +518,15 @@ void vtkGLSScaleFilterBase::NameScaleComponents(vtkDataArray* array, const std::
   }
 }
 
+void vtkGLSScaleFilterBase::DescribeSettings(std::vector<SettingRange>& settings)
+{
+  this->Superclass::DescribeSettings(settings);
+  settings.push_back({ "ScaleSampling", static_cast<double>(this->ScaleSampling), static_cast<double>(LINEAR), static_cast<double>(LOGARITHMIC) });
+  settings.push_back({ "Backend", static_cast<double>(this->Backend), static_cast<double>(BACKEND_AUTO), static_cast<double>(BACKEND_CUDA) });
+  settings.push_back({ "Evaluation", static_cast<double>(this->Evaluation), static_cast<double>(EVALUATION_AUTO), static_cast<double>(EVALUATION_MULTIRESOLUTION) });
+  settings.push_back({ "Accuracy", static_cast<double>(this->Accuracy), static_cast<double>(0.001), static_cast<double>(1.0) });
+}
+
 void vtkGLSScaleFilterBase::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -79,7 +79,7 @@ public:
 
   ///@{
   /// Spacing of the sampled scales (default QUADRATIC).
-  vtkSetClampMacro(ScaleSampling, int, LINEAR, LOGARITHMIC);
+  vtkSetMacro(ScaleSampling, int);
   vtkGetMacro(ScaleSampling, int);
   void SetScaleSamplingToLinear() { this->SetScaleSampling(LINEAR); }
   void SetScaleSamplingToQuadratic() { this->SetScaleSampling(QUADRATIC); }
@@ -106,7 +106,7 @@ public:
   /// Where the fits run (default BACKEND_AUTO). Both backends run the same per-point code in double precision and
   /// agree to about 1e-12 relative. The backend that actually ran is written to the output's field data array
   /// GLSBackend ("CPU" or "CUDA").
-  vtkSetClampMacro(Backend, int, BACKEND_AUTO, BACKEND_CUDA);
+  vtkSetMacro(Backend, int);
   vtkGetMacro(Backend, int);
   void SetBackendToAuto() { this->SetBackend(BACKEND_AUTO); }
   void SetBackendToCPU() { this->SetBackend(BACKEND_CPU); }
@@ -122,7 +122,7 @@ public:
 
   ///@{
   /// How the moments of each ball are evaluated (default EVALUATION_AUTO); see the class documentation.
-  vtkSetClampMacro(Evaluation, int, EVALUATION_AUTO, EVALUATION_MULTIRESOLUTION);
+  vtkSetMacro(Evaluation, int);
   vtkGetMacro(Evaluation, int);
   void SetEvaluationToAuto() { this->SetEvaluation(EVALUATION_AUTO); }
   void SetEvaluationToExact() { this->SetEvaluation(EVALUATION_EXACT); }
@@ -134,7 +134,7 @@ public:
   /// weighted from its sums up to the second order (docs/math.md), where its edge is at most Accuracy times its
   /// distance from the evaluated point. Smaller is closer to exact and slower (the samples per point grow as
   /// 1 / Accuracy^2).
-  vtkSetClampMacro(Accuracy, double, 0.001, 1.0);
+  vtkSetMacro(Accuracy, double);
   vtkGetMacro(Accuracy, double);
   ///@}
 
@@ -154,6 +154,8 @@ public:
   std::vector<double> ComputeAbsoluteScales(vtkPointSet* input);
 
 protected:
+  void DescribeSettings(std::vector<SettingRange>& settings) override;
+
   vtkGLSScaleFilterBase();
   ~vtkGLSScaleFilterBase() override;
 

@@ -245,6 +245,12 @@ int vtkGLSScaleSpace::ComputeOutputs(vtkGLSRun& run)
   return completed ? COMPLETED : ABORTED;
 }
 
+void vtkGLSScaleSpace::DescribeSettings(std::vector<SettingRange>& settings)
+{
+  this->Superclass::DescribeSettings(settings);
+  settings.push_back({ "OutputPrecision", static_cast<double>(this->OutputPrecision), static_cast<double>(DOUBLE), static_cast<double>(FLOAT) });
+}
+
 void vtkGLSScaleSpace::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -67,13 +67,15 @@ public:
 
   ///@{
   /// Precision of the stored per-scale arrays (default DOUBLE).
-  vtkSetClampMacro(OutputPrecision, int, DOUBLE, FLOAT);
+  vtkSetMacro(OutputPrecision, int);
   vtkGetMacro(OutputPrecision, int);
   void SetOutputPrecisionToDouble() { this->SetOutputPrecision(DOUBLE); }
   void SetOutputPrecisionToFloat() { this->SetOutputPrecision(FLOAT); }
   ///@}
 
 protected:
+  void DescribeSettings(std::vector<SettingRange>& settings) override;
+
   vtkGLSScaleSpace();
   ~vtkGLSScaleSpace() override;
 

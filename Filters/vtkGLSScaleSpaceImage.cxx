@@ -444,6 +444,13 @@ int vtkGLSScaleSpaceImage::ComputeOutputs(vtkGLSRun& run)
   return COMPLETED;
 }
 
+void vtkGLSScaleSpaceImage::DescribeSettings(std::vector<SettingRange>& settings)
+{
+  this->Superclass::DescribeSettings(settings);
+  settings.push_back({ "Closed", static_cast<double>(this->Closed), static_cast<double>(CLOSED_AUTO), static_cast<double>(CLOSED_YES) });
+  settings.push_back({ "NumberOfArclengthSamples", static_cast<double>(this->NumberOfArclengthSamples), static_cast<double>(0), static_cast<double>(VTK_INT_MAX) });
+}
+
 void vtkGLSScaleSpaceImage::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

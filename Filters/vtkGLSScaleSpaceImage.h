@@ -73,7 +73,7 @@ public:
   ///@{
   /// Whether the curve is closed (default CLOSED_AUTO). A closed curve's arclength runs from 0 to its full length
   /// L, including the closing segment; the image column at s = L then repeats the one at s = 0.
-  vtkSetClampMacro(Closed, int, CLOSED_AUTO, CLOSED_YES);
+  vtkSetMacro(Closed, int);
   vtkGetMacro(Closed, int);
   void SetClosedToAuto() { this->SetClosed(CLOSED_AUTO); }
   void SetClosedToOpen() { this->SetClosed(CLOSED_OPEN); }
@@ -86,7 +86,7 @@ public:
   /// at RequestInformation only when the input data is already there (SetInputData); downstream of a reader or
   /// filter it is not, and a consumer that asks for the whole extent beforehand (ParaView's representations) gets
   /// an empty image.
-  vtkSetClampMacro(NumberOfArclengthSamples, int, 0, VTK_INT_MAX);
+  vtkSetMacro(NumberOfArclengthSamples, int);
   vtkGetMacro(NumberOfArclengthSamples, int);
   ///@}
 
@@ -100,6 +100,8 @@ public:
   vtkPolyData* GetCrossingsOutput();
 
 protected:
+  void DescribeSettings(std::vector<SettingRange>& settings) override;
+
   vtkGLSScaleSpaceImage();
   ~vtkGLSScaleSpaceImage() override;
 
