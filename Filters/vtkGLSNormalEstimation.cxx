@@ -33,6 +33,7 @@ vtkGLSNormalEstimation::vtkGLSNormalEstimation()
   , Radius(0.0)
   , Orientation(MINIMUM_SPANNING_TREE)
   , OrientationPoint{ 0.0, 0.0, 0.0 }
+  , UpDirection{ 0.0, 0.0, 1.0 }
   , GraphNeighbors(10)
   , MinimumSpread(0.05)
   , MaximumGrowth(8.0)
@@ -85,6 +86,19 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
   settings.radius = this->Radius;
   settings.orientation = static_cast<gls::NormalOrientation>(this->Orientation);
   settings.viewpoint = { this->OrientationPoint[0], this->OrientationPoint[1], this->OrientationPoint[2] };
+  if (this->Orientation == UP)
+  {
+    const double* u = this->UpDirection;
+    const double length = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    if (!(length > 0.0) || !std::isfinite(length))
+    {
+      vtkErrorMacro("UpDirection (" << u[0] << ", " << u[1] << ", " << u[2]
+                                    << ") must be a finite direction, not zero (UP orientation).");
+      return FAILED;
+    }
+    settings.orientation = gls::NormalOrientation::Up;
+    settings.up = { u[0], u[1], u[2] };
+  }
   settings.graphNeighbors = this->GraphNeighbors;
   settings.minimumSpread = this->MinimumSpread;
   settings.maximumGrowth = this->MaximumGrowth;
@@ -395,7 +409,7 @@ void vtkGLSNormalEstimation::DescribeSettings(std::vector<SettingRange>& setting
   settings.push_back({ "RefinementScale", static_cast<double>(this->RefinementScale), static_cast<double>(0.5), static_cast<double>(10.0) });
   settings.push_back({ "MinimumSpread", static_cast<double>(this->MinimumSpread), static_cast<double>(0.0), static_cast<double>(1.0) });
   settings.push_back({ "MaximumGrowth", static_cast<double>(this->MaximumGrowth), static_cast<double>(1.0), static_cast<double>(64.0) });
-  settings.push_back({ "Orientation", static_cast<double>(this->Orientation), static_cast<double>(NONE), static_cast<double>(TOWARDS_VIEWPOINT_ARRAY) });
+  settings.push_back({ "Orientation", static_cast<double>(this->Orientation), static_cast<double>(NONE), static_cast<double>(UP) });
   settings.push_back({ "GraphNeighbors", static_cast<double>(this->GraphNeighbors), static_cast<double>(1), static_cast<double>(1000) });
 }
 
@@ -406,6 +420,8 @@ void vtkGLSNormalEstimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfNeighbors: " << this->NumberOfNeighbors << "\n";
   os << indent << "Radius: " << this->Radius << "\n";
   os << indent << "Orientation: " << this->Orientation << "\n";
+  os << indent << "UpDirection: " << this->UpDirection[0] << ", " << this->UpDirection[1] << ", "
+     << this->UpDirection[2] << "\n";
   os << indent << "OrientationPoint: " << this->OrientationPoint[0] << ", " << this->OrientationPoint[1] << ", "
      << this->OrientationPoint[2] << "\n";
   os << indent << "GraphNeighbors: " << this->GraphNeighbors << "\n";

@@ -12,7 +12,10 @@
  * - TOWARDS_POINT / AWAY_FROM_POINT: facing OrientationPoint (e.g. the scanner position) or away from it.
  * - MINIMUM_SPANNING_TREE (default): Hoppe et al. 1992; the orientation is propagated along the minimum spanning tree
  *   of the GraphNeighbors-nearest-neighbour graph with cost 1 - |n_i . n_j|; every connected component starts from
- *   its point farthest from its centroid, oriented away from the centroid (outward on closed shapes).
+ *   its point farthest from its centroid, oriented away from the centroid (outward on closed shapes); a component
+ *   whose normals then mostly point along z (the size of their mean z at least 0.5: terrain, roofs, floors; a closed
+ *   surface's mean is about 0) faces up, +z (an aerial tile is not oriented into the ground).
+ * - UP: every normal facing UpDirection (default +z), point by point (aerial scans; PDAL's always_up).
  * - AGREE_WITH_EXISTING: flipped to agree with the normals selected by SetInputArrayToProcess(0, ...) (default: the
  *   active normals), e.g. a scanner's normals whose length or accuracy is poor; points whose existing normal is not
  *   finite keep the solver's sign. A per-point view direction (from the point towards its scanner) is such an array.
@@ -88,7 +91,8 @@ public:
     AWAY_FROM_POINT = 2,
     MINIMUM_SPANNING_TREE = 3,
     AGREE_WITH_EXISTING = 4,
-    TOWARDS_VIEWPOINT_ARRAY = 5
+    TOWARDS_VIEWPOINT_ARRAY = 5,
+    UP = 6
   };
 
   ///@{
@@ -159,6 +163,14 @@ public:
   void SetOrientationToMinimumSpanningTree() { this->SetOrientation(MINIMUM_SPANNING_TREE); }
   void SetOrientationToAgreeWithExisting() { this->SetOrientation(AGREE_WITH_EXISTING); }
   void SetOrientationToTowardsViewpointArray() { this->SetOrientation(TOWARDS_VIEWPOINT_ARRAY); }
+  void SetOrientationToUp() { this->SetOrientation(UP); }
+  ///@}
+
+  ///@{
+  /// The direction of UP orientation (input coordinates, any length but 0; default 0, 0, 1). Not finite or zero is
+  /// an error.
+  vtkSetVector3Macro(UpDirection, double);
+  vtkGetVector3Macro(UpDirection, double);
   ///@}
 
   ///@{
@@ -204,6 +216,7 @@ protected:
   double Radius;
   int Orientation;
   double OrientationPoint[3];
+  double UpDirection[3];
   int GraphNeighbors;
   double MinimumSpread;
   double MaximumGrowth;

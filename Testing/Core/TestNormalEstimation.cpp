@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <random>
 #include <cmath>
 #include <vector>
 
@@ -277,4 +280,90 @@ TEST(NormalEstimation, KNearestReachIsTheLargestKthNeighbourDistance)
     expected = std::max(expected, std::sqrt(d2[15]));
   }
   EXPECT_NEAR(gls::kNearestReach(s.points.data(), s.size(), 16, parallel), expected, 1e-12);
+}
+
+namespace
+{
+
+/// A simulated aerial strip, 100 m x 100 m seen from above at about 3 points per m^2 (2 cm of noise): rolling terrain,
+/// houses with vertical walls (a few points) and gabled roofs of 35 degrees pitch, and trees (points scattered in a
+/// crown, no true normal). normals: the true unit normals (NaN for the trees).
+Cloud aerialStrip(unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.02);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double pitch = 35.0 * 3.14159265358979323846 / 180.0;
+  const auto ground = [](double x, double y) { return 2.0 * std::sin(x / 15.0) * std::cos(y / 20.0); };
+  Cloud c;
+  for (int i = 0; i < 30000; ++i)
+  {
+    const double x = 100.0 * u(rng), y = 100.0 * u(rng);
+    // Houses: footprints 10 m (x) by 8 m (y) on a 25 m grid; the roof's ridge along x, eaves 5 m above the ground.
+    const double hx = std::fmod(x, 25.0), hy = std::fmod(y, 25.0);
+    const double g = ground(x, y);
+    if (hx > 5.0 && hx < 15.0 && hy > 5.0 && hy < 13.0)
+    {
+      const double across = hy - 9.0; // from the ridge
+      const double z = g + 5.0 + (4.0 - std::abs(across)) * std::tan(pitch);
+      const double ny = (across > 0.0 ? 1.0 : -1.0) * std::sin(pitch);
+      c.add(x, y, z + noise(rng), 0.0, ny, std::cos(pitch));
+      continue;
+    }
+    // Trees: crowns of radius 3 m around (20, 20) + 25 m steps, 6 to 12 m up.
+    const double tx = std::fmod(x + 5.0, 25.0) - 0.0, ty = std::fmod(y + 5.0, 25.0) - 0.0;
+    if ((tx - 0.0) * (tx - 0.0) + (ty - 0.0) * (ty - 0.0) < 9.0)
+    {
+      c.add(x, y, g + 6.0 + 6.0 * u(rng), nan, nan, nan);
+      continue;
+    }
+    // Terrain: the normal of the height field.
+    const double gx = 2.0 / 15.0 * std::cos(x / 15.0) * std::cos(y / 20.0);
+    const double gy = -2.0 / 20.0 * std::sin(x / 15.0) * std::sin(y / 20.0);
+    const double l = std::sqrt(1.0 + gx * gx + gy * gy);
+    c.add(x, y, g + noise(rng), -gx / l, -gy / l, 1.0 / l);
+  }
+  // A few points on the walls (a scanner sees them at the swath's edge): vertical normals, left out of the count.
+  for (int i = 0; i < 800; ++i)
+  {
+    const double x = 25.0 * std::floor(4.0 * u(rng)) + 5.0 + 10.0 * u(rng);
+    const double y = 25.0 * std::floor(4.0 * u(rng)) + (u(rng) < 0.5 ? 5.0 : 13.0);
+    c.add(x, y + noise(rng), ground(x, y) + 5.0 * u(rng), 0.0, y - std::floor(y / 25.0) * 25.0 < 9.0 ? -1.0 : 1.0,
+      0.0);
+  }
+  return c;
+}
+
+} // namespace
+
+TEST(NormalEstimation, AnAerialStripFacesUpByDefaultAndInTheUpMode)
+{
+  // The default (minimum spanning tree) starts each component outward from its centroid, which on a tile of terrain
+  // may be down (an aerial tile was 94.5% down); a flat cloud of coherent normals is then turned to face +z. The Up
+  // mode faces +z point by point. Counted over the points whose true normal is not vertical (z > 0.2).
+  const Cloud c = aerialStrip(17);
+  for (const gls::NormalOrientation orientation :
+    { gls::NormalOrientation::MinimumSpanningTree, gls::NormalOrientation::Up })
+  {
+    SCOPED_TRACE(static_cast<int>(orientation));
+    gls::NormalEstimationSettings s;
+    s.orientation = orientation;
+    gls::NormalEstimationResult r;
+    ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+    long counted = 0, up = 0;
+    for (std::size_t i = 0; i < c.size(); ++i)
+    {
+      if (!(c.normals[3 * i + 2] > 0.2) || !std::isfinite(r.normals[3 * i + 2]))
+      {
+        continue;
+      }
+      ++counted;
+      up += r.normals[3 * i + 2] > 0.0 ? 1 : 0;
+    }
+    std::printf("aerial strip, orientation %d: %ld of %ld non-vertical normals up (%.3f%%)\n",
+      static_cast<int>(orientation), up, counted, 100.0 * up / counted);
+    EXPECT_GT(counted, 25000);
+    EXPECT_GE(static_cast<double>(up), 0.999 * counted);
+  }
 }

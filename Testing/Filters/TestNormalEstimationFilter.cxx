@@ -121,3 +121,26 @@ TEST(NormalEstimationFilter, BadInputGivesClearErrors)
   EXPECT_EQ(errors->Count, 3);
   EXPECT_TRUE(std::isnan(f->GetOutput()->GetPointData()->GetNormals()->GetComponent(0, 0)));
 }
+
+TEST(NormalEstimationFilter, UpFacesTheGivenDirectionAndRefusesNone)
+{
+  // A sphere faced point by point towards -z (any length), then a zero direction: an error, an empty output.
+  const Cloud c = sphere(2000, 1.0);
+  vtkNew<vtkGLSNormalEstimation> f;
+  f->SetInputData(makePolyData(c.points, {}));
+  f->SetOrientationToUp();
+  f->SetUpDirection(0.0, 0.0, -3.0);
+  f->Update();
+  const std::vector<double> n = pointArray(f->GetPolyDataOutput(), "Normals");
+  ASSERT_EQ(n.size(), 3 * c.size());
+  for (std::size_t i = 0; i < c.size(); ++i)
+  {
+    ASSERT_LE(n[3 * i + 2], 0.0) << "point " << i;
+  }
+  auto errors = catchErrors(f);
+  f->SetUpDirection(0.0, 0.0, 0.0);
+  f->Update();
+  EXPECT_EQ(errors->Count, 1);
+  EXPECT_NE(errors->Message.find("UpDirection (0, 0, 0)"), std::string::npos) << errors->Message;
+  EXPECT_EQ(f->GetPolyDataOutput()->GetNumberOfPoints(), 0);
+}

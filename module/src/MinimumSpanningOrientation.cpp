@@ -1,5 +1,6 @@
 #include "MinimumSpanningOrientation.h"
 
+#include "gls/NormalEstimation.h"
 #include "gls/Vec3.h"
 
 #include <algorithm>
@@ -361,6 +362,39 @@ public:
   {
     this->Collect(seed);
     this->Propagate(this->Root());
+    double z = 0.0;
+    for (Index u : this->Component)
+    {
+      z += this->Normal[u].z;
+    }
+    this->Components.push_back({ seed, z, static_cast<double>(this->Component.size()) });
+  }
+
+  /// Once every component is oriented: where the cloud is terrain-like (flat, kTerrainFlatness, with coherent normals,
+  /// kTerrainCoherence), each component whose mean z is below -kTerrainCoherence is turned over, to face +z. Pieces of
+  /// a closed surface keep their sides.
+  void faceUpIfTerrain()
+  {
+    double coherent = 0.0, total = 0.0;
+    for (const Oriented& c : this->Components)
+    {
+      coherent += c.z < 0.0 ? -c.z : c.z;
+      total += c.size;
+    }
+    if (!(coherent >= kTerrainCoherence * total) || !this->Flat())
+    {
+      return;
+    }
+    for (const Oriented& c : this->Components)
+    {
+      if (c.z < -kTerrainCoherence * c.size)
+      {
+        this->Flip(c.seed, -1.0);
+        this->BreadthFirst(c.seed, this->ForestStart, this->Forest, 3, [this](Index, Index node) {
+          this->Flip(node, -1.0);
+        });
+      }
+    }
   }
 
   bool Reached(Index s) const { return this->Visited[s] != 0; }
@@ -437,6 +471,24 @@ private:
     return root;
   }
 
+  /// True when the cloud is a tile of terrain in its shape: its height (z extent) at most kTerrainFlatness times its
+  /// smaller horizontal extent. (A closed shape whose top and bottom the graph separates has coherent normals too.)
+  bool Flat() const
+  {
+    if (this->G.count == 0)
+    {
+      return false;
+    }
+    Vec3 low = this->G.points[0], high = low;
+    for (std::uint64_t s = 1; s < this->G.count; ++s)
+    {
+      const Vec3& p = this->G.points[s];
+      low = { std::min(low.x, p.x), std::min(low.y, p.y), std::min(low.z, p.z) };
+      high = { std::max(high.x, p.x), std::max(high.y, p.y), std::max(high.z, p.z) };
+    }
+    return high.z - low.z <= kTerrainFlatness * std::min(high.x - low.x, high.y - low.y);
+  }
+
   /// Along the forest from the root: each node agrees with its parent (marks the component's nodes 2).
   void Propagate(Index root)
   {
@@ -452,6 +504,14 @@ private:
   Vec3* Normal;
   std::vector<unsigned char> Visited;
   std::vector<Index> Component;
+  /// Each oriented component: where it was seeded, the sum of its normals' z and its size.
+  struct Oriented
+  {
+    Index seed;
+    double z;
+    double size;
+  };
+  std::vector<Oriented> Components;
 };
 
 template <typename Index>
@@ -500,6 +560,7 @@ bool orientWith(OrientationGraph& graph, Vec3* normal, const ParallelOptions& pa
     tree.orientComponent(node);
     ++components;
   }
+  tree.faceUpIfTerrain();
   return true;
 }
 

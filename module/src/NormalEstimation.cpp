@@ -379,6 +379,12 @@ bool estimateNormals(
       }
       break;
     }
+    case NormalOrientation::Up:
+      for (std::size_t s = 0; s < g.count; ++s)
+      {
+        flipIfNegative(&est.normals[s].x, dot(est.normals[s], settings.up));
+      }
+      break;
     case NormalOrientation::AgreeWithReference:
       for (std::size_t s = 0; settings.reference && s < g.count; ++s)
       {

@@ -34,9 +34,22 @@ enum class NormalOrientation
   MinimumSpanningTree = 3, ///< Hoppe 1992: propagate along the MST of the k-NN graph with cost 1 - |n_i . n_j|
                            ///< (edges of equal cost ordered by their ends' point indices, so the tree is unique);
                            ///< each connected component starts from its point farthest from its centroid, oriented
-                           ///< away from that centroid (outward on closed shapes)
-  AgreeWithReference = 4   ///< n . reference >= 0 where the reference normal is finite and non-zero
+                           ///< away from that centroid (outward on closed shapes); then, on a terrain-like cloud,
+                           ///< the components facing down are turned up (kTerrainCoherence)
+  AgreeWithReference = 4,  ///< n . reference >= 0 where the reference normal is finite and non-zero
+  Up = 5                   ///< n . up >= 0 at every point (aerial scans: PDAL's always_up, CloudCompare's +Z)
 };
+
+/// Terrain for the minimum spanning tree orientation: a flat cloud (kTerrainFlatness) whose oriented components have
+/// normals with a mean z of at least this size (each component's sum taken with its own sign); of them the components
+/// whose mean z is below minus this are turned over to face +z. Terrain and roofs of pitch up to 45 degrees have means
+/// of 0.7 to 1; a closed surface's normals sum to about zero, but its pieces' do not where the graph cuts it (a UV
+/// sphere whose equator has no normal: two domes of means +-0.87), hence the shape's test too.
+constexpr double kTerrainCoherence = 0.7;
+
+/// The height (z extent) of a terrain-like cloud at most this times its smaller horizontal extent: an aerial tile
+/// (1 km wide, 100 m of relief: 0.1) is; a closed object seen whole (a sphere: 1) is not.
+constexpr double kTerrainFlatness = 0.5;
 
 struct NormalEstimationSettings
 {
@@ -45,6 +58,7 @@ struct NormalEstimationSettings
   double radius = 0.0;              ///< length for Radius
   NormalOrientation orientation = NormalOrientation::MinimumSpanningTree;
   Vec3 viewpoint{ 0.0, 0.0, 0.0 };  ///< for TowardsPoint / AwayFromPoint
+  Vec3 up{ 0.0, 0.0, 1.0 };         ///< for Up (any length but 0)
   const double* reference = nullptr; ///< 3 n reference normals for AgreeWithReference
   int graphNeighbors = 10;          ///< k of the k-NN graph used by MinimumSpanningTree
   double minimumSpread = 0.05;      ///< a neighbourhood with a smaller spread is degenerate (0: only lines)
