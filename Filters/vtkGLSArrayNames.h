@@ -30,6 +30,7 @@ constexpr const char* Accuracy = "GLSAccuracy";          // field data of a mult
 constexpr const char* Backend = "GLSBackend";            // field data: "CPU" or "CUDA", where the fits ran
 constexpr const char* QueryPointId = "GLSQueryPointId";   // field data of the dissimilarity output
 constexpr const char* GhostPoints = "GLSGhostPoints";     // field data of a distributed run: ghosts this rank used
+constexpr const char* StrayPoints = "GLSStrayPoints";     // field data: stray points left out (NaN results)
 constexpr const char* Tiles = "GLSTiles";                 // field data: spatial tiles of a fit cut to its MemoryBudget
 constexpr const char* CoincidentPoints = "GLSCoincidentPoints"; // field data: input points merged into another
 constexpr const char* AutomaticArray = "(automatic)"; // an array selection that lets the filter choose

@@ -3,6 +3,8 @@
 #include "vtkGLSArrayNames.h"
 #include "vtkGLSRun.h"
 
+#include "gls/StrayPoints.h"
+
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkAOSDataArrayTemplate.h"
@@ -385,6 +387,19 @@ void vtkGLSFilterBase::CopyTriples(vtkDataArray* triples, vtkIdType n, double* o
   }
 }
 
+void vtkGLSFilterBase::LeaveOutStrayPoints(vtkGLSRun& run)
+{
+  std::vector<double>& xyz = run.Cloud.Points;
+  const std::vector<std::uint64_t> stray = gls::findStrayPoints(xyz.data(), xyz.size() / 3);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::uint64_t i : stray)
+  {
+    xyz[3 * i] = xyz[3 * i + 1] = xyz[3 * i + 2] = nan;
+  }
+  run.StrayPoints = static_cast<long long>(stray.size());
+  run.FirstStrayPoint = stray.empty() ? -1 : static_cast<long long>(stray.front());
+}
+
 bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
 {
   if (!this->DistributeRun(run))
@@ -405,6 +420,18 @@ bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
     CopyTriples(input->GetPoints()->GetData(), n, xyz.data());
   }
   run.Cloud.Owned = static_cast<std::size_t>(n);
+  if (!dist.IsParallel())
+  {
+    LeaveOutStrayPoints(run);
+    if (run.StrayPoints > 0)
+    {
+      vtkWarningMacro(<< run.StrayPoints << " stray point" << (run.StrayPoints > 1 ? "s" : "")
+                      << " (far outside the rest of the cloud, with no other point near; the first: point "
+                      << run.FirstStrayPoint
+                      << ") left out: NaN results, in no neighbourhood, and the bounding box (the relative "
+                         "scales) is that of the other points. Field data GLSStrayPoints counts them.");
+    }
+  }
   // Every rank takes part, an empty piece too: the bounds are those of the finite points of all the pieces.
   run.HasFinitePoints = dist.FiniteBounds(xyz.data(), static_cast<std::size_t>(n), run.Bounds);
   if (run.HasFinitePoints)
@@ -582,6 +609,13 @@ void vtkGLSFilterBase::WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd)
     ghosts->SetName(vtkGLSArrayNames::GhostPoints);
     ghosts->InsertNextValue(static_cast<vtkIdType>(run.GhostPoints));
     fd->AddArray(ghosts);
+  }
+  if (run.StrayPoints > 0)
+  {
+    vtkNew<vtkIdTypeArray> stray;
+    stray->SetName(vtkGLSArrayNames::StrayPoints);
+    stray->InsertNextValue(static_cast<vtkIdType>(run.StrayPoints));
+    fd->AddArray(stray);
   }
   if (run.TilesUsed > 1)
   {

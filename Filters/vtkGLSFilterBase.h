@@ -176,8 +176,13 @@ protected:
   /// responsive and an abort is seen); true when the run is to be aborted.
   bool Heartbeat();
 
+  /// Serial runs: the stray points of run.Cloud (gls::findStrayPoints) get NaN coordinates there, so that they join
+  /// no neighbourhood, their results are NaN and the bounds (the relative scales) are the other points'; counted in
+  /// run.StrayPoints. Distributed runs do not look for them (each rank sees only its piece).
+  static void LeaveOutStrayPoints(vtkGLSRun& run);
+
   /// Writes what the run reports in the output's field data: GLSGhostPoints (the ghosts this rank used, in a
-  /// distributed run that exchanged them), GLSTiles (the spatial tiles of a fit cut to its MemoryBudget, when more
+  /// distributed run that exchanged them), GLSStrayPoints (stray points left out, when some were), GLSTiles (the spatial tiles of a fit cut to its MemoryBudget, when more
   /// than one), GLSCoincidentPoints (points merged into another, when some were) and GLSBackend (where the fits ran,
   /// when a fit ran).
   static void WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd);

@@ -227,8 +227,10 @@ void vtkGLSNormalEstimation::WriteNormals(
   double undefined = 0.0;
   for (vtkIdType i = 0; i < n; ++i)
   {
-    double x[3];
-    run.Input->GetPoint(i, x);
+    // The fitted position (stray points are NaN there; a merged copy's is its distinct position's).
+    const std::size_t at = run.Cloud.IsMerged() ? run.Cloud.Copies.representative[static_cast<std::size_t>(i)]
+                                                : static_cast<std::size_t>(i);
+    const double* x = &run.Cloud.Points[3 * at];
     const bool finite = std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
     undefined += finite && !std::isfinite(normals->GetValue(3 * i)) ? 1.0 : 0.0;
   }

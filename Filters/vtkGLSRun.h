@@ -66,6 +66,8 @@ struct vtkGLSRun
   long long GhostPoints = -1;            ///< ghosts this rank used (-1: no exchange)
   long long TilesUsed = 0;               ///< spatial tiles of this rank's fit (0: no fit ran)
   long long CoincidentPoints = 0;        ///< this piece's input points merged into another
+  long long StrayPoints = 0;             ///< stray points left out (vtkGLSFilterBase::LeaveOutStrayPoints)
+  long long FirstStrayPoint = -1;        ///< the lowest index among them
 };
 
 #endif

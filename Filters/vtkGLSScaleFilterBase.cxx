@@ -12,11 +12,13 @@
 
 #include "gls/Evaluation.h"
 #include "gls/ScaleSampling.h"
+#include "gls/StrayPoints.h"
 #include "gls/TiledScaleSpace.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -422,6 +424,10 @@ std::vector<double> vtkGLSScaleFilterBase::ComputeAbsoluteScales(vtkPointSet* in
   for (vtkIdType i = 0; i < n; ++i)
   {
     input->GetPoint(i, &xyz[3 * i]);
+  }
+  for (std::uint64_t i : gls::findStrayPoints(xyz.data(), static_cast<std::size_t>(n)))
+  {
+    xyz[3 * i] = xyz[3 * i + 1] = xyz[3 * i + 2] = std::numeric_limits<double>::quiet_NaN(); // as a run does
   }
   double b[6];
   double diagonal = 0.0;

@@ -79,6 +79,14 @@ inline vtkSmartPointer<ErrorCatcher> catchErrors(vtkObject* o)
   return c;
 }
 
+/// Attaches a catcher to the object's warning events.
+inline vtkSmartPointer<ErrorCatcher> catchWarnings(vtkObject* o)
+{
+  auto c = vtkSmartPointer<ErrorCatcher>::New();
+  o->AddObserver(vtkCommand::WarningEvent, c);
+  return c;
+}
+
 /// The values of a point array as doubles (tuple-major).
 inline std::vector<double> values(vtkDataArray* a)
 {

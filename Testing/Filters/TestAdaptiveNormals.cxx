@@ -80,14 +80,6 @@ ScannedMesh scanMesh(const std::string& file, int samplesAlong)
   return out;
 }
 
-/// Counts the warning events of an object.
-vtkSmartPointer<ErrorCatcher> catchWarnings(vtkObject* o)
-{
-  auto c = vtkSmartPointer<ErrorCatcher>::New();
-  o->AddObserver(vtkCommand::WarningEvent, c);
-  return c;
-}
-
 } // namespace
 
 TEST(AdaptiveNormals, UVSphereDefaultsAreWithinHalfADegreeAndFeaturesVanish)

@@ -516,3 +516,52 @@ TEST(BadInput, TheContinuousFeaturesNeedTwoScales)
   EXPECT_NE(r.message.find("at least 2 scales"), std::string::npos) << r.message;
   EXPECT_EQ(r.output->GetPointData()->GetArray("GLSFeature"), nullptr);
 }
+
+TEST(BadInput, OneStrayPointChangesNothingElse)
+{
+  // The bunny with one return 40 diagonals away: without care its bounding box (and every relative scale) would be
+  // 70 times larger. It is left out: one warning, field data GLSStrayPoints 1, NaN at it, the clean run's scales and
+  // features everywhere else; the normals likewise.
+  auto clean = bunnyMeshWithNormals();
+  auto stray = vtkSmartPointer<vtkPolyData>::New();
+  stray->DeepCopy(clean);
+  const vtkIdType n = clean->GetNumberOfPoints();
+  stray->GetPoints()->InsertNextPoint(10.0, 10.0, 10.0);
+  vtkDataArray* normals = stray->GetPointData()->GetNormals();
+  normals->InsertNextTuple3(0.0, 0.0, 1.0);
+  stray->GetVerts()->InsertNextCell(1);
+  stray->GetVerts()->InsertCellPoint(n);
+  vtkNew<vtkGLSContinuousFeatures> a, b;
+  a->SetInputData(clean);
+  b->SetInputData(stray);
+  auto warnings = catchWarnings(b);
+  a->Update();
+  b->Update();
+  EXPECT_EQ(warnings->Count, 1);
+  EXPECT_NE(warnings->Message.find("1 stray point"), std::string::npos) << warnings->Message;
+  vtkPolyData* withStray = vtkPolyData::SafeDownCast(b->GetOutputDataObject(0));
+  EXPECT_EQ(fieldArray(withStray, "GLSStrayPoints"), std::vector<double>{ 1.0 });
+  EXPECT_TRUE(identical(fieldArray(withStray, "GLSScales"),
+    fieldArray(vtkPolyData::SafeDownCast(a->GetOutputDataObject(0)), "GLSScales")));
+  const std::vector<double> fa = pointArray(vtkPolyData::SafeDownCast(a->GetOutputDataObject(0)), "GLSFeature");
+  const std::vector<double> fb = pointArray(withStray, "GLSFeature");
+  ASSERT_EQ(fb.size(), fa.size() + 1);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < fa.size(); ++i)
+  {
+    worst = std::max(worst, std::isnan(fa[i]) && std::isnan(fb[i]) ? 0.0 : std::abs(fa[i] - fb[i]));
+  }
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_TRUE(std::isnan(fb.back()));
+  // Normals: NaN at the stray point, the others as without it.
+  vtkNew<vtkGLSNormalEstimation> na, nb;
+  na->SetInputData(clean);
+  nb->SetInputData(stray);
+  na->Update();
+  nb->Update();
+  const std::vector<double> ma = pointArray(na->GetPolyDataOutput(), "Normals");
+  const std::vector<double> mb = pointArray(nb->GetPolyDataOutput(), "Normals");
+  ASSERT_EQ(mb.size(), ma.size() + 3);
+  EXPECT_TRUE(identical(std::vector<double>(mb.begin(), mb.end() - 3), ma));
+  EXPECT_TRUE(std::isnan(mb.back()));
+}
