@@ -1,6 +1,7 @@
 #include "vtkGLSPointCloudReader.h"
 
 #include "vtkGLSArrayNames.h"
+#include "vtkGLSVertexCells.h"
 
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
@@ -38,19 +39,6 @@ vtkSmartPointer<Array> pointArray(const char* name, int components, const std::v
   array->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / components));
   std::copy(values.begin(), values.end(), array->GetPointer(0));
   return array;
-}
-
-/// One vertex cell per point.
-vtkSmartPointer<vtkCellArray> vertexCells(vtkIdType n)
-{
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfTuples(n + 1);
-  connectivity->SetNumberOfTuples(n);
-  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + n + 1, vtkIdType(0));
-  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + n, vtkIdType(0));
-  auto verts = vtkSmartPointer<vtkCellArray>::New();
-  verts->SetData(offsets, connectivity);
-  return verts;
 }
 
 } // namespace
@@ -95,7 +83,7 @@ int vtkGLSPointCloudReader::RequestData(vtkInformation*, vtkInformationVector**,
   vtkNew<vtkPoints> points;
   points->SetData(pointArray<vtkDoubleArray>("Points", 3, text.points));
   output->SetPoints(points);
-  output->SetVerts(vertexCells(n));
+  output->SetVerts(vtkGLSVertexCells(n));
 
   vtkPointData* pd = output->GetPointData();
   std::set<std::string> names;

@@ -38,6 +38,26 @@ def write_text(name, lines, first=None):
     return path(name)
 
 
+def write_las(name, points, intensity, colours, compressed=False):
+    """A LAS 1.2 file of point format 3 (positions to the micrometre, intensity, GPS time, RGB), written from the
+    specification (ASPRS LAS 1.4 R15, tables 3 and 10); with `compressed`, the LAZ flag set in the format byte."""
+    import struct
+    scale, offset = 1e-6, points.min(axis=0) - 1.0
+    q = np.round((points - offset) / scale).astype(np.int64)
+    stored = q * scale + offset
+    header = struct.pack('<4sHH16sBB32s32sHHHIIBHI5I3d3d6d', b'LASF', 0, 0, b'', 1, 2, b'GLS test', b'test', 1, 2026,
+                         227, 227, 0, 3 | (0x80 if compressed else 0), 34, len(points), 0, 0, 0, 0, 0,
+                         scale, scale, scale, *offset,
+                         stored[:, 0].max(), stored[:, 0].min(), stored[:, 1].max(), stored[:, 1].min(),
+                         stored[:, 2].max(), stored[:, 2].min())
+    assert len(header) == 227
+    records = b''.join(struct.pack('<3iHBBbBHd3H', *q[i], int(intensity[i]), 1 | (1 << 3), 2, 0, 0, 0, float(i),
+                                   *(int(c) * 257 for c in colours[i])) for i in range(len(points)))
+    with open(path(name), 'wb') as f:
+        f.write(header + records)
+    return path(name), stored
+
+
 class DistinctPositions(unittest.TestCase):
     """The coincident-point check's grouping (gls_coincident.distinct_positions) against np.unique(axis=0), the rule
     it replaced, on clouds with repeated rows, -0.0 and infinite coordinates, and through its fallback for positions
@@ -313,6 +333,28 @@ class Inputs(unittest.TestCase):
         np.testing.assert_array_equal(point_array(pd, 'Intensity'), intensity)
         self.assertIsNone(pd.GetPointData().GetArray('RGB'))
         self.assertUnitSphereKappa(pd)
+
+    def test_las_lidar_file(self):
+        intensity = np.arange(len(self.points)) % 4096
+        las, stored = write_las('tile.las', self.points, intensity, self.colours)
+        out = path('las-out')
+        result = run(las, '--output-dir', out, *QUICK)
+        pd = self.assertSucceeds(result, out, 'tile')
+        self.assertIn('LAS 1.2, point format 3, %d points' % len(self.points), result.stdout)
+        np.testing.assert_allclose(vtk_to_numpy(pd.GetPoints().GetData()), stored, atol=1e-9)
+        self.assertEqual(pd.GetPointData().GetArray('RGB').GetDataTypeAsString(), 'unsigned short')
+        np.testing.assert_array_equal(point_array(pd, 'Intensity'), intensity)
+        self.assertUnitSphereKappa(pd)
+        laz, _ = write_las('tile.laz', self.points[:100], intensity, self.colours, compressed=True)
+        out = path('laz-out')
+        line = self.assertFailsInOneLine(run(laz, '--output-dir', out), 'reader: Cannot read the LAS file', out)
+        self.assertIn('decompress the file first', line)
+        truncated = path('truncated.las')
+        with open(las, 'rb') as f, open(truncated, 'wb') as g:
+            g.write(f.read()[:-10])
+        out = path('truncated-out')
+        line = self.assertFailsInOneLine(run(truncated, '--output-dir', out), 'reader: Cannot read the LAS file', out)
+        self.assertIn('truncated, or a wrong point count', line)
 
     def test_semicolon_separated_decimal_commas(self):
         cloud = write_text('european.csv', [('%.9f;%.9f;%.9f' % tuple(p)).replace('.', ',') for p in self.points],

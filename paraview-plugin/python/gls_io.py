@@ -1,5 +1,6 @@
 """Point-cloud input for the GLS main job: PLY, OBJ, STL, VTP through ParaView's readers, XYZ/PTS/CSV/TXT through
-the plugin's GLS Point Cloud Reader (the column layouts are in docs/main-job.md and gls/PointTextParser.h)."""
+the plugin's GLS Point Cloud Reader (the column layouts are in docs/main-job.md and gls/PointTextParser.h), LAS (and
+LAZ, refused with how to decompress it) through its GLS LAS Reader."""
 import os
 
 import gls_ply
@@ -7,7 +8,8 @@ import gls_ply
 READERS = {'.ply': 'ParaView (PLY)', '.obj': 'ParaView (OBJ)', '.stl': 'ParaView (STL)',
            '.vtp': 'ParaView (VTK XML polydata)'}
 TEXT = ('.xyz', '.pts', '.csv', '.txt')
-SUPPORTED = tuple(READERS) + TEXT
+LAS = ('.las', '.laz')
+SUPPORTED = tuple(READERS) + TEXT + LAS
 
 
 class InputError(Exception):
@@ -45,6 +47,8 @@ def open_cloud(path, make_proxy, watch):
     ext = os.path.splitext(path)[1].lower()
     if ext in TEXT:
         reader = make_proxy('GLSPointCloudReader', registrationName=os.path.basename(path), FileName=path)
+    elif ext in LAS:
+        reader = make_proxy('GLSLASReader', registrationName=os.path.basename(path), FileName=path)
     else:
         damage = gls_ply.check(path) if ext == '.ply' else None
         if damage:  # ParaView's PLY reader would crash on it
@@ -68,6 +72,9 @@ def open_cloud(path, make_proxy, watch):
     if ext in TEXT:
         reader.UpdatePropertyInformation()
         description = 'columns ' + reader.GetProperty('ColumnLayout').GetElement(0)
+    elif ext in LAS:
+        reader.UpdatePropertyInformation()
+        description = reader.GetProperty('Description').GetElement(0)
     else:
         description = 'read by %s' % READERS[ext]
     return reader, data, description
