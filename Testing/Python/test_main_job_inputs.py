@@ -258,6 +258,14 @@ class Inputs(unittest.TestCase):
         self.assertFailsInOneLine(run(empty, '--output-dir', out), '%s: the file is empty' % empty, out,
                                   created=False)
 
+        e57 = path('scan.e57')
+        with open(e57, 'wb') as f:
+            f.write(b'ASTM-E57' + bytes(40))
+        out = path('e57-out')
+        line = self.assertFailsInOneLine(run(e57, '--output-dir', out), '%s: an E57 scan needs libE57Format' % e57,
+                                         out, created=False)
+        self.assertIn('pdal translate', line)
+
         no_vertex = path('no-vertex.ply')
         helpers.write_ply(no_vertex, helpers.polydata_from(np.zeros((0, 3))))
         out = path('no-vertex-out')

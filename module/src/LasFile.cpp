@@ -206,8 +206,9 @@ bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::
       return false;
     }
   }
-  if (h.pointOffset < headerSize ||
-    h.pointOffset + h.pointCount * static_cast<std::uint64_t>(h.recordLength) > fileSize)
+  // (Divided rather than multiplied: a 64-bit count from a damaged header must not wrap around.)
+  if (h.pointOffset < headerSize || h.pointOffset > fileSize ||
+    h.pointCount > (fileSize - h.pointOffset) / static_cast<std::uint64_t>(h.recordLength))
   {
     std::ostringstream msg;
     msg << "the header announces " << h.pointCount << " points of " << h.recordLength << " bytes from byte "

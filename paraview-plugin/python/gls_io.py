@@ -10,6 +10,11 @@ READERS = {'.ply': 'ParaView (PLY)', '.obj': 'ParaView (OBJ)', '.stl': 'ParaView
 TEXT = ('.xyz', '.pts', '.csv', '.txt')
 LAS = ('.las', '.laz')
 SUPPORTED = tuple(READERS) + TEXT + LAS
+# Scanners' formats no Debian 12 package reads beside ParaView: why, and the converters that help.
+CONVERT_FIRST = {
+    '.e57': ('an E57 scan needs libE57Format, which Debian 12 does not package',
+             'CloudCompare: File > Save as, LAS or PLY; or pdal translate in.e57 out.las'),
+}
 
 
 class InputError(Exception):
@@ -23,6 +28,8 @@ def check_file(path):
     if not os.access(path, os.R_OK):
         raise InputError('%s: not readable (permissions)' % path)
     ext = os.path.splitext(path)[1].lower()
+    if ext in CONVERT_FIRST:
+        raise InputError('%s: %s; convert it first (%s)' % (path, CONVERT_FIRST[ext][0], CONVERT_FIRST[ext][1]))
     if ext not in SUPPORTED:
         raise InputError('%s: unsupported type %r (use %s)' % (path, ext, ', '.join(SUPPORTED)))
     if os.path.getsize(path) == 0:
