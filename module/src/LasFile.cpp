@@ -252,7 +252,9 @@ bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::
 
 bool readLasPoints(std::istream& in, const LasHeader& h, LasColumns& c, std::string& error)
 {
-  const std::size_t block = 65536;
+  // Blocks of about 4 MiB (never more records than the file has).
+  const std::size_t block = static_cast<std::size_t>(
+    std::max<std::uint64_t>(1, std::min<std::uint64_t>(h.pointCount, (std::size_t(4) << 20) / h.recordLength)));
   std::vector<unsigned char> buffer(block * h.recordLength);
   double low[3], high[3];
   const bool ext = h.extended();
