@@ -148,19 +148,15 @@ void vtkGLSFilterBase::DescribeSettings(std::vector<SettingRange>& settings)
 
 double vtkGLSFilterBase::GetSettingMinimum(const char* name)
 {
-  std::vector<SettingRange> settings;
-  this->DescribeSettings(settings);
-  for (const SettingRange& s : settings)
-  {
-    if (name && std::strcmp(s.Name, name) == 0)
-    {
-      return s.Minimum;
-    }
-  }
-  return std::numeric_limits<double>::quiet_NaN();
+  return this->SettingBound(name, false);
 }
 
 double vtkGLSFilterBase::GetSettingMaximum(const char* name)
+{
+  return this->SettingBound(name, true);
+}
+
+double vtkGLSFilterBase::SettingBound(const char* name, bool maximum)
 {
   std::vector<SettingRange> settings;
   this->DescribeSettings(settings);
@@ -168,7 +164,7 @@ double vtkGLSFilterBase::GetSettingMaximum(const char* name)
   {
     if (name && std::strcmp(s.Name, name) == 0)
     {
-      return s.Maximum;
+      return maximum ? s.Maximum : s.Minimum;
     }
   }
   return std::numeric_limits<double>::quiet_NaN();

@@ -99,6 +99,9 @@ protected:
   /// NaN. Checked before any work, on every rank alike.
   bool ValidateSettings();
 
+  /// The minimum or maximum of the named setting's range (NaN when the filter has no such setting).
+  double SettingBound(const char* name, bool maximum);
+
   vtkGLSFilterBase();
   ~vtkGLSFilterBase() override;
 

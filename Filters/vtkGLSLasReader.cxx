@@ -1,6 +1,6 @@
 #include "vtkGLSLasReader.h"
 
-#include "vtkGLSVertexCells.h"
+#include "vtkGLSReaderParts.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
@@ -16,7 +16,6 @@
 #include "gls/LasFile.h"
 
 #include <algorithm>
-#include <cctype>
 #include <fstream>
 #include <sstream>
 
@@ -46,10 +45,7 @@ vtkGLSLasReader::~vtkGLSLasReader() = default;
 
 int vtkGLSLasReader::CanReadFile(const char* name)
 {
-  std::string path = name ? name : "";
-  const auto dot = path.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = vtkGLSFileExtension(name);
   return ext == "las" || ext == "laz";
 }
 

@@ -1,7 +1,7 @@
 #include "vtkGLSPointCloudReader.h"
 
 #include "vtkGLSArrayNames.h"
-#include "vtkGLSVertexCells.h"
+#include "vtkGLSReaderParts.h"
 
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
@@ -20,7 +20,6 @@
 #include "gls/PointTextParser.h"
 
 #include <algorithm>
-#include <cctype>
 #include <numeric>
 #include <set>
 
@@ -52,10 +51,7 @@ vtkGLSPointCloudReader::~vtkGLSPointCloudReader() = default;
 
 int vtkGLSPointCloudReader::CanReadFile(const char* name)
 {
-  std::string path = name ? name : "";
-  const auto dot = path.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = vtkGLSFileExtension(name);
   return ext == "xyz" || ext == "pts" || ext == "csv" || ext == "txt";
 }
 

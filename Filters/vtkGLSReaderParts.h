@@ -1,13 +1,16 @@
-// One vertex cell per point, for the readers' point clouds (private to the module).
-#ifndef vtkGLSVertexCells_h
-#define vtkGLSVertexCells_h
+// What the readers share (private to the module): one vertex cell per point, a file name's extension.
+#ifndef vtkGLSReaderParts_h
+#define vtkGLSReaderParts_h
 
 #include "vtkCellArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkSmartPointer.h"
 
+#include <algorithm>
+#include <cctype>
 #include <numeric>
+#include <string>
 
 /// The cells 0, 1, ..., n - 1, each one vertex.
 inline vtkSmartPointer<vtkCellArray> vtkGLSVertexCells(vtkIdType n)
@@ -20,6 +23,16 @@ inline vtkSmartPointer<vtkCellArray> vtkGLSVertexCells(vtkIdType n)
   auto verts = vtkSmartPointer<vtkCellArray>::New();
   verts->SetData(offsets, connectivity);
   return verts;
+}
+
+/// The extension of a file name, lower case, without its dot ("" when there is none).
+inline std::string vtkGLSFileExtension(const char* name)
+{
+  const std::string path = name ? name : "";
+  const auto dot = path.find_last_of('.');
+  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
 }
 
 #endif
