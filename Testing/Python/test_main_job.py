@@ -262,11 +262,18 @@ class MainJob(unittest.TestCase):
         result = run(bad)
         self.assertEqual(result.returncode, 2)
         self.assertIn('expected 3 columns', result.stderr)
-        other = os.path.join(WORK, 'cloud.las')
-        open(other, 'w').close()
+        other = os.path.join(WORK, 'cloud.dxf')
+        with open(other, 'w') as f:
+            f.write('0\nSECTION\n')
         result = run(other)
         self.assertEqual(result.returncode, 2)
         self.assertIn('unsupported type', result.stderr)
+        damaged = os.path.join(WORK, 'cloud.las')
+        with open(damaged, 'w') as f:
+            f.write('not a LAS file, but its name says so: long enough for a header to be read ' * 4)
+        result = run(damaged)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("not a LAS file (it does not begin with 'LASF')", result.stderr)
 
 
 if __name__ == '__main__':
