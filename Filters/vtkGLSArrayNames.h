@@ -39,6 +39,7 @@ constexpr const char* RawBandwidth = "GLSRawBandwidth";    // adaptive bandwidth
 constexpr const char* Displacement = "GLSDisplacement";    // projection: distance moved (length)
 constexpr const char* ProjectionIterations = "GLSProjectionIterations"; // projection: fits made per point
 constexpr const char* Colors = "RGB";                      // point cloud reader: 0-255 colours (as VTK's PLY reader)
+constexpr const char* ScannerPosition = "ScannerPosition"; // point cloud reader (PTX): the position that saw a point
 constexpr const char* Intensity = "Intensity";             // point cloud reader: a scanner's return intensity
 }
 

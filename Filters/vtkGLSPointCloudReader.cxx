@@ -52,7 +52,7 @@ vtkGLSPointCloudReader::~vtkGLSPointCloudReader() = default;
 int vtkGLSPointCloudReader::CanReadFile(const char* name)
 {
   const std::string ext = vtkGLSFileExtension(name);
-  return ext == "xyz" || ext == "pts" || ext == "csv" || ext == "txt";
+  return ext == "xyz" || ext == "pts" || ext == "csv" || ext == "txt" || ext == "ptx";
 }
 
 int vtkGLSPointCloudReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
@@ -64,7 +64,9 @@ int vtkGLSPointCloudReader::RequestData(vtkInformation*, vtkInformationVector**,
     vtkErrorMacro("No FileName set.");
     return 0;
   }
-  const gls::PointText text = gls::readPointTextFile(this->FileName);
+  const gls::PointText text = vtkGLSFileExtension(this->FileName.c_str()) == "ptx"
+    ? gls::readPtxFile(this->FileName)
+    : gls::readPointTextFile(this->FileName);
   if (!text.error.empty())
   {
     vtkErrorMacro("Cannot read the point cloud: " << text.error);
@@ -97,6 +99,11 @@ int vtkGLSPointCloudReader::RequestData(vtkInformation*, vtkInformationVector**,
   {
     pd->AddArray(pointArray<vtkFloatArray>(vtkGLSArrayNames::Intensity, 1, text.intensity));
     names.insert(vtkGLSArrayNames::Intensity);
+  }
+  if (!text.viewpoints.empty())
+  {
+    pd->AddArray(pointArray<vtkDoubleArray>(vtkGLSArrayNames::ScannerPosition, 3, text.viewpoints));
+    names.insert(vtkGLSArrayNames::ScannerPosition);
   }
   for (const gls::PointTextColumn& column : text.otherColumns)
   {

@@ -1,6 +1,6 @@
 /**
  * @class   vtkGLSPointCloudReader
- * @brief   Reads a text point cloud (XYZ, PTS, CSV, TXT): points with normals, colours, intensity, other columns.
+ * @brief   Reads a text point cloud (XYZ, PTS, CSV, TXT, PTX): points with normals, colours, intensity, other columns.
  *
  * One point per line. Columns are named by a header line (x y z, nx ny nz, r g b or red green blue, intensity, any
  * other name), or, without a header, follow the standard layouts: 3 x y z; 4 x y z intensity; 6 x y z nx ny nz
@@ -8,6 +8,11 @@
  * 9 x y z r g b nx ny nz or x y z nx ny nz r g b. Colours are never read as normals. Fields are separated by blanks,
  * commas or semicolons (with decimal commas: "1,5;2,5;3"). The rules are in gls/PointTextParser.h and
  * docs/main-job.md.
+ *
+ * A Leica PTX file (.ptx: one or more scans, each with its scanner position and registration matrix) gives the
+ * registered points, `Intensity`, `RGB` when the scans have colours, and `ScannerPosition` (double, 3 components:
+ * the registered position of the scanner that saw each point, for Normal Estimation's per-point viewpoints); lines
+ * at 0 0 0 (missing returns) are dropped (gls::parsePtx).
  *
  * Output: a vtkPolyData with double-precision points and one vertex cell per point; point arrays `Normals`
  * (double, active normals, as given: not normalized), `RGB` (unsigned char, 3 components, 0-255, active scalars,
@@ -39,7 +44,7 @@ public:
   vtkGetCharFromStdStringMacro(FileName);
   ///@}
 
-  /// Whether the reader can read the file (used by ParaView): true for the extensions .xyz, .pts, .csv, .txt.
+  /// Whether the reader can read the file (used by ParaView): true for the extensions .xyz, .pts, .csv, .txt, .ptx.
   int CanReadFile(const char* name);
 
   /// How the last file read was understood, e.g. "x y z r g b (6 columns, no header: 0-255 integers, so

@@ -208,3 +208,36 @@ TEST(PointTextParser, MalformedInputGivesTheLine)
   EXPECT_TRUE(parse("1 2 3\n4 5\n").points.empty());
   EXPECT_NE(gls::readPointTextFile("/nonexistent/cloud.xyz").error.find("cannot be opened"), std::string::npos);
 }
+
+TEST(PtxParser, TwoRegisteredScansWithMissingReturnsAndTheirScanners)
+{
+  // Scan 1: identity, scanner at the origin, 2 x 2 points, one missing return. Scan 2: rotated 90 degrees about z
+  // (axes x -> y, y -> -x) and moved to (10, 0, 1), 3 x 1 points.
+  const std::string ptx = "2\n2\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n"
+                          "1 2 3 0.5 10 20 30\n0 0 0 0.5 0 0 0\n-1 0 2 0.25 1 2 3\n4 5 6 1 255 255 255\n"
+                          "3\n1\n10 0 1\n0 1 0\n-1 0 0\n0 0 1\n0 1 0 0\n-1 0 0 0\n0 0 1 0\n10 0 1 1\n"
+                          "1 0 0 0.1 7 8 9\n0 2 0 0.2 7 8 9\n1 1 1 0.3 7 8 9\n";
+  const gls::PointText t = gls::parsePtx(ptx.data(), ptx.size());
+  ASSERT_EQ(t.error, "");
+  const std::vector<double> expected = { 1, 2, 3, -1, 0, 2, 4, 5, 6, 10, 1, 1, 8, 0, 1, 9, 1, 2 };
+  EXPECT_EQ(t.points, expected);
+  EXPECT_EQ(t.intensity, (std::vector<float>{ 0.5f, 0.25f, 1.0f, 0.1f, 0.2f, 0.3f }));
+  EXPECT_EQ(t.colors.size(), 18u);
+  EXPECT_EQ(t.colors[0], 10);
+  const std::vector<double> scanners = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 10, 0, 1, 10, 0, 1, 10, 0, 1 };
+  EXPECT_EQ(t.viewpoints, scanners);
+  EXPECT_NE(t.layout.find("2 scans"), std::string::npos) << t.layout;
+  EXPECT_NE(t.layout.find("1 missing returns"), std::string::npos) << t.layout;
+}
+
+TEST(PtxParser, DamagedFilesAreRefusedWithTheLine)
+{
+  const std::string header = "2\n2\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n";
+  const auto errorOf = [](const std::string& text) { return gls::parsePtx(text.data(), text.size()).error; };
+  EXPECT_NE(errorOf(header + "1 2 3 0.5\n1 1 1 0.5\n").find("truncated"), std::string::npos);
+  EXPECT_NE(errorOf(header + "1 2 3 0.5\n1 1 1 0.5 1 2 3\n").find("with and without colours"), std::string::npos);
+  EXPECT_NE(errorOf(header + "1 2 3\n").find("line 11"), std::string::npos) << errorOf(header + "1 2 3\n");
+  EXPECT_NE(errorOf("x\n").find("line 1: not a number"), std::string::npos) << errorOf("x\n");
+  EXPECT_NE(errorOf("2 2\n").find("column count"), std::string::npos);
+  EXPECT_NE(errorOf("").find("no PTX scan"), std::string::npos);
+}

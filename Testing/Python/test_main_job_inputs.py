@@ -364,6 +364,26 @@ class Inputs(unittest.TestCase):
         line = self.assertFailsInOneLine(run(truncated, '--output-dir', out), 'reader: Cannot read the LAS file', out)
         self.assertIn('truncated, or a wrong point count', line)
 
+    def test_ptx_scan_faces_its_scanner(self):
+        # The upper half of the sphere seen from (0, 0, 10), registered by a translation of (5, 0, 0), plus 40
+        # missing returns: registered points, the scanner's position per point, normals facing it.
+        upper = self.points[self.points[:, 2] > 0.1]
+        lines = ['%d' % (len(upper) + 40), '1', '5 0 10', '1 0 0', '0 1 0', '0 0 1',
+                 '1 0 0 0', '0 1 0 0', '0 0 1 0', '5 0 0 1']
+        lines += ['%.9f %.9f %.9f 0.5' % tuple(p) for p in upper] + ['0 0 0 0.5'] * 40
+        ptx = write_text('scan.ptx', lines)
+        out = path('ptx-out')
+        result = run(ptx, '--output-dir', out, *QUICK)
+        pd = self.assertSucceeds(result, out, 'scan')
+        self.assertIn('PTX: 1 scan, x y z intensity, 40 missing returns (0 0 0) dropped', result.stdout)
+        self.assertIn('each facing its scanner (ScannerPosition)', result.stdout)
+        points = vtk_to_numpy(pd.GetPoints().GetData())
+        np.testing.assert_allclose(points, upper + [5.0, 0.0, 0.0], atol=1e-6)
+        scanners = point_array(pd, 'ScannerPosition')
+        np.testing.assert_array_equal(scanners, np.tile([5.0, 0.0, 10.0], (len(upper), 1)))
+        facing = np.einsum('ij,ij->i', point_array(pd, 'Normals'), scanners - points)
+        self.assertEqual(np.count_nonzero(facing < 0), 0)
+
     def test_semicolon_separated_decimal_commas(self):
         cloud = write_text('european.csv', [('%.9f;%.9f;%.9f' % tuple(p)).replace('.', ',') for p in self.points],
                            first='x;y;z')

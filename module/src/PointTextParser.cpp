@@ -114,19 +114,26 @@ PointText parsePointText(const char* text, std::size_t size)
   return out;
 }
 
-PointText readPointTextFile(const std::string& path)
+namespace
+{
+
+/// The file's text, or an error naming the path.
+bool readWholeFile(const std::string& path, std::string& text, PointText& out)
 {
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
-    PointText out;
     out.error = path + ": cannot be opened (missing or not readable)";
-    return out;
+    return false;
   }
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
-  PointText out = parsePointText(text.data(), text.size());
+  text = buffer.str();
+  return true;
+}
+
+PointText prefixed(PointText out, const std::string& path)
+{
   if (!out.error.empty())
   {
     out.error = path + ": " + out.error;
@@ -136,6 +143,30 @@ PointText readPointTextFile(const std::string& path)
     out.warning = path + ": " + out.warning;
   }
   return out;
+}
+
+} // namespace
+
+PointText readPointTextFile(const std::string& path)
+{
+  std::string text;
+  PointText out;
+  if (!readWholeFile(path, text, out))
+  {
+    return out;
+  }
+  return prefixed(parsePointText(text.data(), text.size()), path);
+}
+
+PointText readPtxFile(const std::string& path)
+{
+  std::string text;
+  PointText out;
+  if (!readWholeFile(path, text, out))
+  {
+    return out;
+  }
+  return prefixed(parsePtx(text.data(), text.size()), path);
 }
 
 } // namespace gls

@@ -198,9 +198,16 @@ def analyze(args, outputs):
     start = time.time()
     upstream = source
     if not gls_cloud.has_normals(analysed):
-        upstream = watch.watch(gls_filter('GLSNormalEstimation', registrationName='Normals', Input=source), 'normals')
+        # Each point facing the scanner that saw it, where the reader gives its position (PTX); else the minimum
+        # spanning tree (terrain-like clouds then face up: docs/normals.md).
+        scanners = analysed.GetPointData().GetArray('ScannerPosition') is not None
+        orientation = dict(Orientation='Towards per-point viewpoints',
+                           ViewpointArray=['POINTS', 'ScannerPosition']) if scanners else {}
+        upstream = watch.watch(gls_filter('GLSNormalEstimation', registrationName='Normals', Input=source,
+                                          **orientation), 'normals')
         watch.update(upstream)
-        print('normals: %.2f s' % (time.time() - start))
+        print('normals: %.2f s%s' % (time.time() - start, ', each facing its scanner (ScannerPosition)'
+                                     if scanners else ''))
     features = (per_scale_pipeline if args.per_scale else summary_pipeline)(args, upstream, watch)
     watch.update(features)
     result = gls_io.output_of(features)

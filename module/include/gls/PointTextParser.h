@@ -59,6 +59,7 @@ struct PointText
   std::vector<unsigned char> colors;         ///< r g b per point (0-255), or empty
   std::vector<float> intensity;              ///< 1 per point, as given, or empty
   std::vector<PointTextColumn> otherColumns; ///< the header's other named columns, in file order
+  std::vector<double> viewpoints;            ///< 3 per point: the position of the scanner that saw it (PTX), or empty
   std::string layout;  ///< how the columns were read, e.g. "x y z r g b (6 columns, no header: 0-255 integers)"
   std::string warning; ///< empty, or what the caller should report (normals far from unit length, with the count)
   std::string error;   ///< empty on success, else "line N: what is wrong" (the other members are then empty)
@@ -69,5 +70,16 @@ PointText parsePointText(const char* text, std::size_t size);
 
 /// Reads and parses a file; error names the file when it cannot be read.
 PointText readPointTextFile(const std::string& path);
+
+/// A Leica PTX file (one or more scans, each: its columns and rows, the scanner's registered position and axes, a 4x4
+/// registration matrix whose first three rows are the axes and the last the translation, then columns x rows lines
+/// `x y z intensity [r g b]` in the scanner's frame): the registered points (x row 0 + y row 1 + z row 2 + row 3),
+/// intensity, colours when the scan has them, and each point's scanner position (viewpoints). Lines at 0 0 0 are
+/// missing returns and are dropped (their count is in the layout). A scan with fewer lines than announced, a
+/// malformed header or line, or scans with and without colours mixed is an error with the line.
+PointText parsePtx(const char* text, std::size_t size);
+
+/// parsePtx of a file (errors prefixed with its path).
+PointText readPtxFile(const std::string& path);
 
 } // namespace gls
