@@ -52,7 +52,7 @@ vtkGLSPointCloudReader::~vtkGLSPointCloudReader() = default;
 int vtkGLSPointCloudReader::CanReadFile(const char* name)
 {
   const std::string ext = vtkGLSFileExtension(name);
-  return ext == "xyz" || ext == "pts" || ext == "csv" || ext == "txt" || ext == "ptx";
+  return ext == "xyz" || ext == "pts" || ext == "csv" || ext == "txt" || ext == "ptx" || ext == "pcd";
 }
 
 int vtkGLSPointCloudReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
@@ -64,9 +64,10 @@ int vtkGLSPointCloudReader::RequestData(vtkInformation*, vtkInformationVector**,
     vtkErrorMacro("No FileName set.");
     return 0;
   }
-  const gls::PointText text = vtkGLSFileExtension(this->FileName.c_str()) == "ptx"
-    ? gls::readPtxFile(this->FileName)
-    : gls::readPointTextFile(this->FileName);
+  const std::string ext = vtkGLSFileExtension(this->FileName.c_str());
+  const gls::PointText text = ext == "ptx" ? gls::readPtxFile(this->FileName)
+    : ext == "pcd"                         ? gls::readPcdFile(this->FileName)
+                                           : gls::readPointTextFile(this->FileName);
   if (!text.error.empty())
   {
     vtkErrorMacro("Cannot read the point cloud: " << text.error);

@@ -1,6 +1,7 @@
 /**
  * @class   vtkGLSPointCloudReader
- * @brief   Reads a text point cloud (XYZ, PTS, CSV, TXT, PTX): points with normals, colours, intensity, other columns.
+ * @brief   Reads a point cloud file (XYZ, PTS, CSV, TXT, PTX, PCD): points with normals, colours, intensity, other
+ *          columns.
  *
  * One point per line. Columns are named by a header line (x y z, nx ny nz, r g b or red green blue, intensity, any
  * other name), or, without a header, follow the standard layouts: 3 x y z; 4 x y z intensity; 6 x y z nx ny nz
@@ -12,7 +13,9 @@
  * A Leica PTX file (.ptx: one or more scans, each with its scanner position and registration matrix) gives the
  * registered points, `Intensity`, `RGB` when the scans have colours, and `ScannerPosition` (double, 3 components:
  * the registered position of the scanner that saw each point, for Normal Estimation's per-point viewpoints); lines
- * at 0 0 0 (missing returns) are dropped (gls::parsePtx).
+ * at 0 0 0 (missing returns) are dropped (gls::parsePtx). A PCL PCD file (.pcd, ascii, binary or
+ * binary_compressed) gives its x y z, normals, intensity, packed rgb as `RGB`, its other single-valued fields, and
+ * its VIEWPOINT as every point's `ScannerPosition` (gls::parsePcd).
  *
  * Output: a vtkPolyData with double-precision points and one vertex cell per point; point arrays `Normals`
  * (double, active normals, as given: not normalized), `RGB` (unsigned char, 3 components, 0-255, active scalars,
@@ -44,7 +47,7 @@ public:
   vtkGetCharFromStdStringMacro(FileName);
   ///@}
 
-  /// Whether the reader can read the file (used by ParaView): true for the extensions .xyz, .pts, .csv, .txt, .ptx.
+  /// Whether the reader can read the file (used by ParaView): true for the extensions .xyz, .pts, .csv, .txt, .ptx, .pcd.
   int CanReadFile(const char* name);
 
   /// How the last file read was understood, e.g. "x y z r g b (6 columns, no header: 0-255 integers, so

@@ -5,7 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -240,4 +245,133 @@ TEST(PtxParser, DamagedFilesAreRefusedWithTheLine)
   EXPECT_NE(errorOf("x\n").find("line 1: not a number"), std::string::npos) << errorOf("x\n");
   EXPECT_NE(errorOf("2 2\n").find("column count"), std::string::npos);
   EXPECT_NE(errorOf("").find("no PTX scan"), std::string::npos);
+}
+
+namespace
+{
+
+/// A PCD file of 3 points with x y z, normals, packed rgb (F, PCL's way), intensity and curvature, in `encoding`.
+std::string pcdFile(const std::string& encoding)
+{
+  const float xyz[3][3] = { { 1, 2, 3 }, { -1, 0.5f, 2 }, { 0, 0, std::numeric_limits<float>::quiet_NaN() } };
+  const float n[3][3] = { { 0, 0, 1 }, { 1, 0, 0 }, { 0, 1, 0 } };
+  const std::uint32_t rgb[3] = { 0x102030, 0xff0000, 0x0000ff };
+  const float intensity[3] = { 0.5f, 0.5f, 0.5f }, curvature[3] = { 0.1f, 0.2f, 0.3f };
+  std::string s = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n"
+                  "FIELDS x y z normal_x normal_y normal_z rgb intensity curvature\nSIZE 4 4 4 4 4 4 4 4 4\n"
+                  "TYPE F F F F F F F F F\nCOUNT 1 1 1 1 1 1 1 1 1\nWIDTH 3\nHEIGHT 1\nVIEWPOINT 5 6 7 1 0 0 0\n"
+                  "POINTS 3\nDATA " + encoding + "\n";
+  const auto asFloat = [](std::uint32_t bits) {
+    float f;
+    std::memcpy(&f, &bits, 4);
+    return f;
+  };
+  std::vector<std::vector<float>> columns = { {}, {}, {}, {}, {}, {}, {}, {}, {} };
+  for (int p = 0; p < 3; ++p)
+  {
+    const float row[9] = { xyz[p][0], xyz[p][1], xyz[p][2], n[p][0], n[p][1], n[p][2], asFloat(rgb[p]),
+      intensity[p], curvature[p] };
+    for (int f = 0; f < 9; ++f)
+    {
+      columns[f].push_back(row[f]);
+    }
+  }
+  const auto bytesOf = [](float f) { return std::string(reinterpret_cast<const char*>(&f), 4); };
+  if (encoding == "ascii")
+  {
+    for (int p = 0; p < 3; ++p)
+    {
+      for (int f = 0; f < 9; ++f)
+      {
+        char buffer[64];
+        std::snprintf(buffer, sizeof(buffer), "%.9g%s", static_cast<double>(columns[f][p]), f == 8 ? "\n" : " ");
+        s += buffer;
+      }
+    }
+  }
+  else if (encoding == "binary")
+  {
+    for (int p = 0; p < 3; ++p)
+    {
+      for (int f = 0; f < 9; ++f)
+      {
+        s += bytesOf(columns[f][p]);
+      }
+    }
+  }
+  else
+  {
+    // Field-major, LZF: each column as one literal run, but the intensity (0.5 three times) as 4 literal bytes and a
+    // back-reference 4 bytes back, 8 long.
+    std::string plain, packed;
+    for (int f = 0; f < 9; ++f)
+    {
+      std::string column;
+      for (int p = 0; p < 3; ++p)
+      {
+        column += bytesOf(columns[f][p]);
+      }
+      plain += column;
+      if (f == 7)
+      {
+        packed += static_cast<char>(3) + column.substr(0, 4);
+        packed += static_cast<char>(6 << 5) + std::string(1, static_cast<char>(3)); // length 6 + 2, back 3 + 1
+      }
+      else
+      {
+        packed += static_cast<char>(column.size() - 1) + column;
+      }
+    }
+    const std::uint32_t sizes[2] = { static_cast<std::uint32_t>(packed.size()),
+      static_cast<std::uint32_t>(plain.size()) };
+    s += std::string(reinterpret_cast<const char*>(sizes), 8) + packed;
+  }
+  return s;
+}
+
+} // namespace
+
+TEST(PcdParser, AsciiBinaryAndCompressedGiveTheSameCloud)
+{
+  for (const std::string encoding : { "ascii", "binary", "binary_compressed" })
+  {
+    SCOPED_TRACE(encoding);
+    const std::string file = pcdFile(encoding);
+    const gls::PointText t = gls::parsePcd(file.data(), file.size());
+    ASSERT_EQ(t.error, "");
+    ASSERT_EQ(t.points.size(), 9u);
+    EXPECT_EQ(t.points[0], 1.0);
+    EXPECT_EQ(t.points[4], 0.5);
+    EXPECT_TRUE(std::isnan(t.points[8])); // a NaN point is kept
+    EXPECT_EQ(t.normals, (std::vector<double>{ 0, 0, 1, 1, 0, 0, 0, 1, 0 }));
+    EXPECT_EQ(t.colors, (std::vector<unsigned char>{ 0x10, 0x20, 0x30, 0xff, 0, 0, 0, 0, 0xff }));
+    EXPECT_EQ(t.intensity, (std::vector<float>{ 0.5f, 0.5f, 0.5f }));
+    ASSERT_EQ(t.otherColumns.size(), 1u);
+    EXPECT_EQ(t.otherColumns[0].name, "curvature");
+    EXPECT_EQ(static_cast<float>(t.otherColumns[0].values[1]), 0.2f);
+    EXPECT_EQ(t.viewpoints, (std::vector<double>{ 5, 6, 7, 5, 6, 7, 5, 6, 7 }));
+  }
+  // PCL's default VIEWPOINT says nothing of the sensor: no scanner positions.
+  std::string plain = pcdFile("ascii");
+  plain.replace(plain.find("VIEWPOINT 5 6 7"), 15, "VIEWPOINT 0 0 0");
+  EXPECT_TRUE(gls::parsePcd(plain.data(), plain.size()).viewpoints.empty());
+}
+
+TEST(PcdParser, DamagedFilesAreRefusedWithWhatIsWrong)
+{
+  const auto errorOf = [](const std::string& file) { return gls::parsePcd(file.data(), file.size()).error; };
+  const std::string binary = pcdFile("binary");
+  EXPECT_NE(errorOf(binary.substr(0, binary.size() - 10)).find("truncated"), std::string::npos)
+    << errorOf(binary.substr(0, binary.size() - 10));
+  const std::string compressed = pcdFile("binary_compressed");
+  std::string damaged = compressed;
+  const std::string data = "DATA binary_compressed\n";
+  damaged[damaged.find(data) + data.size() + 8] = static_cast<char>(0xe0); // a back-reference before the start
+  EXPECT_NE(errorOf(damaged).find("damaged binary_compressed (LZF) data"), std::string::npos) << errorOf(damaged);
+  std::string many = binary;
+  many.replace(many.find("POINTS 3"), 8, "POINTS 3000000");
+  EXPECT_NE(errorOf(many).find("more than the file holds"), std::string::npos) << errorOf(many);
+  EXPECT_NE(errorOf("VERSION 0.7\nFIELDS a b\nDATA ascii\n").find("no x, y and z"), std::string::npos);
+  EXPECT_NE(errorOf("FIELDS x y z\nDATA zip\n").find("DATA 'zip'"), std::string::npos);
+  EXPECT_NE(errorOf("hello\n").find("unknown PCD header line"), std::string::npos);
 }

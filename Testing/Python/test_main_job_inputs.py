@@ -384,6 +384,26 @@ class Inputs(unittest.TestCase):
         facing = np.einsum('ij,ij->i', point_array(pd, 'Normals'), scanners - points)
         self.assertEqual(np.count_nonzero(facing < 0), 0)
 
+    def test_pcd_binary_compressed(self):
+        # PCL's binary_compressed: the fields one after the other, LZF (here literal runs of 32 bytes at most).
+        n = len(self.points)
+        packed_rgb = (self.colours[:, 0].astype(np.uint32) << 16) | (self.colours[:, 1].astype(np.uint32) << 8) | \
+            self.colours[:, 2].astype(np.uint32)
+        plain = b''.join([self.points[:, a].astype('<f4').tobytes() for a in range(3)] +
+                         [packed_rgb.astype('<u4').tobytes()])
+        lzf = b''.join(bytes([len(plain[i:i + 32]) - 1]) + plain[i:i + 32] for i in range(0, len(plain), 32))
+        header = ('VERSION 0.7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\nWIDTH %d\n'
+                  'HEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS %d\nDATA binary_compressed\n' % (n, n)).encode()
+        with open(path('cloud.pcd'), 'wb') as f:
+            f.write(header + np.array([len(lzf), len(plain)], '<u4').tobytes() + lzf)
+        out = path('pcd-out')
+        result = run(path('cloud.pcd'), '--output-dir', out, *QUICK)
+        pd = self.assertSucceeds(result, out, 'cloud')
+        self.assertIn('PCD (binary_compressed): x y z rgb', result.stdout)
+        np.testing.assert_array_equal(point_array(pd, 'RGB'), self.colours)
+        self.assertIsNone(pd.GetPointData().GetArray('ScannerPosition'))  # PCL's default VIEWPOINT
+        self.assertUnitSphereKappa(pd)
+
     def test_semicolon_separated_decimal_commas(self):
         cloud = write_text('european.csv', [('%.9f;%.9f;%.9f' % tuple(p)).replace('.', ',') for p in self.points],
                            first='x;y;z')

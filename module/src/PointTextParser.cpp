@@ -169,4 +169,15 @@ PointText readPtxFile(const std::string& path)
   return prefixed(parsePtx(text.data(), text.size()), path);
 }
 
+PointText readPcdFile(const std::string& path)
+{
+  std::string bytes;
+  PointText out;
+  if (!readWholeFile(path, bytes, out))
+  {
+    return out;
+  }
+  return prefixed(parsePcd(bytes.data(), bytes.size()), path);
+}
+
 } // namespace gls

@@ -7,7 +7,7 @@ import gls_ply
 
 READERS = {'.ply': 'ParaView (PLY)', '.obj': 'ParaView (OBJ)', '.stl': 'ParaView (STL)',
            '.vtp': 'ParaView (VTK XML polydata)'}
-TEXT = ('.xyz', '.pts', '.csv', '.txt', '.ptx')
+TEXT = ('.xyz', '.pts', '.csv', '.txt', '.ptx', '.pcd')  # the GLS Point Cloud Reader's
 LAS = ('.las', '.laz')
 SUPPORTED = tuple(READERS) + TEXT + LAS
 # Scanners' formats no Debian 12 package reads beside ParaView: why, and the converters that help.

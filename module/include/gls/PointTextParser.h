@@ -82,4 +82,15 @@ PointText parsePtx(const char* text, std::size_t size);
 /// parsePtx of a file (errors prefixed with its path).
 PointText readPtxFile(const std::string& path);
 
+/// A PCL PCD file (version .7; DATA ascii, binary or binary_compressed, LZF): fields x y z (required), normal_x
+/// normal_y normal_z as normals, intensity, rgb or rgba (packed 0x00RRGGBB, as PCL writes them) as colours, the other
+/// single-valued fields as other columns (fields of several values are skipped, said in the layout); a VIEWPOINT other
+/// than PCL's default (0 0 0 1 0 0 0, which most files carry whatever their sensor) gives its translation as every
+/// point's scanner position (viewpoints). NaN points are kept. A malformed header, a count the
+/// file cannot hold, truncated or damaged (LZF) data is an error saying what is wrong.
+PointText parsePcd(const char* data, std::size_t size);
+
+/// parsePcd of a file (errors prefixed with its path).
+PointText readPcdFile(const std::string& path);
+
 } // namespace gls
