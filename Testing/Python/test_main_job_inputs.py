@@ -353,6 +353,15 @@ class Inputs(unittest.TestCase):
         self.assertEqual(pd.GetPointData().GetArray('RGB').GetDataTypeAsString(), 'unsigned short')
         np.testing.assert_array_equal(point_array(pd, 'Intensity'), intensity)
         self.assertUnitSphereKappa(pd)
+        # Scales in the data's units: the sphere's diagonal is 2 sqrt(3), so 0.1 to 0.35 absolute.
+        out = path('las-absolute-out')
+        result = run(las, '--output-dir', out, '--scales', '5', '--min-scale', '0.1', '--max-scale', '0.35',
+                     '--absolute-scales')
+        self.assertSucceeds(result, out, 'tile')
+        self.assertIn('5 scales from 0.1 to 0.35 (length units of the data)', result.stdout)
+        self.assertFailsInOneLine(run(las, '--output-dir', path('no-lengths'), '--absolute-scales'),
+                                  '--absolute-scales needs --min-scale and --max-scale', path('no-lengths'),
+                                  created=False)
         laz, _ = write_las('tile.laz', self.points[:100], intensity, self.colours, compressed=True)
         out = path('laz-out')
         line = self.assertFailsInOneLine(run(laz, '--output-dir', out), 'reader: Cannot read the LAS file', out)

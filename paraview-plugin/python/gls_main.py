@@ -1,11 +1,13 @@
 """The GLS main job, for pvpython (under Xvfb when there is no display: see the gls-analyze wrapper).
 
-    gls-analyze [input] [--output-dir DIR] [--scales N] [--min-scale F] [--max-scale F] [--sigma S] [--noise F]
+    gls-analyze [input] [--output-dir DIR] [--scales N] [--min-scale F] [--max-scale F] [--absolute-scales]
+                [--sigma S] [--noise F]
                 [--per-scale] [--full-precision] [--query ID] [--memory-budget GIB]
 
-Reads a point cloud or mesh (PLY, OBJ, STL, VTP, or a text file: XYZ/PTS/CSV/TXT; default: the bundled bunny
-scan), estimates oriented normals when the file has none, analyses N quadratic scales from --min-scale to
---max-scale (fractions of the bounding-box diagonal) in one fused pass that stores nothing per scale (the continuous
+Reads a point cloud or mesh (PLY, OBJ, STL, VTP, a text file: XYZ/PTS/CSV/TXT, a scanner's file: LAS, PTX, PCD;
+default: the bundled bunny scan), estimates oriented normals when the file has none, analyses N quadratic scales
+from --min-scale to --max-scale (fractions of the bounding-box diagonal, or lengths with --absolute-scales) in one
+fused pass that stores nothing per scale (the continuous
 features and the per-point scale summary; memory is checked first), and writes to the output directory:
   <name>-gls.vtp        the points, the input's arrays, normals, GLSFeature and the per-point summaries (float32
                         rounded to a relative 1.2e-4, compressed: about 39 bytes a point on a cloud); every
@@ -69,9 +71,13 @@ def parse_arguments(argv):
     p.add_argument('--output-dir', default='gls-output', help='where the results go (default ./gls-output)')
     p.add_argument('--plugin', default=os.environ.get('GLS_PLUGIN'), help='path of GrowingLeastSquares.so')
     p.add_argument('--scales', type=int, default=20, help='number of scales, at least 2 (default 20)')
-    p.add_argument('--min-scale', type=float, default=0.008, help='smallest scale / diagonal, > 0 (default 0.008)')
-    p.add_argument('--max-scale', type=float, default=0.08,
-                   help='largest scale / diagonal, > --min-scale (default 0.08)')
+    p.add_argument('--min-scale', type=float, default=None,
+                   help='smallest scale / diagonal, > 0 (default 0.008); with --absolute-scales a length')
+    p.add_argument('--max-scale', type=float, default=None,
+                   help='largest scale / diagonal, > --min-scale (default 0.08); with --absolute-scales a length')
+    p.add_argument('--absolute-scales', action='store_true',
+                   help='--min-scale and --max-scale (both then required) are lengths in the units of the data '
+                        '(metres on a survey), not fractions of its diagonal')
     p.add_argument('--sigma', type=float, default=None,
                    help='an absolute tanh scale of the features, > 0 (default: relative to the data, so that the '
                         'median feature is 0.28)')
@@ -93,12 +99,20 @@ def parse_arguments(argv):
 
 
 def validate(args):
-    """Raises UsageError for an option value the analysis cannot use, before anything runs."""
+    """Raises UsageError for an option value the analysis cannot use, before anything runs (and fills in the
+    relative scales' defaults)."""
+    if args.absolute_scales and (args.min_scale is None or args.max_scale is None):
+        raise UsageError('--absolute-scales needs --min-scale and --max-scale, lengths in the units of the data')
+    if args.min_scale is None:
+        args.min_scale = 0.008
+    if args.max_scale is None:
+        args.max_scale = 0.08
     if args.scales < 2:
         raise UsageError('--scales must be at least 2 (the features integrate over the scales); got %d'
                          % args.scales)
     if not (math.isfinite(args.min_scale) and args.min_scale > 0):
-        raise UsageError('--min-scale must be a positive fraction of the diagonal; got %g' % args.min_scale)
+        raise UsageError('--min-scale must be a positive %s; got %g' % (
+            'length' if args.absolute_scales else 'fraction of the diagonal', args.min_scale))
     if not (math.isfinite(args.max_scale) and args.max_scale > args.min_scale):
         raise UsageError('--max-scale must be larger than --min-scale; got --min-scale %g, --max-scale %g'
                          % (args.min_scale, args.max_scale))
@@ -134,20 +148,26 @@ def checked_features(result):
     return feature
 
 
+def scale_range(args, **more):
+    """The filters' scale properties of the options (relative to the diagonal, or lengths with --absolute-scales)."""
+    return dict(MinScale=args.min_scale, MaxScale=args.max_scale, ScaleSampling='Quadratic',
+                ScaleUnits='Absolute' if args.absolute_scales else 'Relative to bounding box diagonal', **more)
+
+
 def summary_pipeline(args, upstream, watch):
     """The default path: one fused pass (GLS Continuous Features with ScaleSummary) that stores nothing per scale."""
     sigma = {} if args.sigma is None else {'SigmaMode': 'Absolute', 'Sigma': args.sigma}
     return watch.watch(gls_filter('GLSContinuousFeatures', registrationName='Features', Input=upstream,
-                                  Normals=NORMALS, NumberOfScales=args.scales, MinScale=args.min_scale,
-                                  MaxScale=args.max_scale, ScaleSampling='Quadratic', ScaleSummary=1, **sigma),
+                                  Normals=NORMALS, NumberOfScales=args.scales, ScaleSummary=1,
+                                  **scale_range(args, **sigma)),
                        'features and summary')
 
 
 def per_scale_pipeline(args, upstream, watch):
     """--per-scale: the scale space and nu stored at every scale, then the features and the summary from them."""
     scale_space = watch.watch(gls_filter('GLSScaleSpace', registrationName='ScaleSpace', Input=upstream,
-                                         Normals=NORMALS, NumberOfScales=args.scales, MinScale=args.min_scale,
-                                         MaxScale=args.max_scale, ScaleSampling='Quadratic'), 'scale space')
+                                         Normals=NORMALS, NumberOfScales=args.scales, **scale_range(args)),
+                              'scale space')
     variation = watch.watch(gls_filter('GLSGeometricVariation', registrationName='Variation', Input=scale_space,
                                        Normals=NORMALS), 'geometric variation')
     return summary_pipeline(args, variation, watch)
@@ -163,9 +183,9 @@ def query_dissimilarity(args, upstream, watch, count, merged):
     query = int(merged.inverse[args.query]) if merged is not None else args.query  # its distinct position
     dissimilarity = watch.watch(gls_filter('GLSMultiScaleDissimilarity', registrationName='Dissimilarity',
                                            Input=upstream, Normals=NORMALS, QueryPointId=query,
-                                           NumberOfScales=args.scales, MinScale=args.min_scale,
-                                           MaxScale=args.max_scale, ScaleSampling='Quadratic',
-                                           PriorMinScale=args.min_scale, PriorMaxScale=args.max_scale),
+                                           NumberOfScales=args.scales,
+                                           **scale_range(args, PriorMinScale=args.min_scale,
+                                                         PriorMaxScale=args.max_scale)),
                                 'dissimilarity')
     watch.update(dissimilarity)
     return gls_io.output_of(dissimilarity).GetPointData().GetArray('GLSDissimilarity')
@@ -239,7 +259,7 @@ def analyze(args, outputs):
     picks = gls_profiles.select_profile_points(feature, vtk_to_numpy(pd.GetArray('GLSPertinentScaleCount')))
     profiles = watch.watch(gls_filter('GLSScaleProfiles', registrationName='Profiles', Input=upstream,
                                       Normals=NORMALS, PointIds=list(picks.values()), NumberOfScales=300,
-                                      MinScale=args.min_scale, MaxScale=args.max_scale, ScaleSampling='Quadratic'),
+                                      **scale_range(args)),
                            'scale profiles', progress=False)
     watch.update(profiles)
     gls_profiles.plot_profiles(outputs.path('-profiles.png'), 'GLS scale profiles: %s' % outputs.name,
