@@ -25,6 +25,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkDoubleArray.h"
 #include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <sstream>
 #include <algorithm>
@@ -253,7 +254,24 @@ int vtkGLSFilterBase::RunOn(
   {
     run.Diagonal = diagonal;
   }
-  return this->Execute(run) == FAILED ? 0 : 1;
+  if (this->Execute(run) == FAILED)
+  {
+    return 0;
+  }
+  if (!run.StrayIds.empty() && run.Output)
+  {
+    // Which points were left out as stray: a picture or a later step can leave them out too.
+    vtkNew<vtkUnsignedCharArray> stray;
+    stray->SetName(vtkGLSArrayNames::Stray);
+    stray->SetNumberOfTuples(run.Output->GetNumberOfPoints());
+    stray->FillValue(0);
+    for (std::uint64_t i : run.StrayIds)
+    {
+      stray->SetValue(static_cast<vtkIdType>(i), 1);
+    }
+    run.Output->GetPointData()->AddArray(stray);
+  }
+  return 1;
 }
 
 int vtkGLSFilterBase::RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVector* outputVector)
@@ -394,6 +412,7 @@ void vtkGLSFilterBase::LeaveOutStrayPoints(vtkGLSRun& run)
   }
   run.StrayPoints = static_cast<long long>(stray.size());
   run.FirstStrayPoint = stray.empty() ? -1 : static_cast<long long>(stray.front());
+  run.StrayIds = stray;
 }
 
 bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
@@ -425,7 +444,8 @@ bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
                       << " (far outside the rest of the cloud, with no other point near; the first: point "
                       << run.FirstStrayPoint
                       << ") left out: NaN results, in no neighbourhood, and the bounding box (the relative "
-                         "scales) is that of the other points. Field data GLSStrayPoints counts them.");
+                         "scales) is that of the other points. Field data GLSStrayPoints counts them, the point "
+                         "array GLSStray marks them.");
     }
   }
   // Every rank takes part, an empty piece too: the bounds are those of the finite points of all the pieces.

@@ -181,7 +181,8 @@ protected:
 
   /// Serial runs: the stray points of run.Cloud (gls::findStrayPoints) get NaN coordinates there, so that they join
   /// no neighbourhood, their results are NaN and the bounds (the relative scales) are the other points'; counted in
-  /// run.StrayPoints. Distributed runs do not look for them (each rank sees only its piece).
+  /// run.StrayPoints (and marked in the output's point array GLSStray, when there are some). Distributed runs do not
+  /// look for them (each rank sees only its piece).
   static void LeaveOutStrayPoints(vtkGLSRun& run);
 
   /// Writes what the run reports in the output's field data: GLSGhostPoints (the ghosts this rank used, in a

@@ -10,6 +10,7 @@
 #include "vtkGLSSampleSource.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,6 +69,7 @@ struct vtkGLSRun
   long long CoincidentPoints = 0;        ///< this piece's input points merged into another
   long long StrayPoints = 0;             ///< stray points left out (vtkGLSFilterBase::LeaveOutStrayPoints)
   long long FirstStrayPoint = -1;        ///< the lowest index among them
+  std::vector<std::uint64_t> StrayIds;   ///< their indices, increasing
 };
 
 #endif

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <array>
 #include <functional>
@@ -553,6 +554,11 @@ TEST(BadInput, OneStrayPointChangesNothingElse)
   }
   EXPECT_LT(worst, 1e-6);
   EXPECT_TRUE(std::isnan(fb.back()));
+  const std::vector<double> marked = pointArray(withStray, "GLSStray");
+  ASSERT_EQ(marked.size(), fb.size());
+  EXPECT_EQ(std::count(marked.begin(), marked.end(), 1.0), 1);
+  EXPECT_EQ(marked.back(), 1.0);
+  EXPECT_EQ(pointArray(vtkPolyData::SafeDownCast(a->GetOutputDataObject(0)), "GLSStray").size(), 0u);
   // Normals: NaN at the stray point, the others as without it.
   vtkNew<vtkGLSNormalEstimation> na, nb;
   na->SetInputData(clean);

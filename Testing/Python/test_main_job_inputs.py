@@ -455,6 +455,21 @@ class Inputs(unittest.TestCase):
         # The picture shows the points (it was the background only: it drew cells, and there were none).
         self.assertLess(central_background(os.path.join(out, 'cloud-features.png')), 0.93)  # drawn: 0.90
 
+    def test_a_stray_point_changes_nothing_and_is_not_drawn(self):
+        # The sphere (radius 1) and one return 50 away: the scales and features of the clean cloud, the stray point
+        # marked and left out of the picture, which frames the sphere (without that, a dot in the middle).
+        clean = write_text('clean.xyz', ['%.9f %.9f %.9f' % tuple(p) for p in self.points])
+        stray = write_text('stray.xyz', ['%.9f %.9f %.9f' % tuple(p) for p in self.points] + ['50 50 50'])
+        a = self.assertSucceeds(run(clean, '--output-dir', path('clean-out'), *QUICK), path('clean-out'), 'clean')
+        result = run(stray, '--output-dir', path('stray-out'), *QUICK)
+        b = self.assertSucceeds(result, path('stray-out'), 'stray')
+        self.assertIn('1 stray point', result.stderr)
+        fa, fb = point_array(a, 'GLSFeature'), point_array(b, 'GLSFeature')
+        self.assertTrue(np.isnan(fb[-1]))
+        np.testing.assert_allclose(fb[:-1], fa, atol=1e-6)
+        np.testing.assert_array_equal(point_array(b, 'GLSStray'), [0] * len(self.points) + [1])
+        self.assertLess(central_background(os.path.join(path('stray-out'), 'stray-features.png')), 0.93)
+
     def test_obj_with_texture_coordinates(self):
         """spot.obj: 2,930 vertices split per face corner into 17,568 points by ParaView's reader. The analysis of
         the distinct positions, written back to every copy, equals the analysis of the de-duplicated mesh; the

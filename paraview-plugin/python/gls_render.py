@@ -74,11 +74,19 @@ def render_features(path, polydata, title):
     points = vtk_to_numpy(polydata.GetPoints().GetData())
     normals_array = polydata.GetPointData().GetArray('Normals')
     normals = vtk_to_numpy(normals_array) if normals_array is not None else None
+    feature = vtk_to_numpy(polydata.GetPointData().GetArray('GLSFeature'))
+    stray = polydata.GetPointData().GetArray('GLSStray')
+    if stray is not None and not surface:
+        # The stray points the filters left out (far from the rest): not drawn, so that the picture frames the cloud.
+        kept = vtk_to_numpy(stray) == 0
+        title += ' (%d stray point%s not shown)' % (np.count_nonzero(~kept), '' if np.count_nonzero(~kept) == 1
+                                                      else 's')
+        points, feature = points[kept], feature[kept]
+        normals = normals[kept] if normals is not None else None
     stride = 1 if surface else gls_cloud.stride_for(len(points), MAX_SHOWN_POINTS)
     if stride > 1:
         title += ' (%s shown)' % gls_cloud.every_kth_note(stride)
-    shown = polydata if surface else gls_cloud.vertex_cloud(
-        points[::stride], {'GLSFeature': vtk_to_numpy(polydata.GetPointData().GetArray('GLSFeature'))[::stride]})
+    shown = polydata if surface else gls_cloud.vertex_cloud(points[::stride], {'GLSFeature': feature[::stride]})
     source = gls_cloud.producer(shown)
     view = simple.CreateRenderView()
     view.ViewSize = [1200, 900]
