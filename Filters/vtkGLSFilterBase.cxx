@@ -310,6 +310,10 @@ int vtkGLSFilterBase::RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVect
   {
     return 0;
   }
+  if (!dist.IsParallel())
+  {
+    BlankStrayPoints(xyz); // the blocks' runs leave them out too: the same diagonal as one block of it all
+  }
   double bounds[6];
   const double diagonal = dist.FiniteBounds(xyz.data(), xyz.size() / 3, bounds) ? DiagonalOf(bounds) : 0.0;
   xyz = std::vector<double>();
@@ -401,15 +405,20 @@ void vtkGLSFilterBase::CopyTriples(vtkDataArray* triples, vtkIdType n, double* o
   }
 }
 
-void vtkGLSFilterBase::LeaveOutStrayPoints(vtkGLSRun& run)
+std::vector<std::uint64_t> vtkGLSFilterBase::BlankStrayPoints(std::vector<double>& xyz)
 {
-  std::vector<double>& xyz = run.Cloud.Points;
   const std::vector<std::uint64_t> stray = gls::findStrayPoints(xyz.data(), xyz.size() / 3);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::uint64_t i : stray)
   {
     xyz[3 * i] = xyz[3 * i + 1] = xyz[3 * i + 2] = nan;
   }
+  return stray;
+}
+
+void vtkGLSFilterBase::LeaveOutStrayPoints(vtkGLSRun& run)
+{
+  const std::vector<std::uint64_t> stray = BlankStrayPoints(run.Cloud.Points);
   run.StrayPoints = static_cast<long long>(stray.size());
   run.FirstStrayPoint = stray.empty() ? -1 : static_cast<long long>(stray.front());
   run.StrayIds = stray;

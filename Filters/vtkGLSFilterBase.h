@@ -44,6 +44,7 @@
 #include "vtkPointSetAlgorithm.h"
 #include "vtkSmartPointer.h" // for the composite hook
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -184,6 +185,10 @@ protected:
   /// run.StrayPoints (and marked in the output's point array GLSStray, when there are some). Distributed runs do not
   /// look for them (each rank sees only its piece).
   static void LeaveOutStrayPoints(vtkGLSRun& run);
+
+  /// Sets the stray points of xyz (3 per point; gls::findStrayPoints) to NaN and returns their indices: the one rule
+  /// of every serial run's bounds.
+  static std::vector<std::uint64_t> BlankStrayPoints(std::vector<double>& xyz);
 
   /// Writes what the run reports in the output's field data: GLSGhostPoints (the ghosts this rank used, in a
   /// distributed run that exchanged them), GLSStrayPoints (stray points left out, when some were), GLSTiles (the spatial tiles of a fit cut to its MemoryBudget, when more

@@ -12,7 +12,6 @@
 
 #include "gls/Evaluation.h"
 #include "gls/ScaleSampling.h"
-#include "gls/StrayPoints.h"
 #include "gls/TiledScaleSpace.h"
 
 #include <algorithm>
@@ -425,10 +424,7 @@ std::vector<double> vtkGLSScaleFilterBase::ComputeAbsoluteScales(vtkPointSet* in
   {
     input->GetPoint(i, &xyz[3 * i]);
   }
-  for (std::uint64_t i : gls::findStrayPoints(xyz.data(), static_cast<std::size_t>(n)))
-  {
-    xyz[3 * i] = xyz[3 * i + 1] = xyz[3 * i + 2] = std::numeric_limits<double>::quiet_NaN(); // as a run does
-  }
+  BlankStrayPoints(xyz); // as a run does
   double b[6];
   double diagonal = 0.0;
   if (serial.FiniteBounds(xyz.data(), static_cast<std::size_t>(n), b))

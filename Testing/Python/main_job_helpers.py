@@ -1,13 +1,17 @@
 """Shared by the main-job tests: running gls-analyze as a user does (no display), reading what it wrote, and
-writing input files (shapes.sphere: points exactly on a sphere, with exact normals)."""
+writing input files (shapes.sphere: points exactly on a sphere, with exact normals). Importing it also makes the
+main job's own modules (paraview-plugin/python) importable, for the tests of its parts."""
 import os
 import re
 import subprocess
+import sys
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from shapes import sphere
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'paraview-plugin', 'python'))
 
 
 def run(analyze, *args):

@@ -10,9 +10,8 @@ import unittest
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'paraview-plugin', 'python'))
-import gls_outputs  # noqa: E402 (the main job's own module, beside the plugin)
-import main_job_helpers as helpers
+import main_job_helpers as helpers  # (first: it makes the main job's own modules importable)
+import gls_outputs  # noqa: E402 (the main job's own module)
 from main_job_helpers import denoising_rms, failure_text, image_stats, polydata_from, read_vtp, write_sphere
 
 ANALYZE, WORK = sys.argv[1], sys.argv[2]

@@ -11,9 +11,8 @@ import unittest
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'paraview-plugin', 'python'))
-import gls_coincident  # noqa: E402 (the main job's own modules, beside the plugin)
-import main_job_helpers as helpers
+import main_job_helpers as helpers  # (first: it makes the main job's own modules importable)
+import gls_coincident  # noqa: E402 (the main job's own module)
 from main_job_helpers import central_background, error_lines, failure_text, point_array, read_vtp
 from shapes import sphere
 
