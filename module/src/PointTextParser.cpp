@@ -117,23 +117,21 @@ PointText parsePointText(const char* text, std::size_t size)
 namespace
 {
 
-/// The file's text, or an error naming the path.
-bool readWholeFile(const std::string& path, std::string& text, PointText& out)
+/// parse(bytes, size) of the file's whole content, its error and warning prefixed with the path; an error naming the
+/// path when the file cannot be opened.
+PointText parseFile(const std::string& path, PointText (*parse)(const char*, std::size_t))
 {
   std::ifstream in(path, std::ios::binary);
   if (!in)
   {
-    out.error = path + ": cannot be opened (missing or not readable)";
-    return false;
+    PointText failed;
+    failed.error = path + ": cannot be opened (missing or not readable)";
+    return failed;
   }
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  text = buffer.str();
-  return true;
-}
-
-PointText prefixed(PointText out, const std::string& path)
-{
+  const std::string bytes = buffer.str();
+  PointText out = parse(bytes.data(), bytes.size());
   if (!out.error.empty())
   {
     out.error = path + ": " + out.error;
@@ -149,35 +147,17 @@ PointText prefixed(PointText out, const std::string& path)
 
 PointText readPointTextFile(const std::string& path)
 {
-  std::string text;
-  PointText out;
-  if (!readWholeFile(path, text, out))
-  {
-    return out;
-  }
-  return prefixed(parsePointText(text.data(), text.size()), path);
+  return parseFile(path, parsePointText);
 }
 
 PointText readPtxFile(const std::string& path)
 {
-  std::string text;
-  PointText out;
-  if (!readWholeFile(path, text, out))
-  {
-    return out;
-  }
-  return prefixed(parsePtx(text.data(), text.size()), path);
+  return parseFile(path, parsePtx);
 }
 
 PointText readPcdFile(const std::string& path)
 {
-  std::string bytes;
-  PointText out;
-  if (!readWholeFile(path, bytes, out))
-  {
-    return out;
-  }
-  return prefixed(parsePcd(bytes.data(), bytes.size()), path);
+  return parseFile(path, parsePcd);
 }
 
 } // namespace gls
