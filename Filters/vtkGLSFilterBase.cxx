@@ -418,10 +418,7 @@ std::vector<std::uint64_t> vtkGLSFilterBase::BlankStrayPoints(std::vector<double
 
 void vtkGLSFilterBase::LeaveOutStrayPoints(vtkGLSRun& run)
 {
-  const std::vector<std::uint64_t> stray = BlankStrayPoints(run.Cloud.Points);
-  run.StrayPoints = static_cast<long long>(stray.size());
-  run.FirstStrayPoint = stray.empty() ? -1 : static_cast<long long>(stray.front());
-  run.StrayIds = stray;
+  run.StrayIds = BlankStrayPoints(run.Cloud.Points);
 }
 
 bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
@@ -447,11 +444,11 @@ bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
   if (!dist.IsParallel())
   {
     LeaveOutStrayPoints(run);
-    if (run.StrayPoints > 0)
+    if (!run.StrayIds.empty())
     {
-      vtkWarningMacro(<< run.StrayPoints << " stray point" << (run.StrayPoints > 1 ? "s" : "")
+      vtkWarningMacro(<< run.StrayIds.size() << " stray point" << (run.StrayIds.size() > 1 ? "s" : "")
                       << " (far outside the rest of the cloud, with no other point near; the first: point "
-                      << run.FirstStrayPoint
+                      << run.StrayIds.front()
                       << ") left out: NaN results, in no neighbourhood, and the bounding box (the relative "
                          "scales) is that of the other points. Field data GLSStrayPoints counts them, the point "
                          "array GLSStray marks them.");
@@ -635,11 +632,11 @@ void vtkGLSFilterBase::WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd)
     ghosts->InsertNextValue(static_cast<vtkIdType>(run.GhostPoints));
     fd->AddArray(ghosts);
   }
-  if (run.StrayPoints > 0)
+  if (!run.StrayIds.empty())
   {
     vtkNew<vtkIdTypeArray> stray;
     stray->SetName(vtkGLSArrayNames::StrayPoints);
-    stray->InsertNextValue(static_cast<vtkIdType>(run.StrayPoints));
+    stray->InsertNextValue(static_cast<vtkIdType>(run.StrayIds.size()));
     fd->AddArray(stray);
   }
   if (run.TilesUsed > 1)

@@ -182,7 +182,7 @@ protected:
 
   /// Serial runs: the stray points of run.Cloud (gls::findStrayPoints) get NaN coordinates there, so that they join
   /// no neighbourhood, their results are NaN and the bounds (the relative scales) are the other points'; counted in
-  /// run.StrayPoints (and marked in the output's point array GLSStray, when there are some). Distributed runs do not
+  /// run.StrayIds (and marked in the output's point array GLSStray, when there are some). Distributed runs do not
   /// look for them (each rank sees only its piece).
   static void LeaveOutStrayPoints(vtkGLSRun& run);
 

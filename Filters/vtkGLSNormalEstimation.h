@@ -12,9 +12,10 @@
  * - TOWARDS_POINT / AWAY_FROM_POINT: facing OrientationPoint (e.g. the scanner position) or away from it.
  * - MINIMUM_SPANNING_TREE (default): Hoppe et al. 1992; the orientation is propagated along the minimum spanning tree
  *   of the GraphNeighbors-nearest-neighbour graph with cost 1 - |n_i . n_j|; every connected component starts from
- *   its point farthest from its centroid, oriented away from the centroid (outward on closed shapes); a component
- *   whose normals then mostly point along z (the size of their mean z at least 0.5: terrain, roofs, floors; a closed
- *   surface's mean is about 0) faces up, +z (an aerial tile is not oriented into the ground).
+ *   its point farthest from its centroid, oriented away from the centroid (outward on closed shapes); then, on a
+ *   terrain-like cloud (its height at most half its smaller horizontal extent, its components' normals with a mean
+ *   z of size at least 0.7: gls::kTerrainCoherence), the components facing down are turned to face up, +z (an
+ *   aerial tile is not oriented into the ground; a closed surface's normals sum to about 0 and keep their sides).
  * - UP: every normal facing UpDirection (default +z), point by point (aerial scans; PDAL's always_up).
  * - AGREE_WITH_EXISTING: flipped to agree with the normals selected by SetInputArrayToProcess(0, ...) (default: the
  *   active normals), e.g. a scanner's normals whose length or accuracy is poor; points whose existing normal is not

@@ -15,7 +15,7 @@
  * the registered position of the scanner that saw each point, for Normal Estimation's per-point viewpoints); lines
  * at 0 0 0 (missing returns) are dropped (gls::parsePtx). A PCL PCD file (.pcd, ascii, binary or
  * binary_compressed) gives its x y z, normals, intensity, packed rgb as `RGB`, its other single-valued fields, and
- * its VIEWPOINT as every point's `ScannerPosition` (gls::parsePcd).
+ * a VIEWPOINT other than PCL's default as every point's `ScannerPosition` (gls::parsePcd).
  *
  * Output: a vtkPolyData with double-precision points and one vertex cell per point; point arrays `Normals`
  * (double, active normals, as given: not normalized), `RGB` (unsigned char, 3 components, 0-255, active scalars,

@@ -54,7 +54,6 @@ struct vtkGLSRun
   // Built by vtkGLSScaleFilterBase.
   std::vector<double> Scales;            ///< absolute scales (length)
   std::unique_ptr<vtkGLSSampleSource> Samples; ///< a fit of the cloud, or the arrays of an upstream scale space
-  std::unique_ptr<vtkGLSSampleSource> TiledSamples; ///< the tiled fit ChooseTiles planned, until it becomes Samples
   vtkDataArray* StoredVariation = nullptr; ///< an upstream GLSGeometricVariation at Scales, when it can be used
 
   // The filter's own.
@@ -67,9 +66,7 @@ struct vtkGLSRun
   long long GhostPoints = -1;            ///< ghosts this rank used (-1: no exchange)
   long long TilesUsed = 0;               ///< spatial tiles of this rank's fit (0: no fit ran)
   long long CoincidentPoints = 0;        ///< this piece's input points merged into another
-  long long StrayPoints = 0;             ///< stray points left out (vtkGLSFilterBase::LeaveOutStrayPoints)
-  long long FirstStrayPoint = -1;        ///< the lowest index among them
-  std::vector<std::uint64_t> StrayIds;   ///< their indices, increasing
+  std::vector<std::uint64_t> StrayIds;   ///< stray points left out, increasing (LeaveOutStrayPoints)
 };
 
 #endif

@@ -145,10 +145,11 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
     return dist.AllTrue(local || emptyPiece) && (!dist.IsParallel() || dist.Max(local ? 1.0 : 0.0) > 0.5);
   };
   // Every large allocation of the run, counted before any is made: per (point, scale), per point and per scale.
+  const auto needed = [&](double bytes, double scales) {
+    return bytes + static_cast<double>(n) * request.BytesPerPoint + scales * request.BytesPerScale;
+  };
   const auto budget = [&](double bytes, double scales) {
-    return this->CheckMemoryBudget(bytes + static_cast<double>(n) * request.BytesPerPoint +
-        scales * request.BytesPerScale,
-      request.What, request.Advice);
+    return this->CheckMemoryBudget(needed(bytes, scales), request.What, request.Advice);
   };
 
   if (request.MayReuseInput)
@@ -185,7 +186,7 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   const std::size_t owned = run.Cloud.Owned;
   const double S = static_cast<double>(run.Scales.size());
   const double outputs = static_cast<double>(owned) * S * (request.BytesPerPointScale + CoverageBytesPerPointScale);
-  const double fixed = outputs + static_cast<double>(n) * request.BytesPerPoint + S * request.BytesPerScale;
+  const double fixed = needed(outputs, S);
   ok = ok && budget(outputs, S) && this->GatherFitCloud(run);
   if (!this->AgreeToContinue(run, ok))
   {
@@ -208,26 +209,26 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   // aborted.
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 0.02); };
   this->ChooseEvaluation(run, settings);
-  std::size_t tiles = 1;
-  if (!this->AgreeToContinue(run, this->ChooseTiles(run, settings, fixed, request, tiles)))
+  std::unique_ptr<vtkGLSSampleSource> tiled;
+  if (!this->AgreeToContinue(run, this->ChooseTiles(run, settings, fixed, request, tiled)))
   {
     return false;
   }
-  run.Samples = tiles > 1 ? std::move(run.TiledSamples) : vtkGLSSampleSource::Fit(run.Cloud, settings);
+  run.Samples = tiled ? std::move(tiled) : vtkGLSSampleSource::Fit(run.Cloud, settings);
   run.TilesUsed = static_cast<long long>(run.Samples->TileCount());
   this->LastTileCount = static_cast<int>(run.TilesUsed);
   this->Heartbeat();
   return true;
 }
 
-bool vtkGLSScaleFilterBase::ChooseTiles(vtkGLSRun& run, const gls::ScaleSpaceSettings& settings, double fixed,
-  const SampleRequest& request, std::size_t& tiles)
+bool vtkGLSScaleFilterBase::ChooseTiles(const vtkGLSRun& run, const gls::ScaleSpaceSettings& settings, double fixed,
+  const SampleRequest& request, std::unique_ptr<vtkGLSSampleSource>& tiled)
 {
   const std::size_t S = settings.scales.size();
   const int threads = gls::resolveThreadCount(this->NumberOfThreads);
   const double budget = this->MemoryBudgetBytes();
   const double cloud = static_cast<double>(run.Cloud.Size());
-  tiles = 1;
+  tiled.reset();
   if (fixed + vtkGLSSampleSource::EngineBytes(run.Cloud.Size(), S, threads) <= budget || run.Cloud.Owned == 0)
   {
     return true;
@@ -239,23 +240,21 @@ bool vtkGLSScaleFilterBase::ChooseTiles(vtkGLSRun& run, const gls::ScaleSpaceSet
   {
     gls::ScaleSpaceSettings planning = settings;
     planning.parallel.progress = nullptr;
-    run.TiledSamples = vtkGLSSampleSource::Fit(run.Cloud, planning, want);
-    const std::size_t largest = run.TiledSamples->LargestTile();
+    tiled = vtkGLSSampleSource::Fit(run.Cloud, planning, want);
+    const std::size_t largest = tiled->LargestTile();
     need = fixed + cloud + vtkGLSSampleSource::EngineBytes(largest, S, threads) +
       static_cast<double>(largest) * gls::TiledScaleSpace::kBytesPerTilePoint;
     if (need <= budget)
     {
-      tiles = run.TiledSamples->TileCount();
       return true;
     }
-    if (static_cast<double>(largest) > kTileShrink * static_cast<double>(previous) ||
-      run.TiledSamples->TileCount() < want)
+    if (static_cast<double>(largest) > kTileShrink * static_cast<double>(previous) || tiled->TileCount() < want)
     {
       break; // the tiles' ghost bands (the largest scale) or identical points keep them about this large
     }
     previous = largest;
   }
-  run.TiledSamples.reset();
+  tiled.reset();
   std::ostringstream advice;
   advice << "Even cut into spatial tiles (each with the points within the largest scale of it) the fit does not fit. "
          << request.Advice << " Or raise MemoryBudget, or use smaller scales.";

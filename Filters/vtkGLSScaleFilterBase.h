@@ -37,11 +37,13 @@
 #include "vtkGLSFitFilterBase.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 class vtkDataArray;
 class vtkFieldData;
+class vtkGLSSampleSource;
 
 namespace gls
 {
@@ -188,11 +190,11 @@ protected:
   /// bands of the largest scale hold most of each tile, and more tiles cost time without saving memory).
   static constexpr double kTileShrink = 0.9;
 
-  /// How many spatial tiles the fit of run.Cloud takes: 1 when the engine fits in the MemoryBudget beside `fixed`
-  /// bytes, else the fewest (doubling) whose largest tile fits (its source then in run.TiledSamples). False (with an
-  /// error naming the budget) when none does.
-  bool ChooseTiles(vtkGLSRun& run, const gls::ScaleSpaceSettings& settings, double fixed,
-    const SampleRequest& request, std::size_t& tiles);
+  /// Whether the fit of run.Cloud is cut into spatial tiles: not (`tiled` left null) when the engine fits in the
+  /// MemoryBudget beside `fixed` bytes, else the fewest tiles (doubling) whose largest fits, planned in `tiled`. False
+  /// (with an error naming the budget) when none does.
+  bool ChooseTiles(const vtkGLSRun& run, const gls::ScaleSpaceSettings& settings, double fixed,
+    const SampleRequest& request, std::unique_ptr<vtkGLSSampleSource>& tiled);
 
   /// Sets run.Scales for a fit: by default the scale list at the run's diagonal. False (with an error) on invalid
   /// scale parameters.

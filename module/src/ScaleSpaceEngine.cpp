@@ -26,11 +26,6 @@ constexpr std::size_t kChunksPerThread = 8;
 /// A multi-resolution run given fewer than 1 / kSampleFraction of the points takes them in pyramid order.
 constexpr std::size_t kSampleFraction = 4;
 
-} // namespace
-
-namespace
-{
-
 /// The exact grid's cells: a quarter of the largest scale, few candidates outside the ball (measured: 6.2 s against
 /// 7.1 s at half).
 double exactGridCellSize(const std::vector<double>& scales)

@@ -7,9 +7,12 @@ import gls_ply
 
 READERS = {'.ply': 'ParaView (PLY)', '.obj': 'ParaView (OBJ)', '.stl': 'ParaView (STL)',
            '.vtp': 'ParaView (VTK XML polydata)'}
-TEXT = ('.xyz', '.pts', '.csv', '.txt', '.ptx', '.pcd')  # the GLS Point Cloud Reader's
-LAS = ('.las', '.laz')
-SUPPORTED = tuple(READERS) + TEXT + LAS
+# The plugin's readers: the proxy of each extension, and its information property that says how the file was read.
+POINT_CLOUD_READER = ('GLSPointCloudReader', 'columns ', 'ColumnLayout')
+LAS_READER = ('GLSLASReader', '', 'Description')
+PLUGIN_READERS = dict([(ext, POINT_CLOUD_READER) for ext in ('.xyz', '.pts', '.csv', '.txt', '.ptx', '.pcd')] +
+                      [(ext, LAS_READER) for ext in ('.las', '.laz')])
+SUPPORTED = tuple(READERS) + tuple(PLUGIN_READERS)
 # Scanners' formats no Debian 12 package reads beside ParaView: why, and the converters that help.
 CONVERT_FIRST = {
     '.e57': ('an E57 scan needs libE57Format, which Debian 12 does not package',
@@ -52,10 +55,8 @@ def open_cloud(path, make_proxy, watch):
     import gls_watch
     check_file(path)
     ext = os.path.splitext(path)[1].lower()
-    if ext in TEXT:
-        reader = make_proxy('GLSPointCloudReader', registrationName=os.path.basename(path), FileName=path)
-    elif ext in LAS:
-        reader = make_proxy('GLSLASReader', registrationName=os.path.basename(path), FileName=path)
+    if ext in PLUGIN_READERS:
+        reader = make_proxy(PLUGIN_READERS[ext][0], registrationName=os.path.basename(path), FileName=path)
     else:
         damage = gls_ply.check(path) if ext == '.ply' else None
         if damage:  # ParaView's PLY reader would crash on it
@@ -76,12 +77,10 @@ def open_cloud(path, make_proxy, watch):
         raise InputError('%s: the reader gives a %s, not a point cloud or surface' % (path, data.GetClassName()))
     if data.GetNumberOfPoints() == 0:
         raise InputError('%s: no points (an empty %s file?)' % (path, ext[1:].upper()))
-    if ext in TEXT:
+    if ext in PLUGIN_READERS:
+        _, prefix, information = PLUGIN_READERS[ext]
         reader.UpdatePropertyInformation()
-        description = 'columns ' + reader.GetProperty('ColumnLayout').GetElement(0)
-    elif ext in LAS:
-        reader.UpdatePropertyInformation()
-        description = reader.GetProperty('Description').GetElement(0)
+        description = prefix + reader.GetProperty(information).GetElement(0)
     else:
         description = 'read by %s' % READERS[ext]
     return reader, data, description

@@ -79,8 +79,8 @@ def render_features(path, polydata, title):
     if stray is not None and not surface:
         # The stray points the filters left out (far from the rest): not drawn, so that the picture frames the cloud.
         kept = vtk_to_numpy(stray) == 0
-        title += ' (%d stray point%s not shown)' % (np.count_nonzero(~kept), '' if np.count_nonzero(~kept) == 1
-                                                      else 's')
+        hidden = np.count_nonzero(~kept)
+        title += ' (%d stray point%s not shown)' % (hidden, '' if hidden == 1 else 's')
         points, feature = points[kept], feature[kept]
         normals = normals[kept] if normals is not None else None
     stride = 1 if surface else gls_cloud.stride_for(len(points), MAX_SHOWN_POINTS)
