@@ -75,6 +75,27 @@ std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Fit(
   return source;
 }
 
+std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::FitAround(
+  const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings, const std::vector<std::uint64_t>& only)
+{
+  std::unique_ptr<vtkGLSSampleSource> source(new vtkGLSSampleSource);
+  source->PointCount = cloud.Owned;
+  source->ScaleCount = settings.scales.size();
+  source->Cloud = &cloud;
+  if (cloud.Owned == 0)
+  {
+    return source; // an empty piece of a distributed input: nothing to fit
+  }
+  std::vector<std::uint64_t> positions; // the distinct positions of the points, as Feed evaluates them
+  for (std::uint64_t id : only)
+  {
+    positions.push_back(cloud.IsMerged() ? cloud.Copies.representative[id] : id);
+  }
+  source->Engine = std::make_unique<gls::TiledScaleSpace>(
+    cloud.Points.data(), cloud.Normals.data(), cloud.Size(), cloud.Owned, std::move(settings), positions);
+  return source;
+}
+
 std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Stored(
   vtkDataSet* input, std::size_t scaleCount, bool descriptors, bool derivatives)
 {

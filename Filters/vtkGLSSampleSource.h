@@ -28,6 +28,12 @@ public:
   static std::unique_ptr<vtkGLSSampleSource> Fit(
     const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings, std::size_t tiles = 1);
 
+  /// A fit that Feed will ask for the points `only` only (this piece's input ids, at most
+  /// gls::TiledScaleSpace::kMaxSelected of them): built over their neighbourhoods instead of the whole cloud, with
+  /// the same samples.
+  static std::unique_ptr<vtkGLSSampleSource> FitAround(
+    const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings, const std::vector<std::uint64_t>& only);
+
   /// The arrays a vtkGLSScaleSpace stored for `scaleCount` scales: the descriptors (GLSTau, GLSKappa, GLSFitness)
   /// and/or the derivatives (GLSdTau, GLSdEta, GLSdKappa), as asked. Null when any asked array is missing or has
   /// the wrong shape.

@@ -209,6 +209,15 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   // aborted.
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 0.02); };
   this->ChooseEvaluation(run, settings);
+  // A few selected points (every piece agrees): a fit around them, whatever the cloud's size.
+  if (dist.AllTrue(request.Only && request.Only->size() <= gls::TiledScaleSpace::kMaxSelected))
+  {
+    run.Samples = vtkGLSSampleSource::FitAround(run.Cloud, settings, *request.Only);
+    run.TilesUsed = 1;
+    this->LastTileCount = 1;
+    this->Heartbeat();
+    return true;
+  }
   std::unique_ptr<vtkGLSSampleSource> tiled;
   if (!this->AgreeToContinue(run, this->ChooseTiles(run, settings, fixed, request, tiled)))
   {

@@ -171,6 +171,9 @@ protected:
     double BytesPerPointScale = 0.0; ///< output bytes for each (point, scale) pair
     double BytesPerPoint = 0.0;      ///< output bytes for each point, whatever the number of scales
     double BytesPerScale = 0.0;      ///< working bytes for each scale, whatever the number of points
+    /// The only points the filter feeds (this piece's input ids), when it feeds few (a profile's): the fit is then
+    /// built around them (vtkGLSSampleSource::FitAround) whatever the cloud's size. Null: every point.
+    const std::vector<std::uint64_t>* Only = nullptr;
     const char* What = "the fused GLS fit";
     const char* Advice = "Use fewer points or scales.";
   };

@@ -123,9 +123,11 @@ bool vtkGLSScaleProfiles::CheckParameters(vtkGLSRun& run)
   return true;
 }
 
-vtkGLSScaleFilterBase::SampleRequest vtkGLSScaleProfiles::GetSampleRequest(const vtkGLSRun&) const
+vtkGLSScaleFilterBase::SampleRequest vtkGLSScaleProfiles::GetSampleRequest(const vtkGLSRun& run) const
 {
-  return SampleRequest(); // always its own fit, stores nothing per point and scale
+  SampleRequest request; // always its own fit, stores nothing per point and scale
+  request.Only = &static_cast<const SelectionState&>(*run.State).Ids; // built around the selected points
+  return request;
 }
 
 int vtkGLSScaleProfiles::ComputeOutputs(vtkGLSRun& run)

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -308,4 +309,65 @@ TEST(TiledScaleSpace, ProgressRunsOnceAcrossTheTilesAndAnAbortStopsThem)
   };
   EXPECT_FALSE(tiled.run(sink, nullptr, parallel, gls::Backend::CPU, report));
   EXPECT_LT(calls, seen.size());
+}
+
+TEST(TiledScaleSpace, AFitAroundAFewPointsGivesThemTheWholeRunsSamples)
+{
+  // A scale profile's few points: one engine over their neighbourhoods instead of the cloud, the same bits; the
+  // points not selected are never fed. Among the selected: the NaN point, the one without a normal, a copy.
+  const std::size_t n = 30000;
+  const Cloud c = awkwardBunny(n);
+  const std::vector<std::uint64_t> selected = { 7, 4000, 29999, n, n + 1, n + 3, 12345, 4000 };
+  for (const gls::Evaluation evaluation : { gls::Evaluation::Exact, gls::Evaluation::Multiresolution })
+  {
+    for (int threads : { 1, 2 })
+    {
+      SCOPED_TRACE(testing::Message() << "evaluation " << static_cast<int>(evaluation) << ", " << threads
+                                      << " threads");
+      const gls::ScaleSpaceSettings s = settingsFor(c, evaluation, threads);
+      const CollectingSink whole = runTiles(c, c.size(), s, 1);
+      const gls::TiledScaleSpace around(c.points.data(), c.normals.data(), c.size(), c.size(), s, selected);
+      EXPECT_EQ(around.tileCount(), 1u);
+      // The multi-resolution reach adds the walk's region and the cells taken whole to the largest scale.
+      EXPECT_LT(around.largestTile(), evaluation == gls::Evaluation::Exact ? c.size() / 4 : c.size() * 3 / 4)
+        << "not a fit around the points";
+      EXPECT_GT(around.largestTile(), selected.size());
+      for (const bool some : { false, true })
+      {
+        const std::vector<std::uint64_t> asked = { n + 3, 12345, 7 };
+        CollectingSink sink(c.size(), s.scales.size());
+        for (gls::ScaleSample& sample : sink.Samples)
+        {
+          sample.neighbors = -1.0;
+        }
+        gls::RunReport report;
+        ASSERT_TRUE(around.run(sink, some ? &asked : nullptr, s.parallel, gls::Backend::CPU, report));
+        for (std::size_t i = 0; i < c.size(); ++i)
+        {
+          const bool fed = some ? std::find(asked.begin(), asked.end(), i) != asked.end()
+                                : std::find(selected.begin(), selected.end(), i) != selected.end();
+          for (std::size_t k = 0; k < s.scales.size(); ++k)
+          {
+            if (fed)
+            {
+              ASSERT_TRUE(sameBits(sink.at(i, k), whole.at(i, k))) << "point " << i << ", scale " << k;
+              ASSERT_EQ(sink.at(i, k).valid, whole.at(i, k).valid) << "point " << i << ", scale " << k;
+            }
+            else
+            {
+              ASSERT_EQ(sink.at(i, k).neighbors, -1.0) << "point " << i << " was fed";
+            }
+          }
+        }
+        EXPECT_TRUE(whole.at(7, s.scales.size() - 1).valid); // the oracle holds defined samples too
+      }
+    }
+  }
+  // Nothing selected (a piece without any of a profile's points): nothing fed.
+  const gls::ScaleSpaceSettings s = settingsFor(c, gls::Evaluation::Exact, 2);
+  const gls::TiledScaleSpace none(c.points.data(), c.normals.data(), c.size(), c.size(), s, std::vector<std::uint64_t>());
+  CollectingSink sink(c.size(), s.scales.size());
+  gls::RunReport report;
+  EXPECT_TRUE(none.run(sink, nullptr, s.parallel, gls::Backend::CPU, report));
+  EXPECT_EQ(none.largestTile(), 0u);
 }

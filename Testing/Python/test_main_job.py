@@ -226,6 +226,56 @@ class MainJob(unittest.TestCase):
         self.assertNotIn('GLS pipeline', output)  # it stopped in the fused pass, not after it
         self.assertEqual(os.listdir(out), [])  # neither results nor the staging folder
 
+    def test_ctrl_c_while_the_data_are_written_stops_the_writer_and_writes_nothing(self):
+        import signal
+        import subprocess
+        import time
+        ply = os.path.join(WORK, 'torus-interrupted-writing.ply')
+        write_torus_ply(ply, 1000000)
+        out = os.path.join(WORK, 'interrupted-writing')
+        env = dict(os.environ)
+        env.pop('DISPLAY', None)
+        process = subprocess.Popen([ANALYZE, ply, '--output-dir', out], stdout=subprocess.PIPE,
+                                   stderr=subprocess.DEVNULL, text=True, env=env, start_new_session=True)
+        seen = ''
+        for line in process.stdout:  # the job prints this line, then starts writing the .vtp in the background
+            seen += line
+            if line.startswith('output: per-point summaries'):
+                break
+        self.assertIn('output: per-point summaries', seen)
+        interrupted = time.time()
+        os.killpg(process.pid, signal.SIGINT)
+        rest, _ = process.communicate(timeout=60)
+        self.assertLess(time.time() - interrupted, 10.0, seen + rest)
+        self.assertEqual(process.returncode, 130, seen + rest)
+        self.assertNotIn('wrote ', seen + rest)
+        self.assertEqual(os.listdir(out), [])
+        for _ in range(50):  # the job, its writer and its X server are gone
+            try:
+                os.killpg(process.pid, 0)
+            except ProcessLookupError:
+                break
+            time.sleep(0.1)
+        else:
+            self.fail('a process of the interrupted job is still running')
+
+    def test_background_write_is_the_direct_write_and_reports_a_failure(self):
+        points = np.random.default_rng(5).normal(size=(5000, 3))
+        pd = polydata_from(points, None)
+        direct, background = os.path.join(WORK, 'direct.vtp'), os.path.join(WORK, 'background.vtp')
+        # A polydata of its own: a write caches the arrays' ranges in them, and the next write stores those too.
+        gls_outputs.write_vtp(direct, polydata_from(points, None))
+        writing = gls_outputs.BackgroundWrite(background, pd)
+        writing.finish()
+        with open(direct, 'rb') as a, open(background, 'rb') as b:
+            self.assertEqual(a.read(), b.read())
+        failing = gls_outputs.BackgroundWrite(os.path.join(WORK, 'no-such-folder', 'x.vtp'), pd)
+        with self.assertRaisesRegex(gls_outputs.OutputError, 'cannot write .*no-such-folder'):
+            failing.finish()
+        cancelled = gls_outputs.BackgroundWrite(os.path.join(WORK, 'cancelled.vtp'), pd)
+        cancelled.cancel()
+        cancelled.finish()  # nothing left to wait for
+
     def test_ply_and_vtp_inputs(self):
         from vtkmodules.vtkIOPLY import vtkPLYWriter
         from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter

@@ -85,25 +85,86 @@ TiledScaleSpace::TiledScaleSpace(const double* points, const double* normals, st
     }
     return;
   }
-  // What each tile's engine would otherwise take from its own points: the whole cloud's box, spacing and lattice.
-  this->Admit.resize(count);
-  admitOrientedPoints(points, normals, count, this->Admit.data(), this->Settings.parallel.threads);
-  if (this->Settings.evaluation == Evaluation::Multiresolution)
-  {
-    resolvePyramidFrame(this->Settings.multiresolution, points, count, this->Admit.data());
-  }
-  else
-  {
-    this->Settings.gridLattice = exactGridLattice(points, count, this->Admit.data(), this->Settings.scales);
-    this->Settings.haveGridLattice = true;
-  }
-  this->Reach = ghostReach(this->Settings);
+  this->layOnTheWholeCloud();
   this->Tiles = SpatialTiles::plan(points, this->Evaluated, tiles);
   this->Largest = 0;
   for (std::size_t size : this->tileSizes())
   {
     this->Largest = std::max(this->Largest, size);
   }
+}
+
+TiledScaleSpace::TiledScaleSpace(const double* points, const double* normals, std::size_t count,
+  std::size_t evaluated, ScaleSpaceSettings settings, const std::vector<std::uint64_t>& selected)
+  : Points(points)
+  , Normals(normals)
+  , Count(count)
+  , Evaluated(std::min(evaluated, count))
+  , Settings(std::move(settings))
+  , AroundSelected(true)
+{
+  for (std::uint64_t id : selected)
+  {
+    if (id < this->Evaluated)
+    {
+      this->Selected.push_back(id);
+    }
+  }
+  std::sort(this->Selected.begin(), this->Selected.end());
+  this->Selected.erase(std::unique(this->Selected.begin(), this->Selected.end()), this->Selected.end());
+  this->Selected.resize(std::min(this->Selected.size(), kMaxSelected));
+  if (this->Selected.empty() || this->Settings.scales.empty())
+  {
+    this->Selected.clear();
+    return; // nothing to evaluate
+  }
+  this->layOnTheWholeCloud();
+  std::vector<Vec3> centres;
+  for (std::uint64_t id : this->Selected)
+  {
+    centres.push_back({ points[3 * id], points[3 * id + 1], points[3 * id + 2] });
+  }
+  const double reach2 = this->Reach * this->Reach;
+  this->collect(
+    [&](std::size_t i) -> int {
+      if (std::binary_search(this->Selected.begin(), this->Selected.end(), static_cast<std::uint64_t>(i)))
+      {
+        return 1;
+      }
+      if (!this->Admit[i])
+      {
+        return 0;
+      }
+      const Vec3 p{ points[3 * i], points[3 * i + 1], points[3 * i + 2] };
+      for (const Vec3& c : centres)
+      {
+        if (squaredNorm(p - c) <= reach2) // false for a NaN coordinate, like the tiles' boxes
+        {
+          return 2;
+        }
+      }
+      return 0;
+    },
+    this->SelectedMembers, this->SelectedOwn);
+  this->Largest = this->SelectedMembers.size();
+}
+
+void TiledScaleSpace::layOnTheWholeCloud()
+{
+  // What each part's engine would otherwise take from its own points: the whole cloud's box, spacing and lattice.
+  this->Admit.resize(this->Count);
+  admitOrientedPoints(this->Points, this->Normals, this->Count, this->Admit.data(), this->Settings.parallel.threads);
+  if (this->Settings.evaluation == Evaluation::Multiresolution)
+  {
+    resolvePyramidFrame(this->Settings.multiresolution, this->Points, this->Count, this->Admit.data());
+  }
+  else
+  {
+    this->Settings.gridLattice =
+      exactGridLattice(this->Points, this->Count, this->Admit.data(), this->Settings.scales);
+    this->Settings.haveGridLattice = true;
+  }
+  this->Reach = ghostReach(this->Settings);
 }
 
 std::vector<std::size_t> TiledScaleSpace::tileSizes() const
@@ -143,18 +204,25 @@ std::vector<std::size_t> TiledScaleSpace::tileSizes() const
 
 void TiledScaleSpace::members(std::size_t k, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const
 {
+  this->collect(
+    [&](std::size_t i) -> int { // 0: not in the tile, 1: own point, 2: ghost
+      const double* p = this->Points + 3 * i;
+      if (i < this->Evaluated && this->Tiles.holds(k, p))
+      {
+        return 1;
+      }
+      return this->Admit[i] && this->Tiles.near(k, p, this->Reach) ? 2 : 0;
+    },
+    members, own);
+}
+
+template <class Kind>
+void TiledScaleSpace::collect(const Kind& kind, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const
+{
   // Counted per slice, then written per slice: the cloud's order whatever the thread count.
   const int threads = resolveThreadCount(this->Settings.parallel.threads);
   const std::size_t slices = static_cast<std::size_t>(threads) * 4;
   const auto sliceBegin = [this, slices](std::size_t s) { return this->Count * s / slices; };
-  const auto kind = [&](std::size_t i) -> int { // 0: not in the tile, 1: own point, 2: ghost
-    const double* p = this->Points + 3 * i;
-    if (i < this->Evaluated && this->Tiles.holds(k, p))
-    {
-      return 1;
-    }
-    return this->Admit[i] && this->Tiles.near(k, p, this->Reach) ? 2 : 0;
-  };
   std::vector<std::size_t> first(slices + 1, 0);
   ParallelOptions bySlice;
   bySlice.threads = threads;
@@ -196,6 +264,19 @@ bool TiledScaleSpace::run(ScaleSampleSink& sink, const std::vector<std::uint64_t
     const std::vector<std::uint64_t>* order = ids || this->WholeOwnedOrder.empty() ? ids : &this->WholeOwnedOrder;
     return this->Whole->run(sink, order, EvaluationMethod::OnePass, &parallel, backend, &report);
   }
+  if (this->AroundSelected)
+  {
+    std::vector<std::uint64_t> requested;
+    for (std::uint64_t id : ids ? *ids : this->Selected)
+    {
+      if (std::binary_search(this->Selected.begin(), this->Selected.end(), id))
+      {
+        requested.push_back(id);
+      }
+    }
+    return this->runMembers(
+      this->SelectedMembers, this->SelectedOwn, &requested, sink, parallel, backend, report, true);
+  }
   const double tiles = static_cast<double>(this->Tiles.count());
   for (std::size_t k = 0; k < this->Tiles.count(); ++k)
   {
@@ -211,24 +292,43 @@ bool TiledScaleSpace::run(ScaleSampleSink& sink, const std::vector<std::uint64_t
 bool TiledScaleSpace::runTile(std::size_t k, ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
   const ParallelOptions& parallel, Backend backend, RunReport& report) const
 {
-  std::vector<std::uint64_t> members;
-  std::vector<unsigned char> own;
-  this->members(k, members, own);
-  // The tile's evaluation list, in its engine's indices: the requested points it holds, or all its own points.
-  std::vector<std::uint64_t> local;
+  std::vector<std::uint64_t> requested; // the requested points this tile holds
   if (ids)
   {
     for (std::uint64_t id : *ids)
     {
       if (id < this->Evaluated && this->Tiles.holds(k, this->Points + 3 * id))
       {
-        local.push_back(
-          static_cast<std::uint64_t>(std::lower_bound(members.begin(), members.end(), id) - members.begin()));
+        requested.push_back(id);
       }
     }
-    if (local.empty())
+    if (requested.empty())
     {
       return !parallel.progress || !parallel.progress(1.0);
+    }
+  }
+  std::vector<std::uint64_t> members;
+  std::vector<unsigned char> own;
+  this->members(k, members, own);
+  return this->runMembers(members, own, ids ? &requested : nullptr, sink, parallel, backend, report, k == 0);
+}
+
+bool TiledScaleSpace::runMembers(const std::vector<std::uint64_t>& members, const std::vector<unsigned char>& own,
+  const std::vector<std::uint64_t>* requested, ScaleSampleSink& sink, const ParallelOptions& parallel,
+  Backend backend, RunReport& report, bool first) const
+{
+  // The evaluation list, in the engine's indices: the requested points, or all the own points.
+  std::vector<std::uint64_t> local;
+  if (requested)
+  {
+    if (requested->empty())
+    {
+      return !parallel.progress || !parallel.progress(1.0);
+    }
+    for (std::uint64_t id : *requested)
+    {
+      local.push_back(
+        static_cast<std::uint64_t>(std::lower_bound(members.begin(), members.end(), id) - members.begin()));
     }
   }
   std::unique_ptr<ScaleSpaceEngine> engine;
@@ -247,7 +347,7 @@ bool TiledScaleSpace::runTile(std::size_t k, ScaleSampleSink& sink, const std::v
   {
     return false;
   }
-  if (!ids)
+  if (!requested)
   {
     for (std::uint64_t j : engine->evaluationOrder())
     {
@@ -259,12 +359,12 @@ bool TiledScaleSpace::runTile(std::size_t k, ScaleSampleSink& sink, const std::v
   }
   CloudIndexSink toCloud(sink, members);
   const ParallelOptions evaluation = progressStage(parallel, kBuildShare, 1.0);
-  RunReport tileReport;
+  RunReport partReport;
   const bool completed =
-    engine->run(toCloud, &local, EvaluationMethod::OnePass, &evaluation, backend, &tileReport);
-  if (k == 0 || tileReport.used != Backend::CUDA)
+    engine->run(toCloud, &local, EvaluationMethod::OnePass, &evaluation, backend, &partReport);
+  if (first || partReport.used != Backend::CUDA)
   {
-    report = tileReport; // a fallback on any tile is reported
+    report = partReport; // a fallback on any part is reported
   }
   return completed;
 }

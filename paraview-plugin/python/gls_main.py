@@ -250,9 +250,7 @@ def analyze(args, outputs):
         print('output: per-point summaries; narrowed to float32 (uint8 for the count): %s%s'
               % (', '.join(narrowed), '' if args.full_precision else
                  '; rounded to a relative 1.2e-4 (the normals 7.6e-6): --full-precision keeps every bit'))
-    vtp = outputs.path('-gls.vtp')
-    gls_outputs.write_vtp(vtp, output)
-    print('wrote the data: %.1f bytes per point' % (os.path.getsize(vtp) / float(count)))
+    writing = outputs.write_in_background('-gls.vtp', output)  # compressed while the pictures are made
     gls_render.render_features(outputs.path('-features.png'), output,
                                'GLS continuous features: %s (%d points)' % (outputs.name, count))
 
@@ -284,7 +282,9 @@ def analyze(args, outputs):
         gls_cross_section.plot(outputs.path('-scale-space.png'),
                                'GLS scale-space image of the central cross-section of %s (%d points)'
                                % (outputs.name, curve.GetNumberOfPoints()), curve, axis, image, crossings)
-    gls_outputs.save_state(outputs.path('-gls.pvsm'), vtp, outputs.final('-gls.vtp'), output)
+    writing.finish()
+    print('wrote the data: %.1f bytes per point' % (os.path.getsize(writing.path) / float(count)))
+    gls_outputs.save_state(outputs.path('-gls.pvsm'), writing.path, outputs.final('-gls.vtp'), output)
 
 
 def fail(message, status=2):
@@ -310,7 +310,8 @@ def main(argv):
         return fail(e)
     try:
         analyze(args, outputs)
-    except (gls_io.InputError, gls_watch.StageError, gls_memory.BudgetError, AnalysisError) as e:
+    except (gls_io.InputError, gls_watch.StageError, gls_memory.BudgetError, AnalysisError,
+            gls_outputs.OutputError) as e:
         outputs.discard()
         return fail('%s; no results written' % e)
     except (gls_watch.Interrupted, KeyboardInterrupt):

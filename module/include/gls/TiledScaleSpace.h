@@ -38,26 +38,47 @@ public:
   /// then outlive this object.
   TiledScaleSpace(const double* points, const double* normals, std::size_t count, std::size_t evaluated,
     ScaleSpaceSettings settings, std::size_t tiles);
+  /// The most points the constructor below takes: it tests every point of the cloud against each of them.
+  static constexpr std::size_t kMaxSelected = 64;
+  /// Only the `selected` points (cloud indices below `evaluated`; at most kMaxSelected) will be evaluated, as a
+  /// scale profile's few: one engine over them and the points within reach of them (ghostReach), laid on the
+  /// whole cloud's lattice like a tile's and built inside run(), so that their samples are the whole run's, bit for
+  /// bit, for the cost of their neighbourhoods instead of the cloud's. The points and normals must outlive this
+  /// object.
+  TiledScaleSpace(const double* points, const double* normals, std::size_t count, std::size_t evaluated,
+    ScaleSpaceSettings settings, const std::vector<std::uint64_t>& selected);
 
-  std::size_t tileCount() const { return this->Whole ? 1 : this->Tiles.count(); }
+  std::size_t tileCount() const { return this->Whole || this->AroundSelected ? 1 : this->Tiles.count(); }
   /// Points (own and ghosts) of the largest tile; the point count for one tile.
   std::size_t largestTile() const { return this->Largest; }
   /// True when the whole cloud's engine was stopped while it was built (run() then returns false).
   bool buildAborted() const { return this->Whole && this->Whole->buildAborted(); }
 
   /// ScaleSpaceEngine::run over the evaluated points (all when ids is null; ids are cloud indices below
-  /// `evaluated`): each tile's engine built, run and freed in turn, progress over all tiles through
+  /// `evaluated`, and among the selected points when some were): each tile's engine built, run and freed in turn, progress over all tiles through
   /// parallel.progress. The sink sees cloud indices. Returns false if aborted.
   bool run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const ParallelOptions& parallel,
     Backend backend, RunReport& report) const;
 
 private:
+  /// What a part of the cloud's engine takes from the whole cloud: which points may be neighbours, the lattice of
+  /// its grid or the frame of its pyramid, and the reach of a point's neighbourhood.
+  void layOnTheWholeCloud();
   bool runTile(std::size_t k, ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
     const ParallelOptions& parallel, Backend backend, RunReport& report) const;
+  /// One engine over `members` (cloud indices, increasing) run on the requested points (cloud indices among the
+  /// members; those with own[j], in the engine's order, when null). `first`: its backend report replaces `report`
+  /// (a later part's only when it fell back).
+  bool runMembers(const std::vector<std::uint64_t>& members, const std::vector<unsigned char>& own,
+    const std::vector<std::uint64_t>* requested, ScaleSampleSink& sink, const ParallelOptions& parallel,
+    Backend backend, RunReport& report, bool first) const;
   /// The points (own and ghosts) of every tile.
   std::vector<std::size_t> tileSizes() const;
   /// Cloud indices of tile k's points and ghosts, increasing; own[j] says whether members[j] is evaluated here.
   void members(std::size_t k, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const;
+  /// The points `kind` (0: left out, 1: evaluated, 2: neighbour only) takes, in the cloud's order, as members().
+  template <class Kind>
+  void collect(const Kind& kind, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const;
 
   const double* Points = nullptr;
   const double* Normals = nullptr;
@@ -70,6 +91,10 @@ private:
   UninitializedArray<unsigned char> Admit;    ///< tiles: which points may be neighbours (admitOrientedPoints)
   double Reach = 0.0;
   std::size_t Largest = 0;
+  bool AroundSelected = false;                ///< the selected points' constructor
+  std::vector<std::uint64_t> Selected;        ///< its points, increasing
+  std::vector<std::uint64_t> SelectedMembers; ///< them and the points within reach of them, increasing
+  std::vector<unsigned char> SelectedOwn;     ///< whether each member is selected
 };
 
 } // namespace gls
