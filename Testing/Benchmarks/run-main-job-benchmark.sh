@@ -14,9 +14,9 @@ trap 'rm -rf "$work"' EXIT
 for model in $models; do
   ply="$work/$model-$points.ply"
   "$build/bin/glsSampleMesh" "$model" "$points" "$ply"
-  l1=$("$build/bin/glsLargeScanBenchmark" --case L1 --models "$model" --points "$points" | tee /dev/stderr |
+  l1=$("$build/bin/glsLargeScanBenchmark" --case L1 --models "$model" --points "$points" | tee >(cat >&2) |
     awk -v m="$model" '$1 == m { print $2; exit }')
-  normals=$("$build/bin/glsLargeScanBenchmark" --case normals --models "$model" --points "$points" | tee /dev/stderr |
+  normals=$("$build/bin/glsLargeScanBenchmark" --case normals --models "$model" --points "$points" | tee >(cat >&2) |
     awk -v m="$model" '$1 == m { print $2; exit }')
   start=$(date +%s.%N)
   /usr/bin/time -f '%M' -o "$work/rss" "$build/bin/gls-analyze" "$ply" --output-dir "$work/out" > "$work/log" 2>&1 ||
