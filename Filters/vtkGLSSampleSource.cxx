@@ -59,13 +59,19 @@ private:
 
 }
 
-std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Fit(
-  const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings, std::size_t tiles)
+std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::OfCloud(const vtkGLSCloud& cloud, std::size_t scales)
 {
   std::unique_ptr<vtkGLSSampleSource> source(new vtkGLSSampleSource);
   source->PointCount = cloud.Owned;
-  source->ScaleCount = settings.scales.size();
+  source->ScaleCount = scales;
   source->Cloud = &cloud;
+  return source;
+}
+
+std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Fit(
+  const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings, std::size_t tiles)
+{
+  std::unique_ptr<vtkGLSSampleSource> source = OfCloud(cloud, settings.scales.size());
   if (cloud.Owned == 0)
   {
     return source; // an empty piece of a distributed input: nothing to fit
@@ -78,10 +84,7 @@ std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Fit(
 std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::FitAround(
   const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings, const std::vector<std::uint64_t>& only)
 {
-  std::unique_ptr<vtkGLSSampleSource> source(new vtkGLSSampleSource);
-  source->PointCount = cloud.Owned;
-  source->ScaleCount = settings.scales.size();
-  source->Cloud = &cloud;
+  std::unique_ptr<vtkGLSSampleSource> source = OfCloud(cloud, settings.scales.size());
   if (cloud.Owned == 0)
   {
     return source; // an empty piece of a distributed input: nothing to fit

@@ -62,6 +62,8 @@ public:
 
 private:
   vtkGLSSampleSource() = default;
+  /// A source of the cloud's owned points at `scales` scales, without its engine yet.
+  static std::unique_ptr<vtkGLSSampleSource> OfCloud(const vtkGLSCloud& cloud, std::size_t scales);
 
   std::unique_ptr<gls::TiledScaleSpace> Engine; ///< null for an empty piece
   const vtkGLSCloud* Cloud = nullptr;            ///< the fitted cloud (its merge of coincident points)

@@ -30,6 +30,20 @@ def run(*args):
     return helpers.run(ANALYZE, *args)
 
 
+def start_on_a_million_points(name, stderr):
+    """(process, output folder): the job started on a 1M-point torus without a display, in a session of its own
+    (os.killpg then signals it as a terminal's Ctrl-C would); stdout piped."""
+    import subprocess
+    ply = os.path.join(WORK, 'torus-%s.ply' % name)
+    write_torus_ply(ply, 1000000)
+    out = os.path.join(WORK, name)
+    env = dict(os.environ)
+    env.pop('DISPLAY', None)
+    process = subprocess.Popen([ANALYZE, ply, '--output-dir', out], stdout=subprocess.PIPE, stderr=stderr, text=True,
+                               env=env, start_new_session=True)
+    return process, out
+
+
 def write_torus_ply(path, count, seed=3):
     """A binary float PLY of `count` points (positions only, random order) on a torus (R 1, r 0.3)."""
     rng = np.random.default_rng(seed)
@@ -202,13 +216,7 @@ class MainJob(unittest.TestCase):
         import signal
         import subprocess
         import time
-        ply = os.path.join(WORK, 'torus-interrupted.ply')
-        write_torus_ply(ply, 1000000)
-        out = os.path.join(WORK, 'interrupted')
-        env = dict(os.environ)
-        env.pop('DISPLAY', None)
-        process = subprocess.Popen([ANALYZE, ply, '--output-dir', out], stdout=subprocess.PIPE,
-                                   stderr=subprocess.PIPE, text=True, env=env, start_new_session=True)
+        process, out = start_on_a_million_points('interrupted', subprocess.PIPE)
         seen, running = '', False
         for line in process.stderr:  # wait until the fused pass has reported a step short of its end
             seen += line
@@ -230,13 +238,7 @@ class MainJob(unittest.TestCase):
         import signal
         import subprocess
         import time
-        ply = os.path.join(WORK, 'torus-interrupted-writing.ply')
-        write_torus_ply(ply, 1000000)
-        out = os.path.join(WORK, 'interrupted-writing')
-        env = dict(os.environ)
-        env.pop('DISPLAY', None)
-        process = subprocess.Popen([ANALYZE, ply, '--output-dir', out], stdout=subprocess.PIPE,
-                                   stderr=subprocess.DEVNULL, text=True, env=env, start_new_session=True)
+        process, out = start_on_a_million_points('interrupted-writing', subprocess.DEVNULL)
         seen = ''
         for line in process.stdout:  # the job prints this line, then starts writing the .vtp in the background
             seen += line

@@ -61,15 +61,21 @@ double ghostReach(const ScaleSpaceSettings& settings)
   return (t * (1.0 + std::sqrt(3.0) * m.accuracy) + region) * (1.0 + 1e-9);
 }
 
-TiledScaleSpace::TiledScaleSpace(const double* points, const double* normals, std::size_t count,
-  std::size_t evaluated, ScaleSpaceSettings settings, std::size_t tiles)
+TiledScaleSpace::TiledScaleSpace(
+  const double* points, const double* normals, std::size_t count, std::size_t evaluated, ScaleSpaceSettings settings)
   : Points(points)
   , Normals(normals)
   , Count(count)
   , Evaluated(std::min(evaluated, count))
   , Settings(std::move(settings))
-  , Largest(count)
 {
+}
+
+TiledScaleSpace::TiledScaleSpace(const double* points, const double* normals, std::size_t count,
+  std::size_t evaluated, ScaleSpaceSettings settings, std::size_t tiles)
+  : TiledScaleSpace(points, normals, count, evaluated, std::move(settings))
+{
+  this->Largest = count;
   if (tiles <= 1 || this->Settings.scales.empty())
   {
     this->Whole = std::make_unique<ScaleSpaceEngine>(points, normals, count, this->Settings);
@@ -96,13 +102,9 @@ TiledScaleSpace::TiledScaleSpace(const double* points, const double* normals, st
 
 TiledScaleSpace::TiledScaleSpace(const double* points, const double* normals, std::size_t count,
   std::size_t evaluated, ScaleSpaceSettings settings, const std::vector<std::uint64_t>& selected)
-  : Points(points)
-  , Normals(normals)
-  , Count(count)
-  , Evaluated(std::min(evaluated, count))
-  , Settings(std::move(settings))
-  , AroundSelected(true)
+  : TiledScaleSpace(points, normals, count, evaluated, std::move(settings))
 {
+  this->AroundSelected = true;
   for (std::uint64_t id : selected)
   {
     if (id < this->Evaluated)

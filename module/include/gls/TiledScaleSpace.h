@@ -61,6 +61,9 @@ public:
     Backend backend, RunReport& report) const;
 
 private:
+  /// The members both public constructors set.
+  TiledScaleSpace(
+    const double* points, const double* normals, std::size_t count, std::size_t evaluated, ScaleSpaceSettings settings);
   /// What a part of the cloud's engine takes from the whole cloud: which points may be neighbours, the lattice of
   /// its grid or the frame of its pyramid, and the reach of a point's neighbourhood.
   void layOnTheWholeCloud();
