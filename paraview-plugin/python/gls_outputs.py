@@ -120,6 +120,10 @@ def _write_and_exit(path, polydata, parent):
             ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
         except (AttributeError, OSError):
             pass
+        # Only the forking thread lives on in the child, so the child writes on that one thread, whatever SMP
+        # backend the job runs (VTK_SMP_BACKEND_IN_USE may choose STDThread, whose pool's threads are not copied).
+        from vtkmodules.vtkCommonCore import vtkSMPTools
+        vtkSMPTools.SetBackend('Sequential')
         if os.getppid() == parent:  # else the job ended before prctl took effect
             write_vtp(path, polydata)
             status = 0
