@@ -11,7 +11,8 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import main_job_helpers as helpers  # (first: it makes the main job's own modules importable)
-import gls_outputs  # noqa: E402 (the main job's own module)
+import gls_memory  # noqa: E402 (the main job's own modules)
+import gls_outputs  # noqa: E402
 from main_job_helpers import denoising_rms, failure_text, image_stats, polydata_from, read_vtp, write_sphere
 
 ANALYZE, WORK = sys.argv[1], sys.argv[2]
@@ -174,11 +175,18 @@ class MainJob(unittest.TestCase):
             self.assertLessEqual(np.max(np.abs(rounded[finite] / doubles[finite] - 1)), 2.0 ** -(bits + 1) + 1e-7)
 
     def test_a_million_points_give_compact_summaries(self):
+        import resource
         ply = os.path.join(WORK, 'torus-1m.ply')
         write_torus_ply(ply, 1000000)
         out = os.path.join(WORK, 'million')
+        before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
         result = run(ply, '--output-dir', out)
         self.assertEqual(result.returncode, 0, failure_text(result))
+        # The memory check's estimate covers the job's peak (the largest process of this test's children so far:
+        # this test runs first).
+        peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+        self.assertGreater(peak, before)
+        self.assertLessEqual(peak * 1024.0, gls_memory.needed_bytes(1000000, 20, False))
         vtp = os.path.join(out, 'torus-1m-gls.vtp')
         pd = read_vtp(vtp)
         self.assertEqual(pd.GetNumberOfPoints(), 1000000)
@@ -202,13 +210,23 @@ class MainJob(unittest.TestCase):
 
     def test_per_scale_beyond_the_budget_is_refused_before_any_stage(self):
         out = os.path.join(WORK, 'refused')
-        result = run('--output-dir', out, '--per-scale', '--memory-budget', '0.1')
+        result = run('--output-dir', out, '--per-scale', '--memory-budget', '0.8')
         self.assertEqual(result.returncode, 2, failure_text(result))
-        self.assertIn('gls-analyze: storing every scale (--per-scale) of 35947 points at 20 scales needs about',
-                      result.stderr)
-        self.assertIn('drop --per-scale (the per-point summaries need about', result.stderr)
-        self.assertIn('or keep it with --scales', result.stderr)
+        # 0.8 GiB: the fixed part and the summaries fit, every scale's arrays do not, 4 scales of them would.
+        fitting = int(((0.8 * gls_memory.GIB - gls_memory.FIXED_BYTES) / 35947 - gls_memory.DEFAULT_BYTES_PER_POINT)
+                      // gls_memory.PER_SCALE_BYTES_PER_POINT_SCALE)
+        self.assertEqual(fitting, 4)
+        self.assertIn('gls-analyze: storing every scale (--per-scale) of 35947 points at 20 scales needs about 0.9 '
+                      'GiB, above the 0.8 GiB --memory-budget: drop --per-scale (the per-point summaries need about '
+                      '0.8 GiB), or keep it with --scales 4', result.stderr)
         self.assertNotIn('%', result.stderr)  # no stage reported progress
+        self.assertEqual(os.listdir(out), [])
+        # Below what the summaries need too: no advice to drop --per-scale.
+        result = run('--output-dir', out, '--per-scale', '--memory-budget', '0.5')
+        self.assertEqual(result.returncode, 2, failure_text(result))
+        self.assertIn('gls-analyze: the analysis of 35947 points needs about 0.8 GiB, above the 0.5 GiB '
+                      '--memory-budget', result.stderr)
+        self.assertNotIn('drop --per-scale', result.stderr)
         self.assertEqual(os.listdir(out), [])
 
     def test_ctrl_c_stops_within_seconds_and_writes_nothing(self):
