@@ -365,7 +365,8 @@ TEST(TiledScaleSpace, AFitAroundAFewPointsGivesThemTheWholeRunsSamples)
   }
   // Nothing selected (a piece without any of a profile's points): nothing fed.
   const gls::ScaleSpaceSettings s = settingsFor(c, gls::Evaluation::Exact, 2);
-  const gls::TiledScaleSpace none(c.points.data(), c.normals.data(), c.size(), c.size(), s, std::vector<std::uint64_t>());
+  const gls::TiledScaleSpace none(
+    c.points.data(), c.normals.data(), c.size(), c.size(), s, std::vector<std::uint64_t>());
   CollectingSink sink(c.size(), s.scales.size());
   gls::RunReport report;
   EXPECT_TRUE(none.run(sink, nullptr, s.parallel, gls::Backend::CPU, report));

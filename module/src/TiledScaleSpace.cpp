@@ -114,7 +114,6 @@ TiledScaleSpace::TiledScaleSpace(const double* points, const double* normals, st
   }
   std::sort(this->Selected.begin(), this->Selected.end());
   this->Selected.erase(std::unique(this->Selected.begin(), this->Selected.end()), this->Selected.end());
-  this->Selected.resize(std::min(this->Selected.size(), kMaxSelected));
   if (this->Selected.empty() || this->Settings.scales.empty())
   {
     this->Selected.clear();
@@ -219,7 +218,8 @@ void TiledScaleSpace::members(std::size_t k, std::vector<std::uint64_t>& members
 }
 
 template <class Kind>
-void TiledScaleSpace::collect(const Kind& kind, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const
+void TiledScaleSpace::collect(
+  const Kind& kind, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const
 {
   // Counted per slice, then written per slice: the cloud's order whatever the thread count.
   const int threads = resolveThreadCount(this->Settings.parallel.threads);

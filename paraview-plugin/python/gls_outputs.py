@@ -234,6 +234,19 @@ def compact(polydata, full_precision=False):
     return out, narrowed
 
 
+def reported_errors(algorithm, ignored=None):
+    """A list that fills with the one-line text (gls_watch.one_line) of each error `algorithm` reports from now on,
+    but those whose text holds `ignored`."""
+    errors = []
+
+    @calldata_type(VTK_STRING)
+    def on_error(_obj, _event, message):
+        if ignored is None or ignored not in (message or ''):
+            errors.append(gls_watch.one_line(message or ''))
+    algorithm.AddObserver('ErrorEvent', on_error)
+    return errors
+
+
 # The .vtp's zlib level and block size (write_vtp).
 WRITE_ZLIB_LEVEL = 1
 WRITE_BLOCK_BYTES = 1 << 20
@@ -242,7 +255,8 @@ WRITE_BLOCK_BYTES = 1 << 20
 def write_vtp(path, polydata):
     """VTK XML polydata, zlib-compressed at level 1 in blocks of 1 MiB (at 10M points 8.7 s and 39.3 bytes a
     point, where VTK's default level 5 and 32 KiB blocks take 18.2 s for 39.0: docs/performance.md), its data
-    appended raw after the XML (inline binary would be base64: a third larger). Reading it back, ParaView 5.11 prints a harmless "Error reading InformationKey ...
+    appended raw after the XML (inline binary would be base64: a third larger); OutputError with VTK's reason when
+    the file cannot be written. Reading it back, ParaView 5.11 prints a harmless "Error reading InformationKey ...
     L2_NORM_RANGE" for the vector arrays: its writer stores that range cache and its reader does not know the key;
     the data are read correctly."""
     from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
@@ -257,12 +271,7 @@ def write_vtp(path, polydata):
     writer.SetHeaderTypeToUInt64()
     if polydata.GetNumberOfPoints() < 2 ** 31 - 1 and polydata.GetNumberOfCells() < 2 ** 31 - 1:
         writer.SetIdTypeToInt32()  # the cells' ids in 4 bytes
-    errors = []
-
-    @calldata_type(VTK_STRING)
-    def on_error(_obj, _event, message):  # VTK's writer says why (it cannot open the file, the disk is full)
-        errors.append(gls_watch.one_line(message or ''))
-    writer.AddObserver('ErrorEvent', on_error)
+    errors = reported_errors(writer)  # VTK's writer says why (it cannot open the file, the disk is full)
     if writer.Write() != 1 or writer.GetErrorCode() != 0 or errors:  # Write() returns 1 on some failures
         raise OutputError('cannot write %s: %s' % (path, errors[0] if errors else 'VTK error code %d'
                                                    % writer.GetErrorCode()))
@@ -313,14 +322,8 @@ def check_written(vtp, polydata):
     """Reads the written file's XML header back (not its data: a 10M-point file would take seconds): the reader
     must parse it without an error and find the points and point arrays of `polydata`."""
     from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
-    errors = []
-
-    @calldata_type(VTK_STRING)
-    def on_error(_obj, _event, message):  # the harmless unknown-key message of write_vtp's files is dropped
-        if 'InformationKey' not in message:
-            errors.append(gls_watch.one_line(message))
     reader = vtkXMLPolyDataReader()
-    reader.AddObserver('ErrorEvent', on_error)
+    errors = reported_errors(reader, ignored='InformationKey')  # write_vtp's files' harmless unknown key
     reader.SetFileName(vtp)
     reader.UpdateInformation()
     expected = sorted(polydata.GetPointData().GetArrayName(a) for a in range(polydata.GetPointData().GetNumberOfArrays()))

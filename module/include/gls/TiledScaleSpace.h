@@ -38,10 +38,10 @@ public:
   /// then outlive this object.
   TiledScaleSpace(const double* points, const double* normals, std::size_t count, std::size_t evaluated,
     ScaleSpaceSettings settings, std::size_t tiles);
-  /// The most points the constructor below takes: it tests every point of the cloud against each of them.
+  /// The most points the filters hand the constructor below: it tests every point of the cloud against each of them.
   static constexpr std::size_t kMaxSelected = 64;
-  /// Only the `selected` points (cloud indices below `evaluated`; at most kMaxSelected) will be evaluated, as a
-  /// scale profile's few: one engine over them and the points within reach of them (ghostReach), laid on the
+  /// Only the `selected` points (cloud indices below `evaluated`; a few, see kMaxSelected) will be evaluated, as a
+  /// scale profile's: one engine over them and the points within reach of them (ghostReach), laid on the
   /// whole cloud's lattice like a tile's and built inside run(), so that their samples are the whole run's, bit for
   /// bit, for the cost of their neighbourhoods instead of the cloud's. The points and normals must outlive this
   /// object.
@@ -55,8 +55,8 @@ public:
   bool buildAborted() const { return this->Whole && this->Whole->buildAborted(); }
 
   /// ScaleSpaceEngine::run over the evaluated points (all when ids is null; ids are cloud indices below
-  /// `evaluated`, and among the selected points when some were): each tile's engine built, run and freed in turn, progress over all tiles through
-  /// parallel.progress. The sink sees cloud indices. Returns false if aborted.
+  /// `evaluated`, and among the selected points when some were): each tile's engine built, run and freed in turn,
+  /// progress over all tiles through parallel.progress. The sink sees cloud indices. Returns false if aborted.
   bool run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const ParallelOptions& parallel,
     Backend backend, RunReport& report) const;
 
