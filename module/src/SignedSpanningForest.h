@@ -1,0 +1,220 @@
+// The minimum spanning forest of the orientation's graph, kept not as edges but as what the orientation needs of it:
+// each node's tree (a node standing for it) and whether the node's normal must be turned over to agree with that
+// node's along the forest (Hoppe's propagation, each normal made to agree with its neighbour's along the tree's edges,
+// without walking the tree). Built in Boruvka's rounds (each tree takes its cheapest edge to another tree; the scans
+// run in parallel) under a strict order of the edges, so the forest and the signs do not depend on the numbering,
+// the order of the edges or the thread count.
+#pragma once
+
+#include "OrientationEdges.h"
+
+#include "gls/ParallelFor.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <vector>
+
+namespace gls
+{
+
+/// Per node of a graph: its tree of the minimum spanning forest and its sign relative to the tree.
+template <typename Index>
+struct SignedForest
+{
+  std::vector<Index> tree;             ///< the node standing for the node's tree (the same for the whole tree)
+  std::vector<unsigned char> turned;   ///< 1 where the node's normal must be turned over to agree with tree's node
+};
+
+/// The union-find of Boruvka's merges, each node's parent with the node's sign relative to it.
+template <typename Index>
+class SignedUnionFind
+{
+public:
+  explicit SignedUnionFind(std::size_t count)
+    : Parent(count)
+    , Sign(count, 0)
+  {
+    std::iota(this->Parent.begin(), this->Parent.end(), Index(0));
+  }
+
+  /// The root of a's set, and a's sign relative to it (path halving).
+  Index find(Index a, unsigned char& sign)
+  {
+    sign = 0;
+    while (this->Parent[a] != a)
+    {
+      const Index up = this->Parent[a];
+      this->Sign[a] ^= this->Sign[up];
+      this->Parent[a] = this->Parent[up];
+      sign ^= this->Sign[a];
+      a = this->Parent[a];
+    }
+    return a;
+  }
+
+  /// Joins the sets of a and b so that their signs differ by `differ`; false when they are one set already.
+  bool join(Index a, Index b, unsigned char differ)
+  {
+    unsigned char sa = 0, sb = 0;
+    const Index ra = this->find(a, sa), rb = this->find(b, sb);
+    if (ra == rb)
+    {
+      return false;
+    }
+    const Index low = std::min(ra, rb), high = std::max(ra, rb);
+    this->Parent[high] = low;
+    this->Sign[high] = static_cast<unsigned char>(sa ^ sb ^ differ);
+    return true;
+  }
+
+  /// Every node's root and sign relative to it, into `forest` (in parallel: the structure is only read), then the
+  /// structure flattened to them.
+  void flatten(SignedForest<Index>& forest, const ParallelOptions& options)
+  {
+    parallelFor(this->Parent.size(), options, [&](std::size_t begin, std::size_t end, int) {
+      for (std::size_t s = begin; s < end; ++s)
+      {
+        Index a = static_cast<Index>(s);
+        unsigned char sign = 0;
+        while (this->Parent[a] != a)
+        {
+          sign ^= this->Sign[a];
+          a = this->Parent[a];
+        }
+        forest.tree[s] = a;
+        forest.turned[s] = sign;
+      }
+    });
+    this->Parent = forest.tree;
+    this->Sign = forest.turned;
+  }
+
+private:
+  std::vector<Index> Parent;
+  std::vector<unsigned char> Sign;
+};
+
+/// The order of the graph's edges: by cost, then by the lower and the higher original index of their ends. It is
+/// strict, so the minimum spanning forest is unique: the same whatever the numbering, the order of the edges and the
+/// thread count.
+struct EdgeOrder
+{
+  const std::uint64_t* ids; ///< each node's original index
+
+  /// True when edge (a, b) of cost ca comes before edge (c, d) of cost cc.
+  template <typename Index>
+  bool before(double ca, Index a, Index b, double cc, Index c, Index d) const
+  {
+    if (ca != cc)
+    {
+      return ca < cc;
+    }
+    const std::uint64_t ia = this->ids[a], ib = this->ids[b], ic = this->ids[c], id = this->ids[d];
+    const std::uint64_t lowAB = std::min(ia, ib), lowCD = std::min(ic, id);
+    return lowAB != lowCD ? lowAB < lowCD : std::max(ia, ib) < std::max(ic, id);
+  }
+};
+
+/// The signed minimum spanning forest of the graph of `count` nodes, its edges in `order`. cost(a, b): an edge's cost
+/// (the same both ways); differ(a, b): whether the normals of a and b disagree (the same both ways). False if aborted
+/// through the progress callback.
+template <typename Index, typename Cost, typename Differ>
+bool signedSpanningForest(const IncidentEdges<Index>& edges, std::size_t count, const EdgeOrder& order,
+  const Cost& cost, const Differ& differ, SignedForest<Index>& forest, const ParallelOptions& parallel)
+{
+  const Index none = std::numeric_limits<Index>::max();
+  forest.tree.resize(count);
+  std::iota(forest.tree.begin(), forest.tree.end(), Index(0));
+  forest.turned.assign(count, 0);
+  SignedUnionFind<Index> sets(count);
+  // The nodes that may still have an edge out of their tree (a node without one never gets one again: trees only
+  // grow); per node the other end of its cheapest such edge and its cost; per tree (its forest.tree node), the node
+  // whose edge is the tree's cheapest.
+  std::vector<Index> active(count);
+  std::iota(active.begin(), active.end(), Index(0));
+  std::vector<Index> cheapest(count, none);
+  std::vector<double> cheapestCost(count, 0.0);
+  std::vector<std::atomic<Index>> from(count);
+  for (auto& f : from)
+  {
+    f.store(none, std::memory_order_relaxed);
+  }
+  const auto beforeCheapest = [&](Index u, Index f) {
+    return order.before(cheapestCost[u], u, cheapest[u], cheapestCost[f], f, cheapest[f]);
+  };
+  ParallelOptions scan;
+  scan.threads = parallel.threads;
+  scan.chunk = 4096;
+  for (int round = 0; !active.empty(); ++round)
+  {
+    if (parallel.progress && parallel.progress(std::min(0.9, 0.15 * round)))
+    {
+      return false;
+    }
+    // Each active node's cheapest edge out of its tree, and each tree's (the strict order makes it one edge,
+    // whatever the order in which the nodes offer theirs).
+    parallelFor(active.size(), scan, [&](std::size_t begin, std::size_t end, int) {
+      for (std::size_t a = begin; a < end; ++a)
+      {
+        const Index u = active[a];
+        const Index tree = forest.tree[u];
+        Index best = none;
+        double bestCost = 0.0;
+        edges.forEach(u, [&](Index v) {
+          if (forest.tree[v] == tree)
+          {
+            return;
+          }
+          const double c = cost(u, v);
+          if (best == none || order.before(c, u, v, bestCost, u, best))
+          {
+            best = v;
+            bestCost = c;
+          }
+        });
+        cheapest[u] = best;
+        cheapestCost[u] = bestCost;
+        if (best == none)
+        {
+          continue;
+        }
+        std::atomic<Index>& f = from[tree];
+        Index held = f.load(std::memory_order_acquire);
+        while ((held == none || beforeCheapest(u, held)) &&
+          !f.compare_exchange_weak(held, u, std::memory_order_acq_rel, std::memory_order_acquire))
+        {
+        }
+      }
+    });
+    // The nodes without an edge out leave; each tree joins the tree at the other end of its cheapest edge.
+    std::size_t kept = 0;
+    bool merged = false;
+    for (const Index u : active)
+    {
+      if (cheapest[u] == none)
+      {
+        continue;
+      }
+      active[kept++] = u;
+      std::atomic<Index>& f = from[forest.tree[u]];
+      if (f.load(std::memory_order_relaxed) == u)
+      {
+        merged = sets.join(u, cheapest[u], differ(u, cheapest[u]) ? 1 : 0) || merged;
+        f.store(none, std::memory_order_relaxed);
+      }
+    }
+    active.resize(kept);
+    if (!merged)
+    {
+      break;
+    }
+    sets.flatten(forest, scan);
+  }
+  return true;
+}
+
+} // namespace gls
