@@ -207,6 +207,69 @@ TEST(NeighborGrid, KNearestBreaksTiesByOriginalIndexAndHonoursTheMask)
   }
 }
 
+TEST(NeighborGrid, KNearestOfACellRunIsKNearestBitForBit)
+{
+  // The queries of a run of one cell's points answered together must give what one query at a time gives: on a
+  // flat random cloud (cells suited to k = 16), a lattice with repeated points (ties) on cells smaller than its
+  // spacing (the gathered cells then never hold the answer), about its spacing and holding it whole, and far from the
+  // origin; runs cut short at arbitrary points, k from 0 to more than the cloud holds.
+  std::vector<std::vector<double>> clouds{ randomCloud(3000, 11, 5.0, 1.0, 0.01) };
+  std::vector<double> lattice;
+  for (int z = 0; z < 4; ++z)
+    for (int y = 0; y < 9; ++y)
+      for (int x = 0; x < 9; ++x)
+      {
+        for (int copies = (x + y + z) % 7 == 0 ? 2 : 1; copies > 0; --copies)
+        {
+          lattice.insert(lattice.end(), { 0.1 * x, 0.1 * y, 0.1 * z });
+        }
+      }
+  clouds.push_back(lattice);
+  std::vector<double> far = randomCloud(1500, 12, 2.0, 2.0, 2.0);
+  for (std::size_t i = 0; i < far.size(); i += 3)
+  {
+    far[i] += 1e6;
+  }
+  clouds.push_back(far);
+  for (const std::vector<double>& xyz : clouds)
+  {
+    const std::size_t n = xyz.size() / 3;
+    for (double cell : { 0.03, 0.1, 0.25, gls::NeighborGrid::suggestCellSizeForKNearest(xyz.data(), n, 16), 50.0 })
+    {
+      gls::NeighborGrid grid;
+      grid.build(xyz.data(), nullptr, n, cell);
+      const gls::GridView& g = grid.view();
+      gls::NeighborGrid::CellRunScratch scratch;
+      std::vector<std::pair<double, std::uint64_t>> single;
+      for (int k : { 0, 1, 6, 16, 60, 5000 })
+      {
+        std::size_t answered = 0;
+        for (std::uint64_t s = 0; s < g.count;)
+        {
+          const std::uint64_t end = std::min<std::uint64_t>(grid.cellRunEnd(s), s + 1 + (s * 7) % 13);
+          ASSERT_GT(end, s);
+          std::uint64_t next = s;
+          grid.kNearestOfCellRun(s, end, k, scratch,
+            [&](std::uint64_t q, const std::vector<std::pair<double, std::uint64_t>>& together) {
+              ASSERT_EQ(q, next++); // each point of the run once, in order
+              grid.kNearest(g.points[q], k, single);
+              ASSERT_EQ(together.size(), single.size()) << "cell " << cell << " k " << k << " query " << q;
+              for (std::size_t j = 0; j < single.size(); ++j)
+              {
+                ASSERT_EQ(together[j].second, single[j].second) << "cell " << cell << " k " << k << " rank " << j;
+                ASSERT_EQ(together[j].first, single[j].first);
+              }
+            });
+          ASSERT_EQ(next, end);
+          answered += end - s;
+          s = end;
+        }
+        EXPECT_EQ(answered, g.count);
+      }
+    }
+  }
+}
+
 TEST(NeighborGrid, KNearestOnThinGridsWithFewerAdmittedPointsThanAsked)
 {
   // Points along one axis with a tiny cell size: the grid is 1 x 1 x ~65000 cells (or 1 x ~65000 x 1, ~65000 x 1 x 1)

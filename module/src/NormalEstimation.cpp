@@ -265,35 +265,59 @@ bool estimateNormals(
   // the minimum spanning tree; else the estimate is the whole range).
   const double estimateEnd = tree ? 0.6 : 1.0;
   const ParallelOptions firstStage = progressStage(settings.parallel, 0.0, 5.0 / 6.0 * estimateEnd);
+  // One point's estimate from its neighbours (sorted indices, nearest first for k-nearest neighbourhoods).
+  const auto estimateAt = [&](std::size_t s, const std::vector<std::uint64_t>& nb) {
+    const Vec3 p = g.points[s];
+    if (keepNearest)
+    {
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < nb.size() && j < graphWidth; ++i)
+      {
+        if (nb[i] != s)
+        {
+          nearestOthers[s * graphWidth + j++] = static_cast<std::uint32_t>(nb[i]);
+        }
+      }
+    }
+    est.neighborCounts[s] = static_cast<int>(nb.size());
+    est.reach[s] = farthest(g, p, nb);
+    Vec3 normal;
+    if (pcaNormal(g, p, nb, normal, est.spread[s]))
+    {
+      est.normals[s] = normal;
+    }
+    if (planar && pcaNormal2D(g, p, nb, normal, curveRatio[s]))
+    {
+      inPlane[s] = normal;
+    }
+  };
+  std::vector<NeighborGrid::CellRunScratch> runScratch(static_cast<std::size_t>(threads));
   const bool completed =
     parallelFor(g.count, firstStage, [&](std::size_t begin, std::size_t end, int t) {
       std::vector<std::uint64_t>& nb = scratch[t];
-      for (std::size_t s = begin; s < end; ++s)
+      if (byRadius)
       {
-        const Vec3 p = g.points[s];
-        gatherNeighbors(grid, p, byRadius, settings.k, settings.radius, knn[t], nb);
-        if (keepNearest)
+        for (std::size_t s = begin; s < end; ++s)
         {
-          std::size_t j = 0;
-          for (std::size_t i = 0; i < nb.size() && j < graphWidth; ++i)
-          {
-            if (nb[i] != s)
+          gatherNeighbors(grid, g.points[s], true, settings.k, settings.radius, knn[t], nb);
+          estimateAt(s, nb);
+        }
+        return;
+      }
+      // The k-nearest queries a cell's points at a time (the same answers as one at a time).
+      for (std::size_t s = begin; s < end;)
+      {
+        const std::size_t runEnd = std::min<std::size_t>(end, grid.cellRunEnd(s));
+        grid.kNearestOfCellRun(s, runEnd, settings.k, runScratch[static_cast<std::size_t>(t)],
+          [&](std::uint64_t q, const std::vector<std::pair<double, std::uint64_t>>& nearest) {
+            nb.clear();
+            for (const auto& c : nearest)
             {
-              nearestOthers[s * graphWidth + j++] = static_cast<std::uint32_t>(nb[i]);
+              nb.push_back(c.second);
             }
-          }
-        }
-        est.neighborCounts[s] = static_cast<int>(nb.size());
-        est.reach[s] = farthest(g, p, nb);
-        Vec3 normal;
-        if (pcaNormal(g, p, nb, normal, est.spread[s]))
-        {
-          est.normals[s] = normal;
-        }
-        if (planar && pcaNormal2D(g, p, nb, normal, curveRatio[s]))
-        {
-          inPlane[s] = normal;
-        }
+            estimateAt(q, nb);
+          });
+        s = runEnd;
       }
     });
   if (!completed)

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -54,6 +55,25 @@ public:
   /// fewer than k are admitted).
   void kNearest(const Vec3& c, int k, std::vector<std::pair<double, std::uint64_t>>& out,
     const unsigned char* admitSorted = nullptr) const;
+
+  /// Scratch of kNearestOfCellRun (one per thread).
+  struct CellRunScratch
+  {
+    std::vector<double> x, y, z, d2;
+    std::vector<std::uint64_t> index;
+    std::vector<std::size_t> selected;
+    std::vector<std::pair<double, std::uint64_t>> out;
+  };
+
+  /// The k-nearest queries of the sorted points [first, last), which must lie in one cell (cellRunEnd), answered
+  /// together: visit(s, out) receives for each point s the answer of kNearest(points[s], k, out), the same bits. The
+  /// points of the cell and of the 26 around it are gathered once and each query takes its k nearest among them; a
+  /// query whose k-th is farther than the nearest face of those cells (inside the grid) is asked by kNearest.
+  void kNearestOfCellRun(std::uint64_t first, std::uint64_t last, int k, CellRunScratch& scratch,
+    const std::function<void(std::uint64_t, const std::vector<std::pair<double, std::uint64_t>>&)>& visit) const;
+
+  /// The end of the sorted points of the cell that sorted point `first` lies in.
+  std::uint64_t cellRunEnd(std::uint64_t first) const;
 
   /// Frees the cells (the largest part of a grid over a surface) and keeps the sorted points and their ids, for a
   /// caller that needs no more queries; view() then has no cellStart and must not be queried.
