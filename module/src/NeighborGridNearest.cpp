@@ -64,6 +64,10 @@ private:
   std::vector<std::pair<double, std::uint64_t>>& Out;
 };
 
+/// The square of kNearestOfCellRun's factor on the previous query's k-th distance (1.2: at 1M points of the bunny,
+/// 451 ns a query against 640 ns with a true bound, the previous k-th distance plus the step between the queries).
+constexpr double kGuessSquared = 1.2 * 1.2;
+
 } // namespace
 
 void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, std::uint64_t>>& out,
@@ -256,11 +260,9 @@ void NeighborGrid::kNearestOfCellRun(std::uint64_t first, std::uint64_t last, in
   scratch.d2.resize(candidates);
   scratch.selected.resize(candidates);
   const std::size_t want = std::min<std::size_t>(static_cast<std::size_t>(k), g.count);
-  // A bound on the k-th squared distance from the previous query: its k nearest are within its k-th distance plus
-  // the distance between the two queries. Candidates beyond it are not offered; where fewer than k are within it
-  // (the bound's rounding, or the previous query's answer came from outside the block), all are offered.
-  double bound = std::numeric_limits<double>::infinity();
-  Vec3 previous{};
+  // A guess of the k-th distance: 1.2 times the previous query's (of this run, or the scratch's last one; a point's
+  // k-th distance is close to its neighbour's on a sampled surface). Only the candidates within it are offered: where
+  // at least k are, the k nearest are among them. Where fewer are, all are offered.
   for (std::uint64_t s = first; s < last; ++s)
   {
     const Vec3 p = g.points[s];
@@ -274,11 +276,8 @@ void NeighborGrid::kNearestOfCellRun(std::uint64_t first, std::uint64_t last, in
       const double dx = x[j] - p.x, dy = y[j] - p.y, dz = z[j] - p.z;
       d2[j] = dx * dx + dy * dy + dz * dz;
     }
-    if (s > first && scratch.out.size() == want)
-    {
-      const double reach = std::sqrt(scratch.out.back().first) + std::sqrt(squaredNorm(p - previous));
-      bound = reach * reach * (1.0 + 1e-9);
-    }
+    const double bound =
+      scratch.previousKth >= 0.0 ? kGuessSquared * scratch.previousKth : std::numeric_limits<double>::infinity();
     // The candidates within the bound, gathered without a branch; all of them where fewer than k are.
     std::size_t* selected = scratch.selected.data();
     std::size_t within = 0;
@@ -300,7 +299,7 @@ void NeighborGrid::kNearestOfCellRun(std::uint64_t first, std::uint64_t last, in
     {
       kept.offer(d2[selected[m]], scratch.index[selected[m]]);
     }
-    previous = p;
+    scratch.previousKth = scratch.out.size() == want ? scratch.out.back().first : -1.0;
     // No point outside the block is nearer than the block's nearest face that is not the grid's edge (less the
     // margin of the cells' rounding, that of ballCellBlock): where the k-th kept point is nearer, the answer is whole.
     const CellBlock bounds = ballCellBlock(g, p, 0.0);

@@ -63,6 +63,7 @@ public:
     std::vector<std::uint64_t> index;
     std::vector<std::size_t> selected;
     std::vector<std::pair<double, std::uint64_t>> out;
+    double previousKth = -1.0; ///< the k-th squared distance of the last query answered (negative: none)
   };
 
   /// The k-nearest queries of the sorted points [first, last), which must lie in one cell (cellRunEnd), answered
