@@ -132,8 +132,8 @@ bool signedSpanningForest(const IncidentEdges<Index>& edges, std::size_t count, 
   forest.turned.assign(count, 0);
   SignedUnionFind<Index> sets(count);
   // The nodes that may still have an edge out of their tree (a node without one never gets one again: trees only
-  // grow); per node the other end of its cheapest such edge and its cost; per tree (its forest.tree node), the node
-  // whose edge is the tree's cheapest.
+  // grow); per node the other end of its cheapest such edge and its cost (none before its first scan); per tree (its
+  // forest.tree node), the node whose edge is the tree's cheapest.
   std::vector<Index> active(count);
   std::iota(active.begin(), active.end(), Index(0));
   std::vector<Index> cheapest(count, none);
@@ -162,22 +162,28 @@ bool signedSpanningForest(const IncidentEdges<Index>& edges, std::size_t count, 
       {
         const Index u = active[a];
         const Index tree = forest.tree[u];
-        Index best = none;
-        double bestCost = 0.0;
-        edges.forEach(u, [&](Index v) {
-          if (forest.tree[v] == tree)
-          {
-            return;
-          }
-          const double c = cost(u, v);
-          if (best == none || order.before(c, u, v, bestCost, u, best))
-          {
-            best = v;
-            bestCost = c;
-          }
-        });
-        cheapest[u] = best;
-        cheapestCost[u] = bestCost;
+        Index best = cheapest[u];
+        double bestCost = cheapestCost[u];
+        // The node's edges out of its tree only become fewer: where last round's cheapest is still out, it is
+        // still the cheapest. Else all its edges are scanned.
+        if (best == none || forest.tree[best] == tree)
+        {
+          best = none;
+          edges.forEach(u, [&](Index v) {
+            if (forest.tree[v] == tree)
+            {
+              return;
+            }
+            const double c = cost(u, v);
+            if (best == none || order.before(c, u, v, bestCost, u, best))
+            {
+              best = v;
+              bestCost = c;
+            }
+          });
+          cheapest[u] = best;
+          cheapestCost[u] = bestCost;
+        }
         if (best == none)
         {
           continue;
