@@ -48,6 +48,7 @@ bool smoothBandwidth(const double* xyz, std::size_t n, const double* raw, double
     admit[i] = isFinite(raw[i]) ? 1 : 0;
   }
   NeighborGrid grid;
+  grid.setThreads(parallel.threads);
   grid.build(xyz, nullptr, n, radius, admit.data());
   const GridView& g = grid.view();
   return parallelFor(n, parallel, [&](std::size_t begin, std::size_t end, int) {

@@ -26,6 +26,7 @@ bool projectPointCloud(const double* points, const double* normals, std::size_t 
   }
   NeighborGrid grid;
   // Cells of about half the largest scale (the grid enlarges them if there would be too many).
+  grid.setThreads(settings.parallel.threads);
   grid.build(points, unitNormals.data(), n, largestScale > 0.0 ? 0.5 * largestScale : 1.0, admit.data());
   const GridView& g = grid.view();
   return parallelFor(n, settings.parallel, [&](std::size_t begin, std::size_t end, int) {

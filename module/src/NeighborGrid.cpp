@@ -1,6 +1,7 @@
 #include "gls/NeighborGrid.h"
 
 #include "gls/Numeric.h"
+#include "gls/KeySort.h"
 #include "gls/ParallelFor.h"
 
 #include <algorithm>
@@ -139,46 +140,58 @@ void NeighborGrid::sortIntoCells(const double* xyz, const double* normals, std::
   }
   const std::size_t cellCount = static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
 
-  // Counting sort by cell, stable in the original index.
-  std::vector<std::uint64_t> cellOf(n, 0);
-  this->CellStart.assign(cellCount + 1, 0);
-  std::size_t admittedCount = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (!admitted(xyz, include, i))
+  // Each point's cell as its key (a point left out: the key past the last cell), sorted stably: by cell and, within
+  // a cell, by original index, the same layout on any number of threads.
+  KeyedIndices keyed(n);
+  ParallelOptions options;
+  options.threads = this->Threads;
+  options.chunk = 65536;
+  parallelFor(n, options, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t i = begin; i < end; ++i)
     {
-      continue;
+      std::uint64_t key = cellCount;
+      if (admitted(xyz, include, i))
+      {
+        const double* p = xyz + 3 * i;
+        key = static_cast<std::uint64_t>(
+          (gridCellOf(v, p[2], 2) * dims[1] + gridCellOf(v, p[1], 1)) * dims[0] + gridCellOf(v, p[0], 0));
+      }
+      keyed[i] = { key, i };
     }
-    const double* p = xyz + 3 * i;
-    const std::int64_t cx = gridCellOf(v, p[0], 0);
-    const std::int64_t cy = gridCellOf(v, p[1], 1);
-    const std::int64_t cz = gridCellOf(v, p[2], 2);
-    cellOf[i] = static_cast<std::uint64_t>((cz * dims[1] + cy) * dims[0] + cx);
-    ++this->CellStart[cellOf[i] + 1];
-    ++admittedCount;
-  }
-  for (std::size_t c = 0; c < cellCount; ++c)
-  {
-    this->CellStart[c + 1] += this->CellStart[c];
-  }
+  });
+  sortByKey(keyed, this->Threads);
+  const std::size_t admittedCount = static_cast<std::size_t>(
+    std::lower_bound(keyed.begin(), keyed.end(), cellCount,
+      [](const KeyedIndex& k, std::uint64_t c) { return k.key < c; }) -
+    keyed.begin());
   this->Points.resize(admittedCount);
   this->Ids.resize(admittedCount);
   this->Normals.resize(normals ? admittedCount : 0);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (!admitted(xyz, include, i))
+  this->CellStart.resize(cellCount + 1);
+  // Each slot's point, and the starts of the cells from the one after the previous slot's up to its own (each start
+  // written once, by the first slot at or after it).
+  parallelFor(admittedCount, options, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t slot = begin; slot < end; ++slot)
     {
-      continue;
+      const std::uint64_t i = keyed[slot].index;
+      this->Points[slot] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
+      this->Ids[slot] = i;
+      if (normals)
+      {
+        this->Normals[slot] = { normals[3 * i], normals[3 * i + 1], normals[3 * i + 2] };
+      }
+      const std::uint64_t from = slot == 0 ? 0 : keyed[slot - 1].key + 1;
+      for (std::uint64_t c = from; c <= keyed[slot].key; ++c)
+      {
+        this->CellStart[c] = slot;
+      }
     }
-    const std::uint64_t slot = this->CellStart[cellOf[i]]++; // the cell's next slot
-    this->Points[slot] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
-    this->Ids[slot] = i;
-    if (normals)
-    {
-      this->Normals[slot] = { normals[3 * i], normals[3 * i + 1], normals[3 * i + 2] };
-    }
-  }
-  restoreBucketStarts(this->CellStart);
+  });
+  const std::uint64_t after = admittedCount == 0 ? 0 : keyed[admittedCount - 1].key + 1;
+  parallelFor(cellCount + 1 - after, options, [&](std::size_t begin, std::size_t end, int) {
+    std::fill(this->CellStart.begin() + static_cast<std::ptrdiff_t>(after + begin),
+      this->CellStart.begin() + static_cast<std::ptrdiff_t>(after + end), admittedCount);
+  });
   v.cellStart = this->CellStart.data();
   v.points = this->Points.data();
   v.normals = normals ? this->Normals.data() : nullptr;
@@ -219,7 +232,7 @@ double surfaceSpacingOfBox(const double low[3], const double high[3], std::size_
 
 void NeighborGrid::releaseCells()
 {
-  std::vector<std::uint64_t>().swap(this->CellStart);
+  UninitializedArray<std::uint64_t>().swap(this->CellStart);
   this->View.cellStart = nullptr;
 }
 

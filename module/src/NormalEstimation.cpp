@@ -240,6 +240,7 @@ bool estimateNormals(
   const double cellSize =
     byRadius ? settings.radius : NeighborGrid::suggestCellSizeForKNearest(xyz, n, settings.k);
   NeighborGrid grid;
+  grid.setThreads(settings.parallel.threads);
   grid.build(xyz, nullptr, n, cellSize);
   const GridView& g = grid.view();
 
@@ -469,6 +470,7 @@ bool refineNormalsByGls(const double* xyz, std::size_t n, const std::vector<doub
   std::vector<unsigned char> admit;
   normalizeAndAdmit(xyz, normals, n, unit, admit);
   NeighborGrid grid;
+  grid.setThreads(parallel.threads);
   grid.build(xyz, unit.data(), n, scales[scales.size() / 2], admit.data());
   const GridView& g = grid.view();
   std::vector<double> out(normals, normals + 3 * n);
@@ -546,6 +548,7 @@ double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOpti
     return std::numeric_limits<double>::infinity();
   }
   NeighborGrid grid;
+  grid.setThreads(parallel.threads);
   grid.build(xyz, nullptr, n, NeighborGrid::suggestCellSizeForKNearest(xyz, n, k));
   const GridView& g = grid.view();
   const int threads = resolveThreadCount(parallel.threads);
@@ -576,6 +579,7 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
     usable[i] = finite3(xyz + 3 * i) && finite3(normals + 3 * i);
   }
   NeighborGrid grid;
+  grid.setThreads(parallel.threads);
   grid.build(xyz, normals, n, NeighborGrid::suggestCellSizeForKNearest(xyz, n, graphNeighbors + 1), usable.data());
   std::vector<unsigned char>().swap(usable);
   const GridView& g = grid.view();

@@ -108,6 +108,7 @@ ScaleSpaceEngine::ScaleSpaceEngine(
   else
   {
     this->Settings.evaluation = Evaluation::Exact;
+    this->Grid.setThreads(threads);
     if (this->Settings.haveGridLattice)
     {
       this->Grid.buildOnLattice(points, unitNormals.data(), count, this->Settings.gridLattice, admit.data());

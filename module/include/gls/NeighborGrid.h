@@ -4,6 +4,7 @@
 #pragma once
 
 #include "gls/GridView.h"
+#include "gls/UninitializedArray.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -45,6 +46,10 @@ public:
 
   const GridView& view() const { return this->View; }
 
+  /// The threads the next build sorts the points on (1 by default; 0: every hardware thread). The grid is the same
+  /// whatever the count.
+  void setThreads(int threads) { this->Threads = threads; }
+
   /// A cell size suited to k-nearest queries on a surface sampled by the admitted points: about sqrt(k) sample
   /// spacings, the spacing estimated from the bounding-box area and the point count.
   static double suggestCellSizeForKNearest(const double* xyz, std::size_t n, int k);
@@ -84,10 +89,11 @@ private:
   void sortIntoCells(const double* xyz, const double* normals, std::size_t n, const unsigned char* include,
     const GridLattice& lattice, const std::int64_t low[3], const std::int64_t dims[3]);
 
-  std::vector<std::uint64_t> CellStart;
-  std::vector<Vec3> Points;
-  std::vector<Vec3> Normals;
-  std::vector<std::uint64_t> Ids;
+  UninitializedArray<std::uint64_t> CellStart;
+  UninitializedArray<Vec3> Points;
+  UninitializedArray<Vec3> Normals;
+  UninitializedArray<std::uint64_t> Ids;
+  int Threads = 1;
   GridView View;
 };
 
