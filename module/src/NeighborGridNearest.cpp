@@ -14,9 +14,9 @@ namespace gls
 namespace
 {
 
-/// The k nearest points offered so far (k: `want`), kept in `out` sorted by (squared distance, original index),
-/// nearest first: a candidate enters by insertion (the few that beat the current k-th), most are rejected by one
-/// comparison with the k-th's distance.
+/// The k nearest points offered so far (k: `want`), kept sorted by (squared distance, original index), nearest
+/// first, in `out`'s storage (sized once; finish() gives `out` its final size): a candidate enters by insertion (the
+/// few that beat the current k-th), most are rejected by one comparison with the k-th's distance.
 class NearestKept
 {
 public:
@@ -25,33 +25,42 @@ public:
     , Want(want)
     , Out(out)
   {
-    out.clear();
-    out.reserve(want);
+    out.resize(want);
+    this->Kept = out.data();
   }
 
   void offer(double d2, std::uint64_t i)
   {
-    if (this->Out.size() == this->Want)
+    std::size_t j = this->Size;
+    if (j == this->Want)
     {
-      if (d2 > this->Out.back().first || !this->Closer(d2, i, this->Out.back()))
+      if (d2 > this->Kept[j - 1].first || !this->Closer(d2, i, this->Kept[j - 1]))
       {
         return;
       }
-      this->Out.pop_back();
+      --j;
     }
-    std::size_t j = this->Out.size();
-    this->Out.emplace_back(d2, i);
-    for (; j > 0 && this->Closer(d2, i, this->Out[j - 1]); --j)
+    else
     {
-      this->Out[j] = this->Out[j - 1];
+      ++this->Size;
     }
-    this->Out[j] = { d2, i };
+    for (; j > 0 && this->Closer(d2, i, this->Kept[j - 1]); --j)
+    {
+      this->Kept[j] = this->Kept[j - 1];
+    }
+    this->Kept[j] = { d2, i };
   }
 
-  bool full() const { return this->Out.size() == this->Want; }
+  bool full() const { return this->Size == this->Want; }
 
   /// The squared distance below which no unvisited point can beat the k-th kept one (infinity until k are kept).
-  double worst() const { return this->full() ? this->Out.back().first : std::numeric_limits<double>::infinity(); }
+  double worst() const
+  {
+    return this->full() ? this->Kept[this->Size - 1].first : std::numeric_limits<double>::infinity();
+  }
+
+  /// Gives `out` the kept points only.
+  void finish() { this->Out.resize(this->Size); }
 
 private:
   bool Closer(double d2, std::uint64_t i, const std::pair<double, std::uint64_t>& o) const
@@ -62,6 +71,8 @@ private:
   const std::uint64_t* Ids;
   std::size_t Want;
   std::vector<std::pair<double, std::uint64_t>>& Out;
+  std::pair<double, std::uint64_t>* Kept = nullptr;
+  std::size_t Size = 0;
 };
 
 /// The square of kNearestOfCellRun's factor on the previous query's k-th distance (1.2: at 1M points of the bunny,
@@ -194,11 +205,12 @@ void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, 
     const double reach = static_cast<double>(ring) * g.cellSize;
     const bool covered = ring >= std::max({ cc[0], g.dims[0] - 1 - cc[0], cc[1], g.dims[1] - 1 - cc[1], cc[2],
                                    g.dims[2] - 1 - cc[2] });
-    if ((kept.full() && out.back().first <= reach * reach) || covered)
+    if ((kept.full() && kept.worst() <= reach * reach) || covered)
     {
       break;
     }
   }
+  kept.finish();
 }
 
 std::uint64_t NeighborGrid::cellRunEnd(std::uint64_t first) const
@@ -299,6 +311,7 @@ void NeighborGrid::kNearestOfCellRun(std::uint64_t first, std::uint64_t last, in
     {
       kept.offer(d2[selected[m]], scratch.index[selected[m]]);
     }
+    kept.finish();
     scratch.previousKth = scratch.out.size() == want ? scratch.out.back().first : -1.0;
     // No point outside the block is nearer than the block's nearest face that is not the grid's edge (less the
     // margin of the cells' rounding, that of ballCellBlock): where the k-th kept point is nearer, the answer is whole.
