@@ -1,5 +1,8 @@
 #include "vtkGLSDistributedCloud.h"
 
+#include "gls/StrayPoints.h"
+
+
 #include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkMultiProcessController.h"
@@ -367,4 +370,78 @@ bool vtkGLSDistributedCloud::ScatterRows(const std::vector<double>& all, int wid
   local.assign(static_cast<std::size_t>(lengths[static_cast<std::size_t>(this->Rank)]), 0.0);
   return this->Controller->ScatterV(all.data(), local.data(), lengths.data(), offsets.data(),
            lengths[static_cast<std::size_t>(this->Rank)], root) != 0;
+}
+
+bool vtkGLSDistributedCloud::StrayPoints(const double* xyz, std::size_t n, std::vector<std::uint64_t>& stray) const
+{
+  stray.clear();
+  if (!this->Controller)
+  {
+    stray = gls::findStrayPoints(xyz, n);
+    return true;
+  }
+  std::size_t finite = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    finite += std::isfinite(xyz[3 * i]) && std::isfinite(xyz[3 * i + 1]) && std::isfinite(xyz[3 * i + 2]) ? 1 : 0;
+  }
+  const double total = this->Sum(static_cast<double>(n));
+  const double allFinite = this->Sum(static_cast<double>(finite));
+  // The robust box from every rank's sample, worked out on rank 0 and sent to every rank (low, high, extent, valid).
+  std::vector<double> sample, samples, box;
+  std::vector<long long> counts;
+  gls::appendStraySample(xyz, n, gls::straySampleStride(static_cast<std::size_t>(total)), sample);
+  if (!this->GatherRows(sample, 3, 0, samples, counts))
+  {
+    return false;
+  }
+  std::vector<double> boxes;
+  if (this->Rank == 0)
+  {
+    const gls::StrayBox b = gls::strayBoxOfSample(samples, static_cast<std::size_t>(allFinite));
+    for (int r = 0; r < this->Size; ++r)
+    {
+      boxes.insert(boxes.end(), { b.low[0], b.low[1], b.low[2], b.high[0], b.high[1], b.high[2], b.extent,
+                                  b.valid ? 1.0 : 0.0 });
+    }
+  }
+  if (!this->ScatterRows(boxes, 8, 0, std::vector<long long>(static_cast<std::size_t>(this->Size), 1), box))
+  {
+    return false;
+  }
+  gls::StrayBox b;
+  std::copy(box.begin(), box.begin() + 3, b.low);
+  std::copy(box.begin() + 3, box.begin() + 6, b.high);
+  b.extent = box[6];
+  b.valid = box[7] != 0.0;
+  // Every rank's candidates on rank 0, which sends each rank the verdicts on its own.
+  const std::vector<std::uint64_t> candidates = gls::strayCandidates(xyz, n, b);
+  std::vector<double> where, everywhere, verdicts, mine;
+  for (std::uint64_t i : candidates)
+  {
+    where.insert(where.end(), xyz + 3 * i, xyz + 3 * i + 3);
+  }
+  if (!this->GatherRows(where, 3, 0, everywhere, counts))
+  {
+    return false;
+  }
+  if (this->Rank == 0)
+  {
+    for (unsigned char isolated : gls::isolatedCandidates(everywhere, b))
+    {
+      verdicts.push_back(isolated);
+    }
+  }
+  if (!this->ScatterRows(verdicts, 1, 0, counts, mine))
+  {
+    return false;
+  }
+  for (std::size_t c = 0; c < candidates.size(); ++c)
+  {
+    if (mine[c] != 0.0)
+    {
+      stray.push_back(candidates[c]);
+    }
+  }
+  return true;
 }

@@ -34,6 +34,7 @@
 #include "vtkType.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <initializer_list>
 #include <vector>
 
@@ -89,6 +90,14 @@ public:
   /// True (on every rank) when the pieces carry no GlobalIds attribute, so that GlobalIds numbers them in rank
   /// order: point i of this piece has the id `offset` + i. A caller that only needs some ids need not list all.
   bool RankOrderIds(vtkDataSet* piece, long long& offset) const;
+
+  /// The stray points of this rank's n positions (xyz, 3 each), judged over the whole cloud by the steps of
+  /// gls::findStrayPoints: the robust box of every rank's sample (each rank samples every stride-th of its finite
+  /// points, the stride of the whole cloud's count), then the candidates of every rank, gathered on rank 0, which
+  /// tells each rank which of its own are isolated. Where the whole cloud has at most 2^20 points the sample is every
+  /// point: the same stray points as a serial run's. Indices increasing; false on a communication error. The serial
+  /// identity is gls::findStrayPoints.
+  bool StrayPoints(const double* xyz, std::size_t n, std::vector<std::uint64_t>& stray) const;
 
   /// Gathers rows of `width` doubles from every rank onto `root` (in rank order); `counts` receives every rank's
   /// number of rows (on every rank). `all` is filled on the root only.

@@ -258,9 +258,10 @@ int vtkGLSFilterBase::RunOn(
   {
     return 0;
   }
-  if (!run.StrayIds.empty() && run.Output)
+  if (run.AnyStray && run.Output)
   {
-    // Which points were left out as stray: a picture or a later step can leave them out too.
+    // Which points were left out as stray: a picture or a later step can leave them out too (on every rank of a
+    // distributed run where some piece had one, so that the pieces carry the same arrays).
     vtkNew<vtkUnsignedCharArray> stray;
     stray->SetName(vtkGLSArrayNames::Stray);
     stray->SetNumberOfTuples(run.Output->GetNumberOfPoints());
@@ -310,9 +311,10 @@ int vtkGLSFilterBase::RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVect
   {
     return 0;
   }
-  if (!dist.IsParallel())
+  std::vector<std::uint64_t> stray;
+  if (!BlankStrayPoints(dist, xyz, stray)) // the blocks' runs leave them out too: the diagonal of one block of it all
   {
-    BlankStrayPoints(xyz); // the blocks' runs leave them out too: the same diagonal as one block of it all
+    return 0;
   }
   double bounds[6];
   const double diagonal = dist.FiniteBounds(xyz.data(), xyz.size() / 3, bounds) ? DiagonalOf(bounds) : 0.0;
@@ -405,20 +407,19 @@ void vtkGLSFilterBase::CopyTriples(vtkDataArray* triples, vtkIdType n, double* o
   }
 }
 
-std::vector<std::uint64_t> vtkGLSFilterBase::BlankStrayPoints(std::vector<double>& xyz)
+bool vtkGLSFilterBase::BlankStrayPoints(
+  const vtkGLSDistributedCloud& dist, std::vector<double>& xyz, std::vector<std::uint64_t>& stray)
 {
-  const std::vector<std::uint64_t> stray = gls::findStrayPoints(xyz.data(), xyz.size() / 3);
+  if (!dist.StrayPoints(xyz.data(), xyz.size() / 3, stray))
+  {
+    return false;
+  }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::uint64_t i : stray)
   {
     xyz[3 * i] = xyz[3 * i + 1] = xyz[3 * i + 2] = nan;
   }
-  return stray;
-}
-
-void vtkGLSFilterBase::LeaveOutStrayPoints(vtkGLSRun& run)
-{
-  run.StrayIds = BlankStrayPoints(run.Cloud.Points);
+  return true;
 }
 
 bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
@@ -441,18 +442,25 @@ bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
     CopyTriples(input->GetPoints()->GetData(), n, xyz.data());
   }
   run.Cloud.Owned = static_cast<std::size_t>(n);
-  if (!dist.IsParallel())
+  if (!BlankStrayPoints(dist, xyz, run.StrayIds))
   {
-    LeaveOutStrayPoints(run);
-    if (!run.StrayIds.empty())
+    vtkErrorMacro("The search for stray points failed to communicate between the processes.");
+    return false;
+  }
+  const double strays = dist.Sum(static_cast<double>(run.StrayIds.size()));
+  run.AnyStray = strays > 0.0;
+  if (run.AnyStray && dist.GetRank() == 0)
+  {
+    std::ostringstream first;
+    if (!dist.IsParallel())
     {
-      vtkWarningMacro(<< run.StrayIds.size() << " stray point" << (run.StrayIds.size() > 1 ? "s" : "")
-                      << " (far outside the rest of the cloud, with no other point near; the first: point "
-                      << run.StrayIds.front()
-                      << ") left out: NaN results, in no neighbourhood, and the bounding box (the relative "
-                         "scales) is that of the other points. Field data GLSStrayPoints counts them, the point "
-                         "array GLSStray marks them.");
+      first << "; the first: point " << run.StrayIds.front();
     }
+    vtkWarningMacro(<< strays << " stray point" << (strays > 1.0 ? "s" : "")
+                    << " (far outside the rest of the cloud, with no other point near" << first.str()
+                    << ") left out: NaN results, in no neighbourhood, and the bounding box (the relative "
+                       "scales) is that of the other points. Field data GLSStrayPoints counts them (those of "
+                       "this process's piece in a distributed run), the point array GLSStray marks them.");
   }
   // Every rank takes part, an empty piece too: the bounds are those of the finite points of all the pieces.
   run.HasFinitePoints = dist.FiniteBounds(xyz.data(), static_cast<std::size_t>(n), run.Bounds);

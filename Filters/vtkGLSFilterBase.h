@@ -54,6 +54,7 @@ class vtkDataSet;
 class vtkFieldData;
 class vtkMultiProcessController;
 class vtkPointSet;
+class vtkGLSDistributedCloud;
 struct vtkGLSRun;
 
 class VTKGLSFILTERS_EXPORT vtkGLSFilterBase : public vtkPointSetAlgorithm
@@ -180,15 +181,12 @@ protected:
   /// responsive and an abort is seen); true when the run is to be aborted.
   bool Heartbeat();
 
-  /// Serial runs: the stray points of run.Cloud (gls::findStrayPoints) get NaN coordinates there, so that they join
-  /// no neighbourhood, their results are NaN and the bounds (the relative scales) are the other points'; counted in
-  /// run.StrayIds (and marked in the output's point array GLSStray, when there are some). Distributed runs do not
-  /// look for them (each rank sees only its piece).
-  static void LeaveOutStrayPoints(vtkGLSRun& run);
-
-  /// Sets the stray points of xyz (3 per point; gls::findStrayPoints) to NaN and returns their indices: the one rule
-  /// of every serial run's bounds.
-  static std::vector<std::uint64_t> BlankStrayPoints(std::vector<double>& xyz);
+  /// Sets the stray points of xyz (3 per point: this rank's piece; vtkGLSDistributedCloud::StrayPoints, judged over
+  /// every piece, gls::findStrayPoints in a serial run) to NaN, so that they join no neighbourhood, their results are
+  /// NaN and the bounds (the relative scales) are the other points', and lists them in `stray` (increasing). The one
+  /// rule of every run's bounds. False on a communication error.
+  static bool BlankStrayPoints(
+    const vtkGLSDistributedCloud& dist, std::vector<double>& xyz, std::vector<std::uint64_t>& stray);
 
   /// Writes what the run reports in the output's field data: GLSGhostPoints (the ghosts this rank used, in a
   /// distributed run that exchanged them), GLSStrayPoints (stray points left out, when some were), GLSTiles (the spatial tiles of a fit cut to its MemoryBudget, when more

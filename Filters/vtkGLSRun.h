@@ -66,7 +66,8 @@ struct vtkGLSRun
   long long GhostPoints = -1;            ///< ghosts this rank used (-1: no exchange)
   long long TilesUsed = 0;               ///< spatial tiles of this rank's fit (0: no fit ran)
   long long CoincidentPoints = 0;        ///< this piece's input points merged into another
-  std::vector<std::uint64_t> StrayIds;   ///< stray points left out, increasing (LeaveOutStrayPoints)
+  std::vector<std::uint64_t> StrayIds;   ///< stray points of this piece left out, increasing (BlankStrayPoints)
+  bool AnyStray = false;                 ///< some piece left stray points out (every rank then marks GLSStray)
 };
 
 #endif

@@ -432,7 +432,8 @@ std::vector<double> vtkGLSScaleFilterBase::ComputeAbsoluteScales(vtkPointSet* in
   {
     input->GetPoint(i, &xyz[3 * i]);
   }
-  BlankStrayPoints(xyz); // as a run does
+  std::vector<std::uint64_t> stray;
+  BlankStrayPoints(serial, xyz, stray); // as a run does
   double b[6];
   double diagonal = 0.0;
   if (serial.FiniteBounds(xyz.data(), static_cast<std::size_t>(n), b))

@@ -6,7 +6,8 @@ global point id) to an .npz file for run_mpi_compare.py.
     pvpython mpi_pipeline.py ... --server HOST:PORT     (a pvserver started with mpiexec -np N pvserver)
 
 The cloud comes from gls_piece_source (a programmable source that honours ParaView's piece requests): every S-th
-vertex of the scan, numbered with GlobalIds, one slab of x per rank; with --all-on-rank0, all of it on rank 0 and
+vertex of the scan and one stray point far from it (every filter leaves it out: NaN results and the bounds of the
+rest, GLSStray marking it), numbered with GlobalIds, one slab of x per rank; with --all-on-rank0, all of it on rank 0 and
 empty pieces elsewhere. The pipeline: oriented normals (minimum spanning tree) -> scale space -> geometric
 variation -> continuous features -> dissimilarity to a point id (these three reuse the stored scale space), and,
 fitting themselves from the normals: geometric variation, continuous features, dissimilarity to a point given by its
@@ -69,7 +70,7 @@ for name, value in (('Rank', rank), ('GhostsOnRank', ghosts), ('TilesOnRank', ti
 '''
 
 scales = dict(MinScale=0.01, MaxScale=0.06, NumberOfScales=6, ScaleSampling='Quadratic')
-cloud = piece_source(args.scan, stride=args.stride, all_on_rank0=args.all_on_rank0)
+cloud = piece_source(args.scan, stride=args.stride, all_on_rank0=args.all_on_rank0, stray=True)
 normals = GLSNormalEstimation(Input=cloud, NumberOfNeighbors=16, Orientation='Minimum spanning tree')  # noqa: F405
 space = GLSScaleSpace(Input=normals, **scales)  # noqa: F405
 variation = GLSGeometricVariation(Input=space)  # noqa: F405

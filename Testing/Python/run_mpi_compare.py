@@ -10,6 +10,7 @@
   dissimilarity): the same NaN pattern and max |parallel - serial| <= 1e-12 * max |serial| over the array;
   integer-valued arrays (neighbour counts, pertinent-scale counts, the similar flags) and the query id exactly;
 - every rank computed points and used ghost points (the piece boundaries were exercised);
+- the cloud's one stray point (gls_piece_source's `stray`) was left out (GLSStray marks it and only it);
 - the serial-only filter (adaptive bandwidth) gave output serially and refused to run on N ranks.
 --expect-mismatch (with GLS_DISTRIBUTED_NO_GHOSTS=1 passed to the ranks) inverts the verdict: without the ghost
 exchange the comparison must fail (relative difference above 1e-6), which shows that the test can fail.
@@ -177,6 +178,16 @@ for key in sorted(set(serial.files) & set(parallel.files)):
     print('%-40s max rel. difference %.3g' % (key, relative))
     if relative > TOLERANCE:
         failures.append('%s: relative difference %.3g > %g' % (key, relative, TOLERANCE))
+
+# The stray point (the last global id) was left out on every piece layout: marked by GLSStray (and its results NaN,
+# compared with the serial run's above).
+for prefix in ('chain', 'fused_features', 'refined'):
+    key = prefix + '/GLSStray'
+    marks = parallel[key] if key in parallel.files else np.zeros(0)
+    if not (marks.size > 0 and marks.sum() == 1 and marks[-1] == 1):
+        failures.append('%s: the stray point is not the one point marked (%s)' % (key, np.flatnonzero(marks)))
+    else:
+        print('%-40s the stray point left out' % key)
 
 ranks = parallel['fused_variation/Rank']
 ghosts = parallel['fused_variation/GhostsOnRank']

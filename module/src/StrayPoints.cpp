@@ -30,46 +30,49 @@ double quantile(std::vector<double>& v, double q)
 
 } // namespace
 
-std::vector<std::uint64_t> findStrayPoints(const double* xyz, std::size_t n)
+std::size_t straySampleStride(std::size_t total)
 {
-  std::size_t finite = 0;
-  for (std::size_t i = 0; i < n; ++i)
+  return std::max<std::size_t>(1, (total + kStraySample - 1) / kStraySample);
+}
+
+void appendStraySample(const double* xyz, std::size_t n, std::size_t stride, std::vector<double>& sample)
+{
+  for (std::size_t i = 0; i < n; i += stride)
   {
-    finite += finitePosition(xyz + 3 * i) ? 1 : 0;
+    if (finitePosition(xyz + 3 * i))
+    {
+      sample.insert(sample.end(), xyz + 3 * i, xyz + 3 * i + 3);
+    }
   }
-  if (finite < kFewestPoints)
+}
+
+StrayBox strayBoxOfSample(std::vector<double>& sample, std::size_t finite)
+{
+  StrayBox box;
+  const std::size_t count = sample.size() / 3;
+  if (finite < kFewestPoints || count < kFewestPoints)
   {
-    return {};
+    return box;
   }
-  // The robust box from a regular sample of the finite points.
-  const std::size_t stride = std::max<std::size_t>(1, (n + kStraySample - 1) / kStraySample);
-  double low[3], high[3], extent = 0.0;
+  std::vector<double> v(count);
   for (int a = 0; a < 3; ++a)
   {
-    std::vector<double> v;
-    for (std::size_t i = 0; i < n; i += stride)
+    for (std::size_t i = 0; i < count; ++i)
     {
-      if (finitePosition(xyz + 3 * i))
-      {
-        v.push_back(xyz[3 * i + a]);
-      }
+      v[i] = sample[3 * i + static_cast<std::size_t>(a)];
     }
-    if (v.size() < kFewestPoints)
-    {
-      return {};
-    }
-    low[a] = quantile(v, kStrayQuantile);
-    high[a] = quantile(v, 1.0 - kStrayQuantile);
-    extent = std::max(extent, high[a] - low[a]);
+    box.low[a] = quantile(v, kStrayQuantile);
+    box.high[a] = quantile(v, 1.0 - kStrayQuantile);
+    box.extent = std::max(box.extent, box.high[a] - box.low[a]);
   }
-  if (!(extent > 0.0) || !isFinite(extent))
-  {
-    return {};
-  }
-  // The candidates: outside the box widened by its largest extent on every side.
+  box.valid = box.extent > 0.0 && isFinite(box.extent);
+  return box;
+}
+
+std::vector<std::uint64_t> strayCandidates(const double* xyz, std::size_t n, const StrayBox& box)
+{
   std::vector<std::uint64_t> candidates;
-  std::vector<double> where;
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; box.valid && i < n; ++i)
   {
     const double* p = xyz + 3 * i;
     if (!finitePosition(p))
@@ -79,25 +82,29 @@ std::vector<std::uint64_t> findStrayPoints(const double* xyz, std::size_t n)
     bool outside = false;
     for (int a = 0; a < 3; ++a)
     {
-      outside = outside || p[a] < low[a] - extent || p[a] > high[a] + extent;
+      outside = outside || p[a] < box.low[a] - box.extent || p[a] > box.high[a] + box.extent;
     }
     if (outside)
     {
       candidates.push_back(i);
-      where.insert(where.end(), p, p + 3);
     }
   }
-  if (candidates.empty())
+  return candidates;
+}
+
+std::vector<unsigned char> isolatedCandidates(const std::vector<double>& where, const StrayBox& box)
+{
+  const std::size_t count = where.size() / 3;
+  std::vector<unsigned char> isolated(count, 0);
+  if (count == 0)
   {
-    return {};
+    return isolated;
   }
-  // Isolated: fewer than kStrayClusterNeighbors other candidates within the cluster radius.
-  const double radius = kStrayClusterRadius * extent;
+  const double radius = kStrayClusterRadius * box.extent;
   NeighborGrid grid;
-  grid.build(where.data(), nullptr, candidates.size(), radius);
+  grid.build(where.data(), nullptr, count, radius);
   std::vector<std::pair<double, std::uint64_t>> nearest;
-  std::vector<std::uint64_t> stray;
-  for (std::size_t c = 0; c < candidates.size(); ++c)
+  for (std::size_t c = 0; c < count; ++c)
   {
     const Vec3 p{ where[3 * c], where[3 * c + 1], where[3 * c + 2] };
     grid.kNearest(p, kStrayClusterNeighbors + 1, nearest); // the point itself first
@@ -106,7 +113,32 @@ std::vector<std::uint64_t> findStrayPoints(const double* xyz, std::size_t n)
     {
       near += q.first <= radius * radius ? 1 : 0;
     }
-    if (near - 1 < kStrayClusterNeighbors)
+    isolated[c] = near - 1 < kStrayClusterNeighbors ? 1 : 0;
+  }
+  return isolated;
+}
+
+std::vector<std::uint64_t> findStrayPoints(const double* xyz, std::size_t n)
+{
+  std::size_t finite = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    finite += finitePosition(xyz + 3 * i) ? 1 : 0;
+  }
+  std::vector<double> sample;
+  appendStraySample(xyz, n, straySampleStride(n), sample);
+  const StrayBox box = strayBoxOfSample(sample, finite);
+  const std::vector<std::uint64_t> candidates = strayCandidates(xyz, n, box);
+  std::vector<double> where;
+  for (std::uint64_t i : candidates)
+  {
+    where.insert(where.end(), xyz + 3 * i, xyz + 3 * i + 3);
+  }
+  const std::vector<unsigned char> isolated = isolatedCandidates(where, box);
+  std::vector<std::uint64_t> stray;
+  for (std::size_t c = 0; c < candidates.size(); ++c)
+  {
+    if (isolated[c])
     {
       stray.push_back(candidates[c]);
     }
