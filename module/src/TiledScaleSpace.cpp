@@ -168,9 +168,19 @@ void TiledScaleSpace::layOnTheWholeCloud()
   this->Reach = ghostReach(this->Settings);
 }
 
+int TiledScaleSpace::membership(std::size_t k, std::size_t i) const
+{
+  const double* p = this->Points + 3 * i;
+  if (i < this->Evaluated && this->Tiles.holds(k, p))
+  {
+    return 1;
+  }
+  return this->Admit[i] && this->Tiles.near(k, p, this->Reach) ? 2 : 0;
+}
+
 std::vector<std::size_t> TiledScaleSpace::tileSizes() const
 {
-  // A point joins the tiles it is near (when it may be a neighbour) and its own tile (when it is evaluated).
+  // A point can belong only to the box that holds it and, when admitted, the boxes near it: those are asked.
   const int threads = resolveThreadCount(this->Settings.parallel.threads);
   const std::size_t T = this->Tiles.count();
   std::vector<std::vector<std::size_t>> counts(static_cast<std::size_t>(threads), std::vector<std::size_t>(T, 0));
@@ -182,13 +192,13 @@ std::vector<std::size_t> TiledScaleSpace::tileSizes() const
     for (std::size_t i = begin; i < end; ++i)
     {
       const double* p = this->Points + 3 * i;
+      const std::size_t box = this->Tiles.tileOf(p);
+      c[box] += this->membership(box, i) != 0 ? 1 : 0;
       if (this->Admit[i])
       {
-        this->Tiles.forEachNear(p, this->Reach, [&c](std::size_t k) { ++c[k]; });
-      }
-      else if (i < this->Evaluated)
-      {
-        ++c[this->Tiles.tileOf(p)];
+        this->Tiles.forEachNear(p, this->Reach, [&](std::size_t k) {
+          c[k] += k != box && this->membership(k, i) != 0 ? 1 : 0;
+        });
       }
     }
   });
@@ -205,16 +215,7 @@ std::vector<std::size_t> TiledScaleSpace::tileSizes() const
 
 void TiledScaleSpace::members(std::size_t k, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const
 {
-  this->collect(
-    [&](std::size_t i) -> int { // 0: not in the tile, 1: own point, 2: ghost
-      const double* p = this->Points + 3 * i;
-      if (i < this->Evaluated && this->Tiles.holds(k, p))
-      {
-        return 1;
-      }
-      return this->Admit[i] && this->Tiles.near(k, p, this->Reach) ? 2 : 0;
-    },
-    members, own);
+  this->collect([&](std::size_t i) { return this->membership(k, i); }, members, own);
 }
 
 template <class Kind>

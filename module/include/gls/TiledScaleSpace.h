@@ -75,7 +75,10 @@ private:
   bool runMembers(const std::vector<std::uint64_t>& members, const std::vector<unsigned char>& own,
     const std::vector<std::uint64_t>* requested, ScaleSampleSink& sink, const ParallelOptions& parallel,
     Backend backend, RunReport& report, bool first) const;
-  /// The points (own and ghosts) of every tile.
+  /// The one membership rule of the tiles: 1 when cloud point i is evaluated in tile k (an evaluated point in its
+  /// box), 2 when it is only a neighbour there (an admitted point within the ghost reach of the box), 0 otherwise.
+  int membership(std::size_t k, std::size_t i) const;
+  /// The points (own and ghosts) of every tile (membership, over each point's own box and the boxes near it).
   std::vector<std::size_t> tileSizes() const;
   /// Cloud indices of tile k's points and ghosts, increasing; own[j] says whether members[j] is evaluated here.
   void members(std::size_t k, std::vector<std::uint64_t>& members, std::vector<unsigned char>& own) const;
