@@ -1,5 +1,6 @@
 #include "vtkGLSDistributedCloud.h"
 
+#include "gls/PointBox.h"
 #include "gls/StrayPoints.h"
 
 
@@ -112,19 +113,12 @@ double vtkGLSDistributedCloud::Max(double local) const
 bool vtkGLSDistributedCloud::FiniteBounds(const double* xyz, std::size_t n, double bounds[6]) const
 {
   const double inf = std::numeric_limits<double>::infinity();
+  const gls::PointBox box = gls::boxOfFinitePoints(xyz, n);
   double lo[3] = { inf, inf, inf }, negHi[3] = { inf, inf, inf };
-  for (std::size_t i = 0; i < n; ++i)
+  for (int a = 0; a < 3 && box.count > 0; ++a)
   {
-    const double* p = xyz + 3 * i;
-    if (!finite3(p))
-    {
-      continue;
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      lo[a] = std::min(lo[a], p[a]);
-      negHi[a] = std::min(negHi[a], -p[a]);
-    }
+    lo[a] = box.low[a];
+    negHi[a] = -box.high[a];
   }
   double local[6] = { lo[0], lo[1], lo[2], negHi[0], negHi[1], negHi[2] }, global[6];
   std::copy(local, local + 6, global);

@@ -3,6 +3,7 @@
 #include "gls/Numeric.h"
 #include "gls/KeySort.h"
 #include "gls/ParallelFor.h"
+#include "gls/PointBox.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,22 +36,10 @@ bool admitted(const double* xyz, const unsigned char* include, std::size_t i)
 GridLattice NeighborGrid::chooseLattice(
   const double* xyz, std::size_t n, double cellSize, const unsigned char* include)
 {
-  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
-  std::size_t admittedCount = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (!admitted(xyz, include, i))
-    {
-      continue;
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      const double v = xyz[3 * i + a];
-      lo[a] = admittedCount == 0 ? v : std::min(lo[a], v);
-      hi[a] = admittedCount == 0 ? v : std::max(hi[a], v);
-    }
-    ++admittedCount;
-  }
+  const PointBox box = boxOfFinitePoints(xyz, n, include);
+  const double* lo = box.low;
+  const double* hi = box.high;
+  const std::size_t admittedCount = box.count;
 
   double extent = 0.0;
   for (int a = 0; a < 3; ++a)
@@ -201,23 +190,9 @@ void NeighborGrid::sortIntoCells(const double* xyz, const double* normals, std::
 
 double NeighborGrid::suggestCellSizeForKNearest(const double* xyz, std::size_t n, int k)
 {
-  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (!finitePoint(xyz + 3 * i))
-    {
-      continue;
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      const double v = xyz[3 * i + a];
-      lo[a] = count == 0 ? v : std::min(lo[a], v);
-      hi[a] = count == 0 ? v : std::max(hi[a], v);
-    }
-    ++count;
-  }
-  const double size = surfaceSpacingOfBox(lo, hi, count) * std::sqrt(static_cast<double>(std::max(k, 1)));
+  const PointBox box = boxOfFinitePoints(xyz, n);
+  const double size =
+    surfaceSpacingOfBox(box.low, box.high, box.count) * std::sqrt(static_cast<double>(std::max(k, 1)));
   return size > 0.0 ? size : 1.0;
 }
 

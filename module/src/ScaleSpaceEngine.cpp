@@ -4,6 +4,7 @@
 #include "gls/MultiresolutionKernel.h"
 #include "gls/Numeric.h"
 #include "gls/OnePassKernel.h"
+#include "gls/PointBox.h"
 #include "gls/PointScaleSpace.h"
 #include "gls/ScaleSampling.h"
 
@@ -44,20 +45,16 @@ GridLattice exactGridLattice(
 void resolvePyramidFrame(
   MultiresolutionSettings& m, const double* points, std::size_t count, const unsigned char* admit)
 {
-  std::size_t admitted = 0;
-  for (std::size_t i = 0; i < count; ++i)
+  const PointBox box = boxOfFinitePoints(points, count, admit); // admitted points are finite
+  if (!m.haveBounds)
   {
-    for (int a = 0; a < 3 && admit[i] && !m.haveBounds; ++a)
-    {
-      m.low[a] = admitted == 0 ? points[3 * i + a] : std::min(m.low[a], points[3 * i + a]);
-      m.high[a] = admitted == 0 ? points[3 * i + a] : std::max(m.high[a], points[3 * i + a]);
-    }
-    admitted += admit[i] ? 1 : 0;
+    std::copy(box.low, box.low + 3, m.low);
+    std::copy(box.high, box.high + 3, m.high);
   }
   m.haveBounds = true;
   if (!(m.spacing > 0.0))
   {
-    m.spacing = surfaceSpacingOfBox(m.low, m.high, admitted);
+    m.spacing = surfaceSpacingOfBox(m.low, m.high, box.count);
   }
 }
 
