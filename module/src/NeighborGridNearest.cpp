@@ -79,6 +79,12 @@ private:
 /// 451 ns a query against 640 ns with a true bound, the previous k-th distance plus the step between the queries).
 constexpr double kGuessSquared = 1.2 * 1.2;
 
+/// Above this many points per neighbour asked in a run's cell and the cells around it, its queries go one at a time
+/// (kNearest), and nothing is gathered: on the bunny at 10M points a run's cells hold about 12 per neighbour (k = 16);
+/// with a dense blob (200,000 points in 1 mm inside 400,000 of the bunny) every query offered everything gathered
+/// cost 76 us against kNearest's 22 us (the blob's cells hold thousands); with this limit both take 19 us.
+constexpr std::size_t kMostRunCandidatesPerNeighbor = 32;
+
 } // namespace
 
 void NeighborGrid::kNearest(const Vec3& c, int k, std::vector<std::pair<double, std::uint64_t>>& out,
@@ -250,6 +256,28 @@ void NeighborGrid::kNearestOfCellRun(std::uint64_t first, std::uint64_t last, in
     lo[a] = std::max<std::int64_t>(c - 1, 0);
     hi[a] = std::min(c + 1, g.dims[a] - 1);
   }
+  const std::size_t want = std::min<std::size_t>(static_cast<std::size_t>(k), g.count);
+  std::size_t gathered = 0;
+  for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+  {
+    for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+    {
+      const std::int64_t row = (z * g.dims[1] + y) * g.dims[0];
+      gathered += g.cellStart[row + hi[0] + 1] - g.cellStart[row + lo[0]];
+    }
+  }
+  if (gathered > kMostRunCandidatesPerNeighbor * want)
+  {
+    // Crowded cells (a scanner's near field): each query offered every point around would cost more than
+    // kNearest, which stops at the cells its k-th reaches. Nothing is gathered.
+    for (std::uint64_t s = first; s < last; ++s)
+    {
+      this->kNearest(g.points[s], k, scratch.out);
+      scratch.previousKth = scratch.out.size() == want ? scratch.out.back().first : -1.0;
+      visit(s, scratch.out);
+    }
+    return;
+  }
   scratch.x.clear();
   scratch.y.clear();
   scratch.z.clear();
@@ -271,7 +299,6 @@ void NeighborGrid::kNearestOfCellRun(std::uint64_t first, std::uint64_t last, in
   const std::size_t candidates = scratch.index.size();
   scratch.d2.resize(candidates);
   scratch.selected.resize(candidates);
-  const std::size_t want = std::min<std::size_t>(static_cast<std::size_t>(k), g.count);
   // A guess of the k-th distance: 1.2 times the previous query's (of this run, or the scratch's last one; a point's
   // k-th distance is close to its neighbour's on a sampled surface). Only the candidates within it are offered: where
   // at least k are, the k nearest are among them. Where fewer are, all are offered.
