@@ -111,6 +111,32 @@ class PluginProxies(unittest.TestCase):
         for p in (s, d, n):
             simple.Delete(p)
 
+    def test_text_clouds_open_with_the_point_cloud_reader(self):
+        # File > Open: .xyz, .pts, .ptx and .pcd have the GLS Point Cloud Reader as theirs (OpenDataFile takes it);
+        # .csv and .txt, which ParaView's CSV and GDAL readers also claim, offer it beside them (the GUI asks which
+        # reader, with "Set reader as default").
+        folder = tempfile.mkdtemp()
+        factory = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory()
+        session = servermanager.ActiveConnection.Session
+        for extension, separator in (('xyz', ' '), ('pts', ' '), ('csv', ','), ('txt', ' ')):
+            path = os.path.join(folder, 'cloud.' + extension)
+            with open(path, 'w') as f:
+                f.write(''.join(separator.join(str(v) for v in row) + '\n' for row in
+                                ((0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0.5))))
+            readers = factory.GetReaders(path, session)
+            names = [readers.GetString(i) for i in range(1, readers.GetLength(), 3)]
+            self.assertIn('GLSPointCloudReader', names, extension)
+            if extension in ('xyz', 'pts'):
+                opened = simple.OpenDataFile(path)
+                self.assertEqual(opened.GetXMLName(), 'GLSPointCloudReader', extension)
+                simple.Delete(opened)
+            reader = NS['GLSPointCloudReader'](FileName=path)
+            reader.UpdatePipeline()
+            cloud = servermanager.Fetch(reader)
+            self.assertEqual(cloud.GetNumberOfPoints(), 4, extension)
+            self.assertAlmostEqual(cloud.GetPoint(3)[2], 0.5)
+            simple.Delete(reader)
+
     def test_an_unstructured_grid_and_a_multiblock_are_in_every_filters_input_domain(self):
         # The GUI greys out a filter whose input domain refuses the selected source (once vtkPolyData only).
         grid = simple.AppendDatasets(Input=simple.Sphere())  # a vtkUnstructuredGrid
