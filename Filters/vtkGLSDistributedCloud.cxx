@@ -377,7 +377,7 @@ bool vtkGLSDistributedCloud::StrayPoints(const double* xyz, std::size_t n, std::
   std::size_t finite = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    finite += std::isfinite(xyz[3 * i]) && std::isfinite(xyz[3 * i + 1]) && std::isfinite(xyz[3 * i + 2]) ? 1 : 0;
+    finite += finite3(xyz + 3 * i) ? 1 : 0;
   }
   const double total = this->Sum(static_cast<double>(n));
   const double allFinite = this->Sum(static_cast<double>(finite));

@@ -114,7 +114,6 @@ inline double edgeCost(const Vec3& a, const Vec3& b)
   return 1.0 - std::abs(dot(a, b));
 }
 
-
 /// Orients each tree of the signed forest (a connected component of the graph): from its node farthest from its
 /// centroid, turned away from the centroid, every node agrees with its neighbours along the tree. Then, where the
 /// cloud is terrain-like (flat, kTerrainFlatness, with coherent normals, kTerrainCoherence), each component whose

@@ -121,17 +121,4 @@ void admitOrientedPoints(const double* points, const double* normals, std::size_
 /// normalized (its length is 0 or not finite).
 bool unitNormal(const double* m, double* u);
 
-/// The last step of a counting sort's fill, where each bucket's start was used as its next free slot: starts[b]
-/// (b < buckets) now holds where bucket b ends, the start of bucket b + 1. Shifts them back by one bucket, so that
-/// starts[b] is bucket b's start again (starts[buckets], the total, stays). No second array of offsets is needed.
-template <typename Offset>
-void restoreBucketStarts(std::vector<Offset>& starts)
-{
-  for (std::size_t b = starts.size() - 1; b > 0; --b)
-  {
-    starts[b] = starts[b - 1];
-  }
-  starts[0] = 0;
-}
-
 } // namespace gls
