@@ -52,7 +52,11 @@ vtkGLSPointCloudReader::~vtkGLSPointCloudReader() = default;
 int vtkGLSPointCloudReader::CanReadFile(const char* name)
 {
   const std::string ext = vtkGLSFileExtension(name);
-  return ext == "xyz" || ext == "pts" || ext == "csv" || ext == "txt" || ext == "ptx" || ext == "pcd";
+  if (ext == "csv" || ext == "txt")
+  {
+    return gls::pointCloudFileHeadError(name).empty();
+  }
+  return ext == "xyz" || ext == "pts" || ext == "ptx" || ext == "pcd";
 }
 
 int vtkGLSPointCloudReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)

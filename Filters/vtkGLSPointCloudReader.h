@@ -15,7 +15,8 @@
  * the registered position of the scanner that saw each point, for Normal Estimation's per-point viewpoints); lines
  * at 0 0 0 (missing returns) are dropped (gls::parsePtx). A PCL PCD file (.pcd, ascii, binary or
  * binary_compressed) gives its x y z, normals, intensity, packed rgb as `RGB`, its other single-valued fields, and
- * a VIEWPOINT other than PCL's default as every point's `ScannerPosition` (gls::parsePcd).
+ * a VIEWPOINT other than PCL's default as every point's `ScannerPosition` (gls::parsePcd). A file of another
+ * extension whose content is a PCD or PTX file (a scan renamed .txt) is read as one, and ColumnLayout says so.
  *
  * Output: a vtkPolyData with double-precision points and one vertex cell per point; point arrays `Normals`
  * (double, active normals, as given: not normalized), `RGB` (unsigned char, 3 components, 0-255, active scalars,
@@ -47,7 +48,10 @@ public:
   vtkGetCharFromStdStringMacro(FileName);
   ///@}
 
-  /// Whether the reader can read the file (used by ParaView): true for the extensions .xyz, .pts, .csv, .txt, .ptx, .pcd.
+  /// Whether the reader can read the file (ParaView's reader factory asks): true for the extensions .xyz, .pts, .ptx
+  /// and .pcd; for .csv and .txt, which may hold any table, true when the file's first 64 KiB read as a point cloud
+  /// (gls::pointCloudFileHeadError: columns that can be told, or a PCD or PTX file's header), so that a table that is
+  /// no point cloud is left to ParaView's CSV reader.
   int CanReadFile(const char* name);
 
   /// How the last file read was understood, e.g. "x y z r g b (6 columns, no header: 0-255 integers, so

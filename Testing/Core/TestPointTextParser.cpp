@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -214,14 +215,24 @@ TEST(PointTextParser, MalformedInputGivesTheLine)
   EXPECT_NE(gls::readPointTextFile("/nonexistent/cloud.xyz").error.find("cannot be opened"), std::string::npos);
 }
 
+namespace
+{
+
+/// Scan 1: identity, scanner at the origin, 2 x 2 points, one missing return. Scan 2: rotated 90 degrees about z
+/// (axes x -> y, y -> -x) and moved to (10, 0, 1), 3 x 1 points.
+std::string twoScanPtx()
+{
+  return "2\n2\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n"
+         "1 2 3 0.5 10 20 30\n0 0 0 0.5 0 0 0\n-1 0 2 0.25 1 2 3\n4 5 6 1 255 255 255\n"
+         "3\n1\n10 0 1\n0 1 0\n-1 0 0\n0 0 1\n0 1 0 0\n-1 0 0 0\n0 0 1 0\n10 0 1 1\n"
+         "1 0 0 0.1 7 8 9\n0 2 0 0.2 7 8 9\n1 1 1 0.3 7 8 9\n";
+}
+
+} // namespace
+
 TEST(PtxParser, TwoRegisteredScansWithMissingReturnsAndTheirScanners)
 {
-  // Scan 1: identity, scanner at the origin, 2 x 2 points, one missing return. Scan 2: rotated 90 degrees about z
-  // (axes x -> y, y -> -x) and moved to (10, 0, 1), 3 x 1 points.
-  const std::string ptx = "2\n2\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n"
-                          "1 2 3 0.5 10 20 30\n0 0 0 0.5 0 0 0\n-1 0 2 0.25 1 2 3\n4 5 6 1 255 255 255\n"
-                          "3\n1\n10 0 1\n0 1 0\n-1 0 0\n0 0 1\n0 1 0 0\n-1 0 0 0\n0 0 1 0\n10 0 1 1\n"
-                          "1 0 0 0.1 7 8 9\n0 2 0 0.2 7 8 9\n1 1 1 0.3 7 8 9\n";
+  const std::string ptx = twoScanPtx();
   const gls::PointText t = gls::parsePtx(ptx.data(), ptx.size());
   ASSERT_EQ(t.error, "");
   const std::vector<double> expected = { 1, 2, 3, -1, 0, 2, 4, 5, 6, 10, 1, 1, 8, 0, 1, 9, 1, 2 };
@@ -374,4 +385,92 @@ TEST(PcdParser, DamagedFilesAreRefusedWithWhatIsWrong)
   EXPECT_NE(errorOf("VERSION 0.7\nFIELDS a b\nDATA ascii\n").find("no x, y and z"), std::string::npos);
   EXPECT_NE(errorOf("FIELDS x y z\nDATA zip\n").find("DATA 'zip'"), std::string::npos);
   EXPECT_NE(errorOf("hello\n").find("unknown PCD header line"), std::string::npos);
+}
+
+namespace
+{
+
+std::string writeTemp(const std::string& name, const std::string& bytes)
+{
+  const std::string path = testing::TempDir() + name;
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+gls::TextCloudFormat formatOf(const std::string& text)
+{
+  return gls::textCloudFormat(text.data(), text.size());
+}
+
+std::string headError(const std::string& text, bool wholeFile)
+{
+  return gls::pointCloudHeadError(text.data(), text.size(), wholeFile);
+}
+
+} // namespace
+
+TEST(TextCloudFormat, TheContentTellsPcdAndPtxFilesWhateverTheirExtension)
+{
+  for (const std::string encoding : { "ascii", "binary", "binary_compressed" })
+  {
+    EXPECT_EQ(formatOf(pcdFile(encoding)), gls::TextCloudFormat::Pcd) << encoding;
+  }
+  EXPECT_EQ(formatOf("FIELDS x y z\nDATA ascii\n"), gls::TextCloudFormat::Pcd);
+  EXPECT_EQ(formatOf(twoScanPtx()), gls::TextCloudFormat::Ptx);
+  EXPECT_EQ(formatOf("2\n0 0 0 1\n1 0 0 2\n"), gls::TextCloudFormat::PointText);      // Leica PTS
+  EXPECT_EQ(formatOf("2\n2\n0 0 0\n1 0 0\n0 1 0\n"), gls::TextCloudFormat::PointText); // short of a PTX header
+  EXPECT_EQ(formatOf("x y z\n1 2 3\n"), gls::TextCloudFormat::PointText);
+  EXPECT_EQ(formatOf("# VERSION\n1 2 3\n"), gls::TextCloudFormat::PointText);
+
+  // A scan renamed .txt or .csv is read by its format's parser, and its layout says so.
+  const std::string pcd = pcdFile("binary_compressed"), ptx = twoScanPtx();
+  const gls::PointText fromPcd = gls::readPointTextFile(writeTemp("renamed-pcd.txt", pcd));
+  ASSERT_EQ(fromPcd.error, "");
+  const gls::PointText pcdParsed = gls::parsePcd(pcd.data(), pcd.size());
+  EXPECT_EQ(fromPcd.normals, pcdParsed.normals);
+  EXPECT_EQ(fromPcd.viewpoints, pcdParsed.viewpoints);
+  EXPECT_EQ(fromPcd.layout, "a PCL PCD file by its content: " + pcdParsed.layout);
+  const gls::PointText fromPtx = gls::readPointTextFile(writeTemp("renamed-ptx.csv", ptx));
+  ASSERT_EQ(fromPtx.error, "");
+  const gls::PointText ptxParsed = gls::parsePtx(ptx.data(), ptx.size());
+  EXPECT_EQ(fromPtx.points, ptxParsed.points);
+  EXPECT_EQ(fromPtx.viewpoints, ptxParsed.viewpoints);
+  EXPECT_EQ(fromPtx.layout, "a Leica PTX file by its content: " + ptxParsed.layout);
+  // A damaged one: the error names the format the content showed.
+  const std::string path = writeTemp("damaged-pcd.txt", pcd.substr(0, pcd.size() - 10));
+  EXPECT_EQ(gls::readPointTextFile(path).error.rfind(path + ": a PCL PCD file by its content: ", 0), 0u)
+    << gls::readPointTextFile(path).error;
+}
+
+TEST(TextCloudFormat, AFilesFirstLinesTellAPointCloudFromATable)
+{
+  EXPECT_EQ(headError("x,y,z,speed\n1,2,3,4\n", true), "");
+  EXPECT_EQ(headError("0 0 0\n1 0 0\n", true), "");
+  EXPECT_EQ(headError(pcdFile("binary"), false), "");
+  EXPECT_EQ(headError(twoScanPtx().substr(0, 70), false), "");
+  // Tables that are no point cloud: the parser's own error.
+  for (const std::string table : { "time,value\n1,2\n3,4\n", "a,b,c\n1,2,3\n", "1,2\n3,4\n", "name,x,y,z\nP1,1,2,3\n" })
+  {
+    EXPECT_NE(headError(table, true), "") << table;
+    EXPECT_EQ(headError(table, true), parse(table).error) << table;
+  }
+  // Only complete lines of a file's first bytes are judged; its last point-count group may go on after them.
+  EXPECT_EQ(headError("0 0 0\n1 0 0\n1 2", false), "");
+  EXPECT_EQ(headError("0 0 0\n1 0 0\n1 2", true), "line 3: expected 3 columns like the lines before, got 2");
+  EXPECT_EQ(headError("3\n0 0 0 1\n1 0 0 2\n", false), "");
+  EXPECT_EQ(headError("3\n0 0 0 1\n1 0 0 2\n", true), "line 1: the point count line says 3 points, but 2 follow");
+  EXPECT_EQ(headError("1\n0 0 0 1\n1 0 0 2\n", false), "line 1: the point count line says 1 point, but 2 follow");
+  EXPECT_EQ(headError("1 2 3", false), "no line ends in the first 5 bytes");
+
+  // A file: its first pointCloudHeadBytes; a count line announcing more points than they hold is no error there.
+  std::string big = "200000\n";
+  for (int i = 0; big.size() < 2 * gls::pointCloudHeadBytes; ++i)
+  {
+    big += std::to_string(i) + " 0.5 1 7\n";
+  }
+  EXPECT_EQ(gls::pointCloudFileHeadError(writeTemp("big-head.txt", big)), "");
+  EXPECT_NE(parse(big).error, ""); // the whole file holds fewer than 200000
+  const std::string path = writeTemp("table.csv", "time,value\n1,2\n");
+  EXPECT_EQ(gls::pointCloudFileHeadError(path), path + ": " + parse("time,value\n1,2\n").error);
+  EXPECT_NE(gls::pointCloudFileHeadError("/nonexistent/cloud.csv").find("cannot be opened"), std::string::npos);
 }

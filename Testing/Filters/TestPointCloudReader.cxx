@@ -139,3 +139,30 @@ TEST(PointCloudReader, BadFilesGiveErrorsWithTheLineAndAnEmptyOutput)
   EXPECT_NE(r.errors->Message.find("cannot be opened"), std::string::npos) << r.errors->Message;
   EXPECT_FALSE(r.reader->CanReadFile("cloud.ply"));
 }
+
+TEST(PointCloudReader, ClaimsCsvAndTxtFilesThatHoldAPointCloudOnly)
+{
+  // ParaView's reader factory asks CanReadFile: a .csv or .txt point cloud is ours, any other table is left to
+  // ParaView's CSV reader; the other extensions are ours by name.
+  vtkNew<vtkGLSPointCloudReader> reader;
+  EXPECT_TRUE(reader->CanReadFile(writeTemp("claim-cloud.csv", "x,y,z,speed\n0,0,0,1\n1,0,0,2\n").c_str()));
+  EXPECT_TRUE(reader->CanReadFile(writeTemp("claim-cloud.TXT", "0 0 0\n1 0 0\n0 1 0\n").c_str()));
+  EXPECT_FALSE(reader->CanReadFile(writeTemp("claim-table.csv", "time,value\n0,1\n1,2\n").c_str()));
+  EXPECT_FALSE(reader->CanReadFile(writeTemp("claim-names.csv", "name,x,y,z\nP1,1,2,3\n").c_str()));
+  EXPECT_FALSE(reader->CanReadFile(writeTemp("claim-two.txt", "1 2\n3 4\n").c_str()));
+  EXPECT_FALSE(reader->CanReadFile("/nonexistent/cloud.csv"));
+  EXPECT_TRUE(reader->CanReadFile("/nonexistent/cloud.xyz"));
+
+  // A PCL PCD file renamed .txt is claimed and read as one, its ColumnLayout saying so.
+  Read r("claim-renamed-pcd.txt",
+    "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\n"
+    "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n1 2 3\n4 5 6\n");
+  EXPECT_TRUE(r.reader->CanReadFile(r.reader->GetFileName()));
+  EXPECT_EQ(r.errors->Count, 0) << r.errors->Message;
+  ASSERT_EQ(r.output()->GetNumberOfPoints(), 2);
+  double p[3];
+  r.output()->GetPoint(1, p);
+  EXPECT_EQ(p[2], 6.0);
+  EXPECT_EQ(std::string(r.reader->GetColumnLayout()).rfind("a PCL PCD file by its content: ", 0), 0u)
+    << r.reader->GetColumnLayout();
+}

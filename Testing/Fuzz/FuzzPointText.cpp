@@ -1,14 +1,24 @@
 // libFuzzer target: the text point-cloud parser on arbitrary bytes. Invariants: no crash, no sanitizer report; on
 // success whole points, a layout, and normals, colours, intensity and every other column either absent or one per
-// point; on failure an error with a line number and nothing else.
+// point; on failure an error with a line number and nothing else. The judgement ParaView's reader factory asks of a
+// file's first bytes (gls::pointCloudHeadError) agrees with the parser on a whole text, and never crashes on a part.
 #include "gls/PointTextParser.h"
 
 #include <cstdint>
 #include <cstdlib>
+#include <string>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
-  const gls::PointText t = gls::parsePointText(reinterpret_cast<const char*>(data), size);
+  const char* text = reinterpret_cast<const char*>(data);
+  const gls::PointText t = gls::parsePointText(text, size);
+  const std::string wholeHead = gls::pointCloudHeadError(text, size, true);
+  const bool otherFormat = gls::textCloudFormat(text, size) != gls::TextCloudFormat::PointText;
+  if (!otherFormat && wholeHead != t.error)
+  {
+    std::abort();
+  }
+  gls::pointCloudHeadError(text, size, false);
   const std::size_t n = t.points.size() / 3;
   const auto absentOrPerPoint = [n](std::size_t count, std::size_t components) {
     return count == 0 || count == n * components;

@@ -112,12 +112,15 @@ class PluginProxies(unittest.TestCase):
             simple.Delete(p)
 
     def test_text_clouds_open_with_the_point_cloud_reader(self):
-        # File > Open: .xyz, .pts, .ptx and .pcd have the GLS Point Cloud Reader as theirs (OpenDataFile takes it);
-        # .csv and .txt, which ParaView's CSV and GDAL readers also claim, offer it beside them (the GUI asks which
-        # reader, with "Set reader as default").
+        # File > Open and pvpython's OpenDataFile: .xyz, .pts, .ptx and .pcd are the GLS Point Cloud Reader's; a .csv
+        # or .txt point cloud opens with the same reader (proxy CSVPointCloudReader), offered before ParaView's CSV
+        # and GDAL readers (the GUI's "choose a reader" dialog lists them in this order, the first selected); a .csv
+        # table that is no point cloud still opens with the CSV reader, as a table.
         folder = tempfile.mkdtemp()
         factory = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory()
         session = servermanager.ActiveConnection.Session
+        ours = {'xyz': 'GLSPointCloudReader', 'pts': 'GLSPointCloudReader',
+                'csv': 'CSVPointCloudReader', 'txt': 'CSVPointCloudReader'}
         for extension, separator in (('xyz', ' '), ('pts', ' '), ('csv', ','), ('txt', ' ')):
             path = os.path.join(folder, 'cloud.' + extension)
             with open(path, 'w') as f:
@@ -125,17 +128,31 @@ class PluginProxies(unittest.TestCase):
                                 ((0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0.5))))
             readers = factory.GetReaders(path, session)
             names = [readers.GetString(i) for i in range(1, readers.GetLength(), 3)]
-            self.assertIn('GLSPointCloudReader', names, extension)
-            if extension in ('xyz', 'pts'):
-                opened = simple.OpenDataFile(path)
-                self.assertEqual(opened.GetXMLName(), 'GLSPointCloudReader', extension)
-                simple.Delete(opened)
-            reader = NS['GLSPointCloudReader'](FileName=path)
-            reader.UpdatePipeline()
-            cloud = servermanager.Fetch(reader)
+            self.assertEqual(names[0], ours[extension], (extension, names))
+            if extension in ('csv', 'txt'):
+                self.assertIn('CSVReader', names)
+            opened = simple.OpenDataFile(path)
+            self.assertEqual(opened.GetXMLName(), ours[extension], extension)
+            opened.UpdatePipeline()
+            cloud = servermanager.Fetch(opened)
+            self.assertEqual(cloud.GetClassName(), 'vtkPolyData', extension)
             self.assertEqual(cloud.GetNumberOfPoints(), 4, extension)
             self.assertAlmostEqual(cloud.GetPoint(3)[2], 0.5)
+            simple.Delete(opened)
+            reader = NS['GLSPointCloudReader'](FileName=path)
+            reader.UpdatePipeline()
+            self.assertEqual(servermanager.Fetch(reader).GetNumberOfPoints(), 4, extension)
             simple.Delete(reader)
+        table = os.path.join(folder, 'table.csv')
+        with open(table, 'w') as f:
+            f.write('time,value\n0,1.5\n1,2.5\n')
+        readers = factory.GetReaders(table, session)
+        self.assertNotIn('CSVPointCloudReader', [readers.GetString(i) for i in range(1, readers.GetLength(), 3)])
+        opened = simple.OpenDataFile(table)
+        self.assertEqual(opened.GetXMLName(), 'CSVReader')
+        opened.UpdatePipeline()
+        self.assertEqual(opened.GetDataInformation().GetDataSetTypeAsString(), 'vtkTable')
+        simple.Delete(opened)
 
     def test_an_unstructured_grid_and_a_multiblock_are_in_every_filters_input_domain(self):
         # The GUI greys out a filter whose input domain refuses the selected source (once vtkPolyData only).

@@ -2,6 +2,7 @@
 
 #include "PointTextLayout.h"
 #include "PointTextTable.h"
+#include "TextCloudFormat.h"
 
 #include <cmath>
 #include <fstream>
@@ -147,7 +148,7 @@ PointText parseFile(const std::string& path, PointText (*parse)(const char*, std
 
 PointText readPointTextFile(const std::string& path)
 {
-  return parseFile(path, parsePointText);
+  return parseFile(path, pointtext::parseTextCloud);
 }
 
 PointText readPtxFile(const std::string& path)

@@ -216,7 +216,7 @@ std::string pointCountMismatch(std::size_t declared, std::size_t found)
 
 } // namespace
 
-std::string readTable(const char* text, std::size_t size, Table& table)
+std::string readTable(const char* text, std::size_t size, Table& table, bool wholeText)
 {
   table = Table();
   const char* p = text;
@@ -318,7 +318,7 @@ std::string readTable(const char* text, std::size_t size, Table& table)
     table.values.insert(table.values.end(), row.begin(), row.end());
     table.lines.push_back(lineNumber);
   }
-  if (!countHolds())
+  if (!countHolds() && (wholeText || table.rows() - rowsBeforeCount > declared))
   {
     return fail(countLine, pointCountMismatch(declared, table.rows() - rowsBeforeCount));
   }

@@ -27,8 +27,9 @@ struct Table
   double at(std::size_t row, std::size_t column) const { return values[row * width + column]; }
 };
 
-/// Reads `size` bytes into `table`; returns "" or "line N: what is wrong".
-std::string readTable(const char* text, std::size_t size, Table& table);
+/// Reads `size` bytes into `table`; returns "" or "line N: what is wrong". With `wholeText` false the text is a file's
+/// first lines (its last point-count group may then hold fewer points than its count line says: the rest follows).
+std::string readTable(const char* text, std::size_t size, Table& table, bool wholeText = true);
 
 } // namespace pointtext
 } // namespace gls

@@ -68,8 +68,31 @@ struct PointText
 /// Parses `size` bytes of text.
 PointText parsePointText(const char* text, std::size_t size);
 
-/// Reads and parses a file; error names the file when it cannot be read.
+/// Reads and parses a file; error names the file when it cannot be read. A file whose content is a PCL PCD or a
+/// Leica PTX file (textCloudFormat), whatever its extension (.txt, .csv), is read as one, and its layout says so.
 PointText readPointTextFile(const std::string& path);
+
+/// The format a text file's first bytes show, whatever its extension.
+enum class TextCloudFormat
+{
+  PointText, ///< anything else: the point text above
+  Pcd,       ///< a PCL PCD header: the first line that is not blank or a '#' comment starts with VERSION or FIELDS
+  Ptx        ///< a Leica PTX scan header: two lines of one integer, four lines of three numbers, four of four
+};
+TextCloudFormat textCloudFormat(const char* head, std::size_t size);
+
+/// "" when the first `size` bytes of a file read as a point cloud: a PCD or PTX header (textCloudFormat), or point
+/// text whose columns can be told by the rules above, judged on its complete lines (with `wholeFile` false the last
+/// line, when not ended by a newline, is left out, and the last point-count group may hold fewer points than it
+/// says). Else why not: parsePointText's error. ParaView's reader factory asks this of .csv and .txt files, to choose
+/// between the point-cloud reader and its table reader.
+std::string pointCloudHeadError(const char* head, std::size_t size, bool wholeFile);
+
+/// Bytes of a file that pointCloudFileHeadError reads.
+constexpr std::size_t pointCloudHeadBytes = 64 * 1024;
+
+/// pointCloudHeadError of a file's first pointCloudHeadBytes; an error naming the file when it cannot be opened.
+std::string pointCloudFileHeadError(const std::string& path);
 
 /// A Leica PTX file (one or more scans, each: its columns and rows, the scanner's registered position and axes, a 4x4
 /// registration matrix whose first three rows are the axes and the last the translation, then columns x rows lines
