@@ -13,6 +13,8 @@ struct vtkGLSCloud
 {
   std::vector<double> Points;  ///< 3 per point
   std::vector<double> Normals; ///< 3 per point (empty when the filter has none, e.g. normal estimation)
+  /// Bytes a point takes in Points and Normals.
+  static constexpr double BytesPerPoint = 6 * sizeof(double);
   std::size_t Owned = 0;       ///< this piece's points, the first ones
 
   /// After MergeCoincident: which input points (owned, then ghosts) share a position. Empty when none was merged.

@@ -202,7 +202,7 @@ bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std:
 
 double vtkGLSSampleSource::EngineBytes(std::size_t n, std::size_t S, int threads)
 {
-  const double perPoint = 6 * 8 + 2 * 3 * 8 + 3 * 8 + 8; // input copies, grid copies, positions, order
+  const double perPoint = 2 * 3 * 8 + 3 * 8 + 8; // the grid's copies of the points and normals, positions, order
   const double perThread = static_cast<double>(S) * (sizeof(gls::Moments) + sizeof(gls::ScaleSample) + 8);
   return static_cast<double>(n) * perPoint + static_cast<double>(threads) * perThread;
 }

@@ -53,7 +53,8 @@ public:
   bool Feed(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const gls::ParallelOptions& parallel,
     gls::Backend backend, gls::RunReport& report) const;
 
-  /// Bytes of the engine's buffers for n points (ghosts included) and S scales on `threads` threads.
+  /// Bytes of the engine's buffers for n points (ghosts included) and S scales on `threads` threads, besides the
+  /// points and normals it is given (vtkGLSCloud::BytesPerPoint each).
   static double EngineBytes(std::size_t n, std::size_t S, int threads);
 
   /// Tiles of the fit (1 when it is not tiled or is no fit) and points of its largest tile, ghosts included.

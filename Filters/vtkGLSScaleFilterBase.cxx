@@ -236,9 +236,9 @@ bool vtkGLSScaleFilterBase::ChooseTiles(const vtkGLSRun& run, const gls::ScaleSp
   const std::size_t S = settings.scales.size();
   const int threads = gls::resolveThreadCount(this->NumberOfThreads);
   const double budget = this->MemoryBudgetBytes();
-  const double cloud = static_cast<double>(run.Cloud.Size());
+  const double cloud = static_cast<double>(run.Cloud.Size()) * vtkGLSCloud::BytesPerPoint; // kept while tiles run
   tiled.reset();
-  if (fixed + vtkGLSSampleSource::EngineBytes(run.Cloud.Size(), S, threads) <= budget || run.Cloud.Owned == 0)
+  if (fixed + cloud + vtkGLSSampleSource::EngineBytes(run.Cloud.Size(), S, threads) <= budget || run.Cloud.Owned == 0)
   {
     return true;
   }
