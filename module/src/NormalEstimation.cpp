@@ -218,6 +218,257 @@ struct PointEstimates
   }
 };
 
+/// One normal estimation, computed in the grid's order (a point's neighbours and its own values lie near it in
+/// memory) and scattered to the points' order once, at the end: the grid, the per-point estimates, and each thread's
+/// scratch. Its steps, in order: the first neighbourhoods, the curve test of planar input, the growth of degenerate
+/// neighbourhoods, one orientation.
+class GridEstimation
+{
+public:
+  GridEstimation(const double* xyz, std::size_t n, const NormalEstimationSettings& settings)
+    : Settings(settings)
+    , ByRadius(settings.neighborhood == NeighborhoodType::Radius)
+    , Planar(commonZ(xyz, n).planar) // 2D input: every finite point in one plane z = const (a curve)
+    , Threads(static_cast<std::size_t>(resolveThreadCount(settings.parallel.threads)))
+  {
+    Grid.setThreads(settings.parallel.threads);
+    Grid.build(xyz, nullptr, n,
+      ByRadius ? settings.radius : NeighborGrid::suggestCellSizeForKNearest(xyz, n, settings.k));
+    const std::size_t count = Grid.view().count;
+    Estimates = PointEstimates(count, settings.graphNeighbors);
+    // On planar input, also the in-plane normals and how curve-like each neighbourhood is.
+    InPlane.assign(Planar ? count : 0, Vec3{ kNaN, kNaN, kNaN });
+    CurveRatio.assign(Planar ? count : 0, kNaN);
+    Scratch.resize(Threads);
+    Nearest.resize(Threads);
+    RunScratch.resize(Threads);
+    // The minimum spanning tree's graph links each point to its nearest others: the k-nearest neighbourhoods found
+    // first hold them (nearest first), so they are kept for the orientation, which queries only the points they do
+    // not answer (32-bit indices: larger grids are queried whole).
+    GraphWidth = static_cast<std::size_t>(std::max(settings.graphNeighbors, 1));
+    KeepNearest =
+      settings.orientation == NormalOrientation::MinimumSpanningTree && !ByRadius && count < kNoNeighbor;
+    NearestOthers.assign(KeepNearest ? count * GraphWidth : 0, kNoNeighbor);
+  }
+
+  /// Every point's estimate from its first neighbourhood (k nearest, a cell's points at a time, or the ball).
+  bool estimateFirstNeighborhoods(const ParallelOptions& stage)
+  {
+    const GridView& g = Grid.view();
+    return parallelFor(g.count, stage, [&](std::size_t begin, std::size_t end, int t) {
+      std::vector<std::uint64_t>& nb = Scratch[static_cast<std::size_t>(t)];
+      if (ByRadius)
+      {
+        for (std::size_t s = begin; s < end; ++s)
+        {
+          gatherNeighbors(Grid, g.points[s], true, Settings.k, Settings.radius, Nearest[t], nb);
+          estimateAt(s, nb);
+        }
+        return;
+      }
+      // The k-nearest queries a cell's points at a time (the same answers as one at a time).
+      for (std::size_t s = begin; s < end;)
+      {
+        const std::size_t runEnd = std::min<std::size_t>(end, Grid.cellRunEnd(s));
+        Grid.kNearestOfCellRun(s, runEnd, Settings.k, RunScratch[static_cast<std::size_t>(t)],
+          [&](std::uint64_t q, const std::vector<std::pair<double, std::uint64_t>>& nearest) {
+            nb.clear();
+            for (const auto& c : nearest)
+            {
+              nb.push_back(c.second);
+            }
+            estimateAt(q, nb);
+          });
+        s = runEnd;
+      }
+    });
+  }
+
+  /// Planar input whose neighbourhoods are mostly lines (median eigenvalue ratio below 0.05) is a 2D curve: its
+  /// normals become the in-plane ones. Returns whether it is.
+  bool adoptInPlaneNormalsOfACurve()
+  {
+    std::vector<double> finiteRatios;
+    for (double r : CurveRatio)
+    {
+      if (std::isfinite(r))
+      {
+        finiteRatios.push_back(r);
+      }
+    }
+    if (finiteRatios.empty())
+    {
+      return false;
+    }
+    std::nth_element(finiteRatios.begin(), finiteRatios.begin() + finiteRatios.size() / 2, finiteRatios.end());
+    if (!(finiteRatios[finiteRatios.size() / 2] < 0.05))
+    {
+      return false;
+    }
+    Estimates.normals = InPlane;
+    return true;
+  }
+
+  /// Surfaces (not a curve): a neighbourhood whose spread in its tangent plane is below minimumSpread (close to a
+  /// line: a scan line, a latitude ring near a pole, three points on a meridian) does not define a normal. It grows
+  /// (twice the neighbours, or sqrt(2) times the radius, each step) up to maximumGrowth; where none spans two
+  /// dimensions the normal is NaN. Each point's outcome depends on its own neighbourhoods only (deterministic for
+  /// any thread count).
+  bool growDegenerateNeighborhoods(bool curve, const ParallelOptions& stage)
+  {
+    const GridView& g = Grid.view();
+    std::vector<std::uint64_t> degenerate;
+    for (std::size_t s = 0; !curve && s < g.count; ++s)
+    {
+      if (!finite3(&Estimates.normals[s].x) || !(Estimates.spread[s] >= Settings.minimumSpread))
+      {
+        degenerate.push_back(s);
+      }
+    }
+    const int steps = adaptiveGrowthSteps(Settings.maximumGrowth);
+    return parallelFor(degenerate.size(), stage, [&](std::size_t begin, std::size_t end, int t) {
+      for (std::size_t d = begin; d < end; ++d)
+      {
+        growAt(degenerate[d], steps, Scratch[static_cast<std::size_t>(t)], Nearest[static_cast<std::size_t>(t)]);
+      }
+    });
+  }
+
+  /// The orientations by a rule of each point alone: none, towards or away from a point, up, or agreeing with
+  /// reference normals.
+  void orientByRule()
+  {
+    const GridView& g = Grid.view();
+    std::vector<Vec3>& normals = Estimates.normals;
+    switch (Settings.orientation)
+    {
+      case NormalOrientation::TowardsPoint:
+      case NormalOrientation::AwayFromPoint:
+      {
+        const double sign = Settings.orientation == NormalOrientation::TowardsPoint ? 1.0 : -1.0;
+        for (std::size_t s = 0; s < g.count; ++s)
+        {
+          const Vec3 toView = Settings.viewpoint - g.points[s];
+          flipIfNegative(&normals[s].x, sign * dot(normals[s], toView));
+        }
+        break;
+      }
+      case NormalOrientation::Up:
+        for (std::size_t s = 0; s < g.count; ++s)
+        {
+          flipIfNegative(&normals[s].x, dot(normals[s], Settings.up));
+        }
+        break;
+      case NormalOrientation::AgreeWithReference:
+        for (std::size_t s = 0; Settings.reference && s < g.count; ++s)
+        {
+          const double* r = Settings.reference + 3 * g.ids[s];
+          if (finite3(r))
+          {
+            flipIfNegative(&normals[s].x, normals[s].x * r[0] + normals[s].y * r[1] + normals[s].z * r[2]);
+          }
+        }
+        break;
+      default: // None; the minimum spanning tree is orientAlongSpanningTree
+        break;
+    }
+  }
+
+  /// The minimum spanning tree's orientation of the points with a normal (n: the input's point count).
+  bool orientAlongSpanningTree(std::size_t n, const ParallelOptions& stage, std::size_t& components)
+  {
+    const GridView& g = Grid.view();
+    std::vector<unsigned char> nodes(g.count, 0);
+    for (std::size_t s = 0; s < g.count; ++s)
+    {
+      nodes[s] = finite3(&Estimates.normals[s].x) ? 1 : 0;
+    }
+    OrientationGraph graph;
+    graph.grid = &Grid;
+    graph.n = n;
+    graph.graphNeighbors = Settings.graphNeighbors;
+    graph.sortedDegrees = Estimates.graphDegree.data();
+    graph.nodes = nodes.data();
+    graph.nearestOthers = std::move(NearestOthers);
+    return gls::orientAlongSpanningTree(graph, Estimates.normals.data(), stage, components);
+  }
+
+  /// The result's arrays in the points' order (n points).
+  void scatter(std::size_t n, NormalEstimationResult& result) const
+  {
+    Estimates.scatter(Grid.view().ids, n, result, Settings.parallel.threads);
+  }
+
+private:
+  /// One point's estimate from its neighbours (sorted indices, nearest first for k-nearest neighbourhoods).
+  void estimateAt(std::size_t s, const std::vector<std::uint64_t>& nb)
+  {
+    const GridView& g = Grid.view();
+    const Vec3 p = g.points[s];
+    if (KeepNearest)
+    {
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < nb.size() && j < GraphWidth; ++i)
+      {
+        if (nb[i] != s)
+        {
+          NearestOthers[s * GraphWidth + j++] = static_cast<std::uint32_t>(nb[i]);
+        }
+      }
+    }
+    Estimates.neighborCounts[s] = static_cast<int>(nb.size());
+    Estimates.reach[s] = farthest(g, p, nb);
+    Vec3 normal;
+    if (pcaNormal(g, p, nb, normal, Estimates.spread[s]))
+    {
+      Estimates.normals[s] = normal;
+    }
+    if (Planar && pcaNormal2D(g, p, nb, normal, CurveRatio[s]))
+    {
+      InPlane[s] = normal;
+    }
+  }
+
+  /// Grows point s's neighbourhood until it spans two dimensions or `steps` growth steps are done.
+  void growAt(std::size_t s, int steps, std::vector<std::uint64_t>& nb,
+    std::vector<std::pair<double, std::uint64_t>>& nearest)
+  {
+    const GridView& g = Grid.view();
+    const Vec3 p = g.points[s];
+    Vec3 normal{ kNaN, kNaN, kNaN };
+    bool found = false;
+    for (int step = 1; step <= steps && !found; ++step)
+    {
+      Estimates.graphDegree[s] = grownCount(Settings.graphNeighbors, step);
+      const int k = grownCount(Settings.k, step);
+      gatherNeighbors(Grid, p, ByRadius, k, grownRadius(Settings.radius, step), nearest, nb);
+      Estimates.neighborCounts[s] = static_cast<int>(nb.size());
+      Estimates.reach[s] = farthest(g, p, nb);
+      found = pcaNormal(g, p, nb, normal, Estimates.spread[s]) && Estimates.spread[s] >= Settings.minimumSpread;
+      if (!ByRadius && nb.size() < static_cast<std::size_t>(k))
+      {
+        break; // every point is already in the neighbourhood
+      }
+    }
+    Estimates.normals[s] = found ? normal : Vec3{ kNaN, kNaN, kNaN };
+  }
+
+  const NormalEstimationSettings& Settings;
+  const bool ByRadius;
+  const bool Planar;
+  const std::size_t Threads;
+  NeighborGrid Grid;
+  PointEstimates Estimates{ 0, 0 };
+  std::vector<Vec3> InPlane;
+  std::vector<double> CurveRatio;
+  std::vector<std::vector<std::uint64_t>> Scratch;
+  std::vector<std::vector<std::pair<double, std::uint64_t>>> Nearest;
+  std::vector<NeighborGrid::CellRunScratch> RunScratch;
+  std::size_t GraphWidth = 1;
+  bool KeepNearest = false;
+  std::vector<std::uint32_t> NearestOthers;
+};
+
 } // namespace
 
 double reachableRadius(const NormalEstimationSettings& settings)
@@ -234,219 +485,32 @@ bool estimateNormals(
   const double* xyz, std::size_t n, const NormalEstimationSettings& settings, NormalEstimationResult& result)
 {
   result.components = 0;
-  const bool byRadius = settings.neighborhood == NeighborhoodType::Radius;
-  // 2D input: every finite point in one plane z = const (a curve); its normals are in that plane.
-  const bool planar = commonZ(xyz, n).planar;
-  const double cellSize =
-    byRadius ? settings.radius : NeighborGrid::suggestCellSizeForKNearest(xyz, n, settings.k);
-  NeighborGrid grid;
-  grid.setThreads(settings.parallel.threads);
-  grid.build(xyz, nullptr, n, cellSize);
-  const GridView& g = grid.view();
-
-  // Every per-point value is computed in the grid's order (a point's neighbours and its own values lie near it in
-  // memory) and scattered to the points' order once, at the end.
-  PointEstimates est(g.count, settings.graphNeighbors);
-  // On planar input, also the in-plane normals and how curve-like each neighbourhood is.
-  std::vector<Vec3> inPlane(planar ? g.count : 0, Vec3{ kNaN, kNaN, kNaN });
-  std::vector<double> curveRatio(planar ? g.count : 0, kNaN);
-
-  const int threads = resolveThreadCount(settings.parallel.threads);
-  std::vector<std::vector<std::uint64_t>> scratch(static_cast<std::size_t>(threads));
-  std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
-  // The minimum spanning tree's graph links each point to its nearest others: the k-nearest neighbourhoods found
-  // here hold them (nearest first), so they are kept for the orientation, which queries only the points they do not
-  // answer (32-bit indices: larger grids are queried whole).
-  const bool tree = settings.orientation == NormalOrientation::MinimumSpanningTree;
-  const std::size_t graphWidth = static_cast<std::size_t>(std::max(settings.graphNeighbors, 1));
-  const bool keepNearest = tree && !byRadius && g.count < kNoNeighbor;
-  std::vector<std::uint32_t> nearestOthers(keepNearest ? g.count * graphWidth : 0, kNoNeighbor);
-
+  GridEstimation run(xyz, n, settings);
   // Progress: the first neighbourhoods [0, 0.5], the grown ones [0.5, 0.6], the orientation [0.6, 1] (when it is
   // the minimum spanning tree; else the estimate is the whole range).
+  const bool tree = settings.orientation == NormalOrientation::MinimumSpanningTree;
   const double estimateEnd = tree ? 0.6 : 1.0;
-  const ParallelOptions firstStage = progressStage(settings.parallel, 0.0, 5.0 / 6.0 * estimateEnd);
-  // One point's estimate from its neighbours (sorted indices, nearest first for k-nearest neighbourhoods).
-  const auto estimateAt = [&](std::size_t s, const std::vector<std::uint64_t>& nb) {
-    const Vec3 p = g.points[s];
-    if (keepNearest)
-    {
-      std::size_t j = 0;
-      for (std::size_t i = 0; i < nb.size() && j < graphWidth; ++i)
-      {
-        if (nb[i] != s)
-        {
-          nearestOthers[s * graphWidth + j++] = static_cast<std::uint32_t>(nb[i]);
-        }
-      }
-    }
-    est.neighborCounts[s] = static_cast<int>(nb.size());
-    est.reach[s] = farthest(g, p, nb);
-    Vec3 normal;
-    if (pcaNormal(g, p, nb, normal, est.spread[s]))
-    {
-      est.normals[s] = normal;
-    }
-    if (planar && pcaNormal2D(g, p, nb, normal, curveRatio[s]))
-    {
-      inPlane[s] = normal;
-    }
-  };
-  std::vector<NeighborGrid::CellRunScratch> runScratch(static_cast<std::size_t>(threads));
-  const bool completed =
-    parallelFor(g.count, firstStage, [&](std::size_t begin, std::size_t end, int t) {
-      std::vector<std::uint64_t>& nb = scratch[t];
-      if (byRadius)
-      {
-        for (std::size_t s = begin; s < end; ++s)
-        {
-          gatherNeighbors(grid, g.points[s], true, settings.k, settings.radius, knn[t], nb);
-          estimateAt(s, nb);
-        }
-        return;
-      }
-      // The k-nearest queries a cell's points at a time (the same answers as one at a time).
-      for (std::size_t s = begin; s < end;)
-      {
-        const std::size_t runEnd = std::min<std::size_t>(end, grid.cellRunEnd(s));
-        grid.kNearestOfCellRun(s, runEnd, settings.k, runScratch[static_cast<std::size_t>(t)],
-          [&](std::uint64_t q, const std::vector<std::pair<double, std::uint64_t>>& nearest) {
-            nb.clear();
-            for (const auto& c : nearest)
-            {
-              nb.push_back(c.second);
-            }
-            estimateAt(q, nb);
-          });
-        s = runEnd;
-      }
-    });
-  if (!completed)
+  if (!run.estimateFirstNeighborhoods(progressStage(settings.parallel, 0.0, 5.0 / 6.0 * estimateEnd)))
   {
     return false;
   }
-  // Planar input whose neighbourhoods are mostly lines (median eigenvalue ratio below 0.05) is a 2D curve: its
-  // normals lie in the plane.
-  bool curve = false;
-  if (planar)
-  {
-    std::vector<double> finiteRatios;
-    for (double r : curveRatio)
-    {
-      if (std::isfinite(r))
-      {
-        finiteRatios.push_back(r);
-      }
-    }
-    if (!finiteRatios.empty())
-    {
-      std::nth_element(finiteRatios.begin(), finiteRatios.begin() + finiteRatios.size() / 2, finiteRatios.end());
-      if (finiteRatios[finiteRatios.size() / 2] < 0.05)
-      {
-        est.normals = inPlane;
-        curve = true;
-      }
-    }
-  }
-
-  // Surfaces: a neighbourhood whose spread in its tangent plane is below minimumSpread (close to a line: a scan
-  // line, a latitude ring near a pole, three points on a meridian) does not define a normal. It grows (twice the
-  // neighbours, or sqrt(2) times the radius, each step) up to maximumGrowth; where none spans two dimensions the
-  // normal is NaN. Each point's outcome depends on its own neighbourhoods only (deterministic for any thread count).
-  std::vector<std::uint64_t> degenerate;
-  for (std::size_t s = 0; !curve && s < g.count; ++s)
-  {
-    if (!finite3(&est.normals[s].x) || !(est.spread[s] >= settings.minimumSpread))
-    {
-      degenerate.push_back(s);
-    }
-  }
-  const int steps = adaptiveGrowthSteps(settings.maximumGrowth);
-  const ParallelOptions growthStage = progressStage(settings.parallel, 5.0 / 6.0 * estimateEnd, estimateEnd);
-  const bool grown = parallelFor(degenerate.size(), growthStage, [&](std::size_t begin, std::size_t end, int t) {
-      std::vector<std::uint64_t>& nb = scratch[t];
-      for (std::size_t d = begin; d < end; ++d)
-      {
-        const std::size_t s = degenerate[d];
-        const Vec3 p = g.points[s];
-        Vec3 normal{ kNaN, kNaN, kNaN };
-        bool found = false;
-        for (int step = 1; step <= steps && !found; ++step)
-        {
-          est.graphDegree[s] = grownCount(settings.graphNeighbors, step);
-          const int k = grownCount(settings.k, step);
-          gatherNeighbors(grid, p, byRadius, k, grownRadius(settings.radius, step), knn[t], nb);
-          est.neighborCounts[s] = static_cast<int>(nb.size());
-          est.reach[s] = farthest(g, p, nb);
-          found = pcaNormal(g, p, nb, normal, est.spread[s]) && est.spread[s] >= settings.minimumSpread;
-          if (!byRadius && nb.size() < static_cast<std::size_t>(k))
-          {
-            break; // every point is already in the neighbourhood
-          }
-        }
-        est.normals[s] = found ? normal : Vec3{ kNaN, kNaN, kNaN };
-      }
-    });
-  if (!grown)
+  const bool curve = run.adoptInPlaneNormalsOfACurve();
+  if (!run.growDegenerateNeighborhoods(curve, progressStage(settings.parallel, 5.0 / 6.0 * estimateEnd, estimateEnd)))
   {
     return false;
   }
-
-  switch (settings.orientation)
+  if (tree)
   {
-    case NormalOrientation::None:
-      break;
-    case NormalOrientation::TowardsPoint:
-    case NormalOrientation::AwayFromPoint:
+    if (!run.orientAlongSpanningTree(n, progressStage(settings.parallel, 0.6, 1.0), result.components))
     {
-      const double sign = settings.orientation == NormalOrientation::TowardsPoint ? 1.0 : -1.0;
-      for (std::size_t s = 0; s < g.count; ++s)
-      {
-        const Vec3 toView = settings.viewpoint - g.points[s];
-        flipIfNegative(&est.normals[s].x, sign * dot(est.normals[s], toView));
-      }
-      break;
-    }
-    case NormalOrientation::Up:
-      for (std::size_t s = 0; s < g.count; ++s)
-      {
-        flipIfNegative(&est.normals[s].x, dot(est.normals[s], settings.up));
-      }
-      break;
-    case NormalOrientation::AgreeWithReference:
-      for (std::size_t s = 0; settings.reference && s < g.count; ++s)
-      {
-        const double* r = settings.reference + 3 * g.ids[s];
-        if (finite3(r))
-        {
-          flipIfNegative(&est.normals[s].x, est.normals[s].x * r[0] + est.normals[s].y * r[1] + est.normals[s].z * r[2]);
-        }
-      }
-      break;
-    case NormalOrientation::MinimumSpanningTree:
-    {
-      // The graph's nodes: the grid's points with a normal.
-      std::vector<unsigned char> nodes(g.count, 0);
-      for (std::size_t s = 0; s < g.count; ++s)
-      {
-        nodes[s] = finite3(&est.normals[s].x) ? 1 : 0;
-      }
-      OrientationGraph graph;
-      graph.grid = &grid;
-      graph.n = n;
-      graph.graphNeighbors = settings.graphNeighbors;
-      graph.sortedDegrees = est.graphDegree.data();
-      graph.nodes = nodes.data();
-      graph.nearestOthers = std::move(nearestOthers);
-      if (!orientAlongSpanningTree(
-            graph, est.normals.data(), progressStage(settings.parallel, 0.6, 1.0), result.components))
-      {
-        return false;
-      }
-      break;
+      return false;
     }
   }
-  est.scatter(g.ids, n, result, settings.parallel.threads);
+  else
+  {
+    run.orientByRule();
+  }
+  run.scatter(n, result);
   return true;
 }
 
