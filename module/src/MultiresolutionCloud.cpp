@@ -143,6 +143,69 @@ void mergeChildren(const PyramidCell* children, std::uint32_t count, const Vec3&
   }
 }
 
+/// The options of one step of a build: progress mapped to [begin, end] of the caller's, chunks of 4096.
+ParallelOptions buildStage(const ParallelOptions& parallel, double begin, double end)
+{
+  ParallelOptions o = progressStage(parallel, begin, end);
+  o.chunk = 4096;
+  return o;
+}
+
+/// Whether the caller's progress callback, told `fraction`, asks to abort.
+bool aborted(const ParallelOptions& parallel, double fraction)
+{
+  return parallel.progress && parallel.progress(fraction);
+}
+
+/// The top level of a layout: the first whose cells are at least twice the largest scale (or the lattice's last).
+int topLevelOf(const PyramidLayout& layout)
+{
+  int topLevel = 0;
+  while (topLevel < kMortonBits - 1 && std::ldexp(layout.finestCellSize, topLevel) < 2.0 * layout.largestScale)
+  {
+    ++topLevel;
+  }
+  return topLevel;
+}
+
+/// The lattice's origin: `low` snapped down to the top level's cells (edge H).
+Vec3 latticeOrigin(const Vec3& low, double H)
+{
+  return { std::floor(low.x / H) * H, std::floor(low.y / H) * H, std::floor(low.z / H) * H };
+}
+
+/// The keys of the admitted points on the finest lattice, with their indices (the k-th admitted point: k itself
+/// where all are), unsorted; false when the progress callback asked to abort.
+bool finestKeys(const double* xyz, std::size_t n, const unsigned char* admit, const Vec3& origin, double h0,
+  const ParallelOptions& stage, KeyedIndices& keyed)
+{
+  std::size_t admittedCount = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    admittedCount += admit[i] ? 1 : 0;
+  }
+  std::vector<std::uint64_t> admitted;
+  if (admittedCount < n)
+  {
+    admitted.reserve(admittedCount);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (admit[i])
+      {
+        admitted.push_back(i);
+      }
+    }
+  }
+  keyed.resize(admittedCount);
+  return parallelFor(admittedCount, stage, [&](std::size_t b, std::size_t e, int) {
+    for (std::size_t k = b; k < e; ++k)
+    {
+      const std::uint64_t i = admitted.empty() ? k : admitted[k];
+      keyed[k] = { finestLatticeKey(xyz + 3 * i, origin, h0), i };
+    }
+  });
+}
+
 } // namespace
 
 double nearCellEdge(double accuracy, double smallestScale)
@@ -231,105 +294,90 @@ bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::
   *this = MultiresolutionCloud();
   const int threads = resolveThreadCount(parallel.threads);
   // Progress: the keys and the sort are the first 60%, the levels the rest.
-  const auto stage = [&](double begin, double end) {
-    ParallelOptions o;
-    o.threads = parallel.threads;
-    o.chunk = 4096;
-    if (parallel.progress)
-    {
-      o.progress = [&parallel, begin, end](double f) { return parallel.progress(begin + (end - begin) * f); };
-    }
-    return o;
-  };
-  const auto abort = [&](double fraction) {
-    if (parallel.progress && parallel.progress(fraction))
-    {
-      *this = MultiresolutionCloud();
-      return true;
-    }
-    return false;
-  };
-
+  const int topLevel = topLevelOf(layout);
   const double h0 = layout.finestCellSize;
-  int topLevel = 0;
-  while (topLevel < kMortonBits - 1 && std::ldexp(h0, topLevel) < 2.0 * layout.largestScale)
+  const Vec3 origin = latticeOrigin(layout.low, std::ldexp(h0, topLevel));
+  KeyedIndices keyed;
+  if (!finestKeys(xyz, n, admit, origin, h0, buildStage(parallel, 0.0, 0.1), keyed))
   {
-    ++topLevel;
+    return this->fail();
   }
-  const double H = std::ldexp(h0, topLevel);
-  const Vec3 origin = { std::floor(layout.low.x / H) * H, std::floor(layout.low.y / H) * H,
-    std::floor(layout.low.z / H) * H };
-
-  // Keys of the admitted points on the finest lattice (the k-th admitted point: k itself where all are).
-  std::size_t admittedCount = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    admittedCount += admit[i] ? 1 : 0;
-  }
-  std::vector<std::uint64_t> admitted;
-  if (admittedCount < n)
-  {
-    admitted.reserve(admittedCount);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      if (admit[i])
-      {
-        admitted.push_back(i);
-      }
-    }
-  }
-  KeyedIndices keyed(admittedCount);
-  if (!parallelFor(admittedCount, stage(0.0, 0.1), [&](std::size_t b, std::size_t e, int) {
-        for (std::size_t k = b; k < e; ++k)
-        {
-          const std::uint64_t i = admitted.empty() ? k : admitted[k];
-          keyed[k] = { finestLatticeKey(xyz + 3 * i, origin, h0), i };
-        }
-      }))
-  {
-    *this = MultiresolutionCloud();
-    return false;
-  }
-  std::vector<std::uint64_t>().swap(admitted);
   sortByKey(keyed, threads);
-  if (abort(0.5))
+  if (aborted(parallel, 0.5) || !this->copySortedPoints(keyed, xyz, normals, buildStage(parallel, 0.5, 0.55)))
   {
-    return false;
+    return this->fail();
   }
+  UninitializedArray<std::uint64_t> keys;   // the current level's cell keys
+  UninitializedArray<std::uint64_t> starts; // the current level's cells: [starts[c], starts[c + 1]) of the level below
+  runsOfEqualKeys(keyed.size(), [&keyed](std::size_t k) { return keyed[k].key; }, threads, keys, starts);
+  KeyedIndices().swap(keyed);
+  if (aborted(parallel, 0.6))
+  {
+    return this->fail();
+  }
+  this->reserveLevels(keys, topLevel);
+  // Level by level, finest first.
+  std::size_t below = 0; // index of the level below's first node in Nodes
+  for (int level = 0; level <= topLevel; ++level)
+  {
+    const std::size_t first = this->Nodes.size();
+    const ParallelOptions stage =
+      buildStage(parallel, 0.6 + 0.4 * level / (topLevel + 1.0), 0.6 + 0.4 * (level + 1.0) / (topLevel + 1.0));
+    if (!this->buildLevel(level, keys, starts, below, origin, h0, stage))
+    {
+      return this->fail();
+    }
+    if (level == topLevel)
+    {
+      this->TopKeys.assign(keys.begin(), keys.end());
+      break;
+    }
+    // The next level's cells: runs of equal parent keys.
+    UninitializedArray<std::uint64_t> parentKeys, parentStarts;
+    runsOfEqualKeys(keys.size(), [&keys](std::size_t c) { return keys[c] >> 3; }, threads, parentKeys, parentStarts);
+    keys.swap(parentKeys);
+    starts.swap(parentStarts);
+    below = first;
+  }
+  this->fillView(layout, topLevel, origin);
+  return true;
+}
+
+bool MultiresolutionCloud::fail()
+{
+  *this = MultiresolutionCloud();
+  return false;
+}
+
+bool MultiresolutionCloud::copySortedPoints(
+  const KeyedIndices& keyed, const double* xyz, const double* normals, const ParallelOptions& stage)
+{
   const std::size_t m = keyed.size();
   this->Points.resize(m);
   this->Normals.resize(m);
   this->Ids.resize(m);
-  if (!parallelFor(m, stage(0.5, 0.55), [&](std::size_t b, std::size_t e, int) {
-        for (std::size_t k = b; k < e; ++k)
-        {
-          const std::uint64_t i = keyed[k].index;
-          this->Points[k] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
-          double u[3];
-          unitNormal(normals + 3 * i, u);
-          this->Normals[k] = { u[0], u[1], u[2] };
-          this->Ids[k] = i;
-        }
-      }))
-  {
-    *this = MultiresolutionCloud();
-    return false;
-  }
-  UninitializedArray<std::uint64_t> keys; // the current level's cell keys
-  UninitializedArray<std::uint64_t> starts; // the current level's cells: [starts[c], starts[c + 1]) of the level below
-  runsOfEqualKeys(m, [&keyed](std::size_t k) { return keyed[k].key; }, threads, keys, starts);
-  KeyedIndices().swap(keyed);
-  if (abort(0.6))
-  {
-    return false;
-  }
+  return parallelFor(m, stage, [&](std::size_t b, std::size_t e, int) {
+    for (std::size_t k = b; k < e; ++k)
+    {
+      const std::uint64_t i = keyed[k].index;
+      this->Points[k] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
+      double u[3];
+      unitNormal(normals + 3 * i, u);
+      this->Normals[k] = { u[0], u[1], u[2] };
+      this->Ids[k] = i;
+    }
+  });
+}
+
+void MultiresolutionCloud::reserveLevels(const UninitializedArray<std::uint64_t>& finestKeys, int topLevel)
+{
   // Every level's node count from the finest keys (a cell of level l is a run of equal key >> 3 l; two neighbouring
   // keys fall in different cells up to the level of their highest differing bit), so that the nodes and the cells
   // are allocated once.
   std::vector<std::size_t> levelCount(static_cast<std::size_t>(topLevel) + 1, 0);
-  for (std::size_t c = 0; c < keys.size(); ++c)
+  for (std::size_t c = 0; c < finestKeys.size(); ++c)
   {
-    const std::uint64_t differ = c == 0 ? ~std::uint64_t(0) : keys[c] ^ keys[c - 1];
+    const std::uint64_t differ = c == 0 ? ~std::uint64_t(0) : finestKeys[c] ^ finestKeys[c - 1];
     const int highest = 63 - __builtin_clzll(differ); // differ != 0: the keys are distinct
     ++levelCount[static_cast<std::size_t>(std::min(highest / 3, topLevel))];
   }
@@ -345,71 +393,56 @@ bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::
   }
   this->Nodes.reserve(nodeTotal);
   this->Cells.reserve(cellTotal);
+}
 
-  // Level by level, finest first: every level's nodes; the sums of the levels from kFirstSummedLevel up, those of
-  // that level from their points, those above from their children, in order.
-  std::size_t below = 0; // index of the level below's first node in Nodes
-  for (int level = 0; level <= topLevel; ++level)
+bool MultiresolutionCloud::buildLevel(int level, const UninitializedArray<std::uint64_t>& keys,
+  const UninitializedArray<std::uint64_t>& starts, std::size_t below, const Vec3& origin, double h0,
+  const ParallelOptions& stage)
+{
+  const std::size_t first = this->Nodes.size();
+  const std::size_t count = keys.size();
+  this->Nodes.resize(first + count);
+  const bool summed = level >= kFirstSummedLevel;
+  if (level == kFirstSummedLevel)
   {
-    const std::size_t first = this->Nodes.size();
-    const std::size_t count = keys.size();
-    this->Nodes.resize(first + count);
-    const bool summed = level >= kFirstSummedLevel;
-    if (level == kFirstSummedLevel)
-    {
-      this->SummedBegin = first;
-    }
-    const std::size_t firstCell = this->Cells.size();
-    if (summed)
-    {
-      this->Cells.resize(firstCell + count);
-    }
-    const double edge = std::ldexp(h0, level);
-    const double progressBegin = 0.6 + 0.4 * level / (topLevel + 1.0);
-    const double progressEnd = 0.6 + 0.4 * (level + 1.0) / (topLevel + 1.0);
-    const bool done = parallelFor(count, stage(progressBegin, progressEnd), [&](std::size_t b, std::size_t e, int) {
-      for (std::size_t c = b; c < e; ++c)
-      {
-        PyramidNode& node = this->Nodes[first + c];
-        node.corner = cellCorner(origin, keys[c], edge);
-        node.first = static_cast<std::uint32_t>(level == 0 ? starts[c] : below + starts[c]);
-        node.last = static_cast<std::uint32_t>(level == 0 ? starts[c + 1] : below + starts[c + 1]);
-        if (!summed)
-        {
-          continue;
-        }
-        PyramidCell& cell = this->Cells[firstCell + c];
-        if (level == kFirstSummedLevel)
-        {
-          std::uint32_t p0 = 0, p1 = 0;
-          pointRange(this->Nodes.data(), static_cast<std::uint32_t>(first + c), level, p0, p1);
-          momentsOfPoints(this->Points.data(), this->Normals.data(), p0, p1, node.corner, cell);
-        }
-        else
-        {
-          mergeChildren(this->Cells.data() + (node.first - this->SummedBegin), node.last - node.first, node.corner,
-            cell);
-        }
-      }
-    });
-    if (!done)
-    {
-      *this = MultiresolutionCloud();
-      return false;
-    }
-    if (level == topLevel)
-    {
-      this->TopKeys.assign(keys.begin(), keys.end());
-      break;
-    }
-    // The next level's cells: runs of equal parent keys.
-    UninitializedArray<std::uint64_t> parentKeys, parentStarts;
-    runsOfEqualKeys(count, [&keys](std::size_t c) { return keys[c] >> 3; }, threads, parentKeys, parentStarts);
-    keys.swap(parentKeys);
-    starts.swap(parentStarts);
-    below = first;
+    this->SummedBegin = first;
   }
+  const std::size_t firstCell = this->Cells.size();
+  if (summed)
+  {
+    this->Cells.resize(firstCell + count);
+  }
+  const double edge = std::ldexp(h0, level);
+  return parallelFor(count, stage, [&](std::size_t b, std::size_t e, int) {
+    for (std::size_t c = b; c < e; ++c)
+    {
+      PyramidNode& node = this->Nodes[first + c];
+      node.corner = cellCorner(origin, keys[c], edge);
+      node.first = static_cast<std::uint32_t>(level == 0 ? starts[c] : below + starts[c]);
+      node.last = static_cast<std::uint32_t>(level == 0 ? starts[c + 1] : below + starts[c + 1]);
+      if (!summed)
+      {
+        continue;
+      }
+      PyramidCell& cell = this->Cells[firstCell + c];
+      if (level == kFirstSummedLevel)
+      {
+        std::uint32_t p0 = 0, p1 = 0;
+        pointRange(this->Nodes.data(), static_cast<std::uint32_t>(first + c), level, p0, p1);
+        momentsOfPoints(this->Points.data(), this->Normals.data(), p0, p1, node.corner, cell);
+      }
+      else
+      {
+        mergeChildren(
+          this->Cells.data() + (node.first - this->SummedBegin), node.last - node.first, node.corner, cell);
+      }
+    }
+  });
+}
 
+void MultiresolutionCloud::fillView(const PyramidLayout& layout, int topLevel, const Vec3& origin)
+{
+  const double h0 = layout.finestCellSize;
   MultiresolutionView& v = this->View;
   v.nodes = this->Nodes.data();
   v.cells = this->Cells.data();
@@ -440,7 +473,6 @@ bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::
   v.points = this->Points.data();
   v.normals = this->Normals.data();
   v.count = this->Points.size();
-  return true;
 }
 
 } // namespace gls

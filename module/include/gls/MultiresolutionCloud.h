@@ -5,6 +5,7 @@
 // The levels are built on all threads, each cell by one thread, so the result does not depend on the thread count.
 #pragma once
 
+#include "gls/KeySort.h"
 #include "gls/MultiresolutionView.h"
 #include "gls/ParallelFor.h"
 #include "gls/UninitializedArray.h"
@@ -80,6 +81,22 @@ public:
   std::size_t cellCount() const { return this->Cells.size(); }
 
 private:
+  /// Empties the cloud; returns false (a build's abort).
+  bool fail();
+  /// Points, Normals and Ids in the order of the sorted keys (normals normalized).
+  bool copySortedPoints(
+    const KeyedIndices& keyed, const double* xyz, const double* normals, const ParallelOptions& stage);
+  /// Allocates Nodes and Cells once, for every level above these distinct finest keys up to topLevel.
+  void reserveLevels(const UninitializedArray<std::uint64_t>& finestKeys, int topLevel);
+  /// One level's nodes (cells with these keys, each the run [starts[c], starts[c + 1]) of the level below, whose
+  /// first node is Nodes[below]) and, from kFirstSummedLevel up, their sums: from their points at that level, from
+  /// their children above.
+  bool buildLevel(int level, const UninitializedArray<std::uint64_t>& keys,
+    const UninitializedArray<std::uint64_t>& starts, std::size_t below, const Vec3& origin, double h0,
+    const ParallelOptions& stage);
+  /// The view of the built levels.
+  void fillView(const PyramidLayout& layout, int topLevel, const Vec3& origin);
+
   UninitializedArray<Vec3> Points;
   UninitializedArray<Vec3> Normals;
   UninitializedArray<std::uint64_t> Ids;
