@@ -211,6 +211,28 @@ int runModel(const std::string& model, const Options& o)
     budget *= 0.7;
     tiles = probeTiles(cloud, o, budget);
   }
+  // Refused below a budget met with fewer tiles: the step may have jumped over the few budgets that take enough
+  // tiles (the whole cloud's points and normals stay besides the tiles), so the budgets between are bisected.
+  double refused = budget;
+  for (int step = 0; tiles == 0 && step < 12; ++step)
+  {
+    const double middle = 0.5 * (refused + fewerBudget);
+    const int cut = probeTiles(cloud, o, middle);
+    if (cut >= o.tiles)
+    {
+      budget = middle;
+      tiles = cut;
+    }
+    else if (cut == 0)
+    {
+      refused = middle;
+    }
+    else
+    {
+      fewer = cut;
+      fewerBudget = middle;
+    }
+  }
   if (tiles < o.tiles)
   {
     std::printf("%-12s the filter refused a budget of %.1f MiB before reaching %d tiles (%d tiles at %.1f MiB; the "

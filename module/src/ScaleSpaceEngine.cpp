@@ -208,115 +208,153 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
   {
     return false;
   }
-  const int S = static_cast<int>(this->Settings.scales.size());
   const ParallelOptions& options = parallel ? *parallel : this->Settings.parallel;
-  const bool multiresolution = this->Settings.evaluation == Evaluation::Multiresolution;
-  const std::uint64_t* order = ids ? ids->data() : this->Order.data();
-  const std::size_t orderSize = ids ? ids->size() : this->Order.size();
   UninitializedArray<std::uint64_t> idsInPyramidOrder;
-  if (ids && multiresolution && orderSize * kSampleFraction < this->Positions.size())
-  {
-    // A sample of the points in pyramid order, so that consecutive walks find their cells in cache: the relative
-    // sigma's 20,000 scattered points of a 10M-point cloud (2 threads) took 1.09 s in input order, 0.85 s in this
-    // one. (Longer lists come in that order already: the owned points of a distributed piece.)
-    KeyedIndices byKey(orderSize);
-    for (std::size_t k = 0; k < orderSize; ++k)
-    {
-      byKey[k] = { this->Pyramid.finestKey(this->Positions[order[k]]), order[k] };
-    }
-    sortByKey(byKey, options.threads);
-    idsInPyramidOrder.resize(orderSize);
-    for (std::size_t k = 0; k < orderSize; ++k)
-    {
-      idsInPyramidOrder[k] = byKey[k].index;
-    }
-    order = idsInPyramidOrder.data();
-  }
+  const std::uint64_t* order = ids ? this->orderOfIds(*ids, options.threads, idsInPyramidOrder) : this->Order.data();
+  const std::size_t orderSize = ids ? ids->size() : this->Order.size();
   RunReport local;
   RunReport& r = report ? *report : local;
   r = RunReport();
-  if (backend != Backend::CPU)
+  bool aborted = false;
+  if (this->runOnDeviceIfAsked(sink, order, orderSize, method, options, backend, r, aborted))
   {
-    if (method != EvaluationMethod::OnePass && !multiresolution)
-    {
-      r.fallbackReason = "the per-scale reference evaluation runs on the CPU only";
-    }
-    else if (!cudaAvailability().usable)
-    {
-      r.fallbackReason = cudaAvailability().reason;
-    }
-    else
-    {
-      bool aborted = false;
-      if (this->runOnDevice(sink, order, orderSize, options, r.fallbackReason, aborted))
-      {
-        r.used = Backend::CUDA;
-        return true;
-      }
-      if (aborted)
-      {
-        return false;
-      }
-      r.fallbackReason = "CUDA failed (" + r.fallbackReason + ")";
-    }
+    return true;
   }
+  return !aborted && this->runOnCpu(sink, order, orderSize, ids != nullptr, method, options);
+}
+
+const std::uint64_t* ScaleSpaceEngine::orderOfIds(
+  const std::vector<std::uint64_t>& ids, int threads, UninitializedArray<std::uint64_t>& storage) const
+{
+  const bool multiresolution = this->Settings.evaluation == Evaluation::Multiresolution;
+  if (!multiresolution || ids.size() * kSampleFraction >= this->Positions.size())
+  {
+    return ids.data();
+  }
+  // A sample of the points in pyramid order, so that consecutive walks find their cells in cache: the relative
+  // sigma's 20,000 scattered points of a 10M-point cloud (2 threads) took 1.09 s in input order, 0.85 s in this
+  // one. (Longer lists come in that order already: the owned points of a distributed piece.)
+  KeyedIndices byKey(ids.size());
+  for (std::size_t k = 0; k < ids.size(); ++k)
+  {
+    byKey[k] = { this->Pyramid.finestKey(this->Positions[ids[k]]), ids[k] };
+  }
+  sortByKey(byKey, threads);
+  storage.resize(ids.size());
+  for (std::size_t k = 0; k < ids.size(); ++k)
+  {
+    storage[k] = byKey[k].index;
+  }
+  return storage.data();
+}
+
+bool ScaleSpaceEngine::runOnDeviceIfAsked(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
+  EvaluationMethod method, const ParallelOptions& options, Backend backend, RunReport& r, bool& aborted) const
+{
+  // The one place that falls back to the CPU: r.fallbackReason says why (empty when the CPU was asked for).
   r.used = Backend::CPU;
-  const int threads = resolveThreadCount(options.threads);
-  ParallelOptions cpu = options;
-  if (multiresolution)
+  aborted = false;
+  if (backend == Backend::CPU)
   {
-    // Consecutive points in pyramid order share their walks (MultiresolutionScratch keeps a thread's last ones), and
-    // a chunk's first point walks anew: at 256 points per chunk that added 16% more far walks at 3M points. At least
-    // kChunksPerThread chunks per thread, so that a small run (a sample of scattered points) stays balanced.
-    const std::size_t balanced = orderSize / (kChunksPerThread * static_cast<std::size_t>(threads));
-    cpu.chunk = std::max(cpu.chunk, std::min(kMultiresolutionChunk, balanced));
+    return false;
   }
-  std::vector<std::vector<Moments>> bins(static_cast<std::size_t>(threads));
-  std::vector<MultiresolutionScratch> scratch(static_cast<std::size_t>(threads));
-  std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(threads));
-  const GridView& g = this->Grid.view();
-  const ScaleBinning binning = this->binning();
+  if (method != EvaluationMethod::OnePass && this->Settings.evaluation != Evaluation::Multiresolution)
+  {
+    r.fallbackReason = "the per-scale reference evaluation runs on the CPU only";
+    return false;
+  }
+  if (!cudaAvailability().usable)
+  {
+    r.fallbackReason = cudaAvailability().reason;
+    return false;
+  }
+  if (this->runOnDevice(sink, order, orderSize, options, r.fallbackReason, aborted))
+  {
+    r.used = Backend::CUDA;
+    return true;
+  }
+  if (!aborted)
+  {
+    r.fallbackReason = "CUDA failed (" + r.fallbackReason + ")";
+  }
+  return false;
+}
+
+template <typename EvaluateAt>
+bool ScaleSpaceEngine::forEachPoint(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
+  bool givenIds, const ParallelOptions& cpu, const EvaluateAt& evaluateAt) const
+{
+  const std::size_t S = this->Settings.scales.size();
+  const bool multiresolution = this->Settings.evaluation == Evaluation::Multiresolution;
   // A run in the engine's own order reads its first points' positions from the grid's or the pyramid's sorted copy
   // (the same values, in that order): through Positions, each point cost a cache miss (2% of a 10M-point run).
-  const Vec3* sorted = multiresolution ? this->Pyramid.view().points : g.points;
-  const std::size_t sortedCount = ids ? 0 : multiresolution ? this->Pyramid.view().count : g.count;
-
+  const Vec3* sorted = multiresolution ? this->Pyramid.view().points : this->Grid.view().points;
+  const std::size_t sortedCount = givenIds ? 0 : multiresolution ? this->Pyramid.view().count : this->Grid.view().count;
+  std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(resolveThreadCount(cpu.threads)));
   return parallelFor(orderSize, cpu, [&](std::size_t begin, std::size_t end, int thread) {
-    std::vector<Moments>& b = bins[thread];
-    std::vector<ScaleSample>& out = samples[thread];
-    if (!multiresolution)
-    {
-      b.resize(static_cast<std::size_t>(S));
-    }
-    out.resize(static_cast<std::size_t>(S));
+    std::vector<ScaleSample>& out = samples[static_cast<std::size_t>(thread)];
+    out.resize(S);
     for (std::size_t o = begin; o < end; ++o)
     {
       const std::uint64_t id = order[o];
       const Vec3& p = o < sortedCount ? sorted[o] : this->Positions[id];
       if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
       {
-        for (int k = 0; k < S; ++k)
+        for (std::size_t k = 0; k < S; ++k)
         {
           out[k] = invalidSample<double>(0.0);
         }
       }
-      else if (multiresolution)
-      {
-        evaluateAllScalesMultiresolutionOnCpu(
-          this->Pyramid.view(), p, binning, this->Settings.minNeighbors, scratch[thread], out.data());
-      }
-      else if (method == EvaluationMethod::OnePass)
-      {
-        evaluateAllScalesOnCpu(g, p, binning, this->Settings.minNeighbors, b.data(), out.data());
-      }
       else
       {
-        for (int k = 0; k < S; ++k)
-        {
-          out[k] = evaluateOneScale(g, p, this->Settings.scales[k], this->Settings.minNeighbors);
-        }
+        evaluateAt(p, thread, out.data());
       }
       sink.consume(id, out.data(), thread);
+    }
+  });
+}
+
+bool ScaleSpaceEngine::runOnCpu(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
+  bool givenIds, EvaluationMethod method, const ParallelOptions& options) const
+{
+  const std::size_t threads = static_cast<std::size_t>(resolveThreadCount(options.threads));
+  const double minNeighbors = this->Settings.minNeighbors;
+  const ScaleBinning binning = this->binning();
+  ParallelOptions cpu = options;
+  if (this->Settings.evaluation == Evaluation::Multiresolution)
+  {
+    // Consecutive points in pyramid order share their walks (MultiresolutionScratch keeps a thread's last ones), and
+    // a chunk's first point walks anew: at 256 points per chunk that added 16% more far walks at 3M points. At least
+    // kChunksPerThread chunks per thread, so that a small run (a sample of scattered points) stays balanced.
+    const std::size_t balanced = orderSize / (kChunksPerThread * threads);
+    cpu.chunk = std::max(cpu.chunk, std::min(kMultiresolutionChunk, balanced));
+    std::vector<MultiresolutionScratch> scratch(threads);
+    const MultiresolutionView& v = this->Pyramid.view();
+    return this->forEachPoint(sink, order, orderSize, givenIds, cpu, [&](const Vec3& p, int t, ScaleSample* out) {
+      evaluateAllScalesMultiresolutionOnCpu(v, p, binning, minNeighbors, scratch[static_cast<std::size_t>(t)], out);
+    });
+  }
+  const GridView& g = this->Grid.view();
+  if (method == EvaluationMethod::OnePass)
+  {
+    // Each thread's bins, allocated by the thread that uses them (from its own heap arena): allocated here, the exact
+    // pass on the bunny at 1M points (2 threads, 10 scales) took 19.9-20.0 s, against 18.2-18.6 s.
+    std::vector<std::vector<Moments>> bins(threads);
+    const std::size_t S = this->Settings.scales.size();
+    return this->forEachPoint(sink, order, orderSize, givenIds, cpu, [&](const Vec3& p, int t, ScaleSample* out) {
+      std::vector<Moments>& b = bins[static_cast<std::size_t>(t)];
+      if (b.size() != S)
+      {
+        b.resize(S);
+      }
+      evaluateAllScalesOnCpu(g, p, binning, minNeighbors, b.data(), out);
+    });
+  }
+  const std::vector<double>& scales = this->Settings.scales;
+  return this->forEachPoint(sink, order, orderSize, givenIds, cpu, [&](const Vec3& p, int, ScaleSample* out) {
+    for (std::size_t k = 0; k < scales.size(); ++k)
+    {
+      out[k] = evaluateOneScale(g, p, scales[k], minNeighbors);
     }
   });
 }

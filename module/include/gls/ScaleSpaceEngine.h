@@ -119,6 +119,24 @@ public:
 private:
   ScaleBinning binning() const;
   void buildPyramid(const double* points, const double* normals, std::size_t count, const unsigned char* admit);
+  /// The ids in the order a run takes them: a multi-resolution run given a sample (under 1 / kSampleFraction of the
+  /// points) takes it in pyramid order (kept in `storage`), any other run as given.
+  const std::uint64_t* orderOfIds(
+    const std::vector<std::uint64_t>& ids, int threads, UninitializedArray<std::uint64_t>& storage) const;
+  /// The run on the CUDA device when `backend` asks for it and it can run there: true when it ran there (r.used
+  /// CUDA); false to run on the CPU, with r.fallbackReason saying why unless the CPU was asked for, or with `aborted`
+  /// set when the progress callback asked to stop.
+  bool runOnDeviceIfAsked(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
+    EvaluationMethod method, const ParallelOptions& options, Backend backend, RunReport& r, bool& aborted) const;
+  /// The run on the CPU, with the evaluation chosen once for every point (multi-resolution, one pass, or per scale).
+  bool runOnCpu(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize, bool givenIds,
+    EvaluationMethod method, const ParallelOptions& options) const;
+  /// Feeds the sink with every point of `order` in parallel: evaluateAt(p, thread, samples) for a finite position,
+  /// invalid samples for another. `givenIds`: the order is the caller's, not the engine's own (then the positions are
+  /// read from Positions, not from the grid's or pyramid's sorted copy).
+  template <typename EvaluateAt>
+  bool forEachPoint(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize, bool givenIds,
+    const ParallelOptions& cpu, const EvaluateAt& evaluateAt) const;
   /// The CUDA run: false with `reason` on a CUDA failure (nothing was fed to the sink), false with `aborted` set
   /// when the progress callback asked to stop.
   bool runOnDevice(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
