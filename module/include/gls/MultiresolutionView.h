@@ -9,6 +9,7 @@
 
 #include "gls/AggregateMoments.h"
 #include "gls/CellMoments.h"
+#include "gls/Evaluation.h"
 #include "gls/Numeric.h"
 #include "gls/PointScaleSpace.h"
 
@@ -43,7 +44,7 @@ struct MultiresolutionView
   int topLevel = 0;                    ///< levels are 0 (finest) .. topLevel
   double levelSize[kMaxPyramidLevels + 1] = {}; ///< edge of a cell of each level
   Vec3 origin{};                       ///< lower corner of every level's cell (0, 0, 0)
-  double accuracy = 0.1;               ///< a cell is one sample where edge <= accuracy * distance to its box
+  double accuracy = kDefaultAccuracy;  ///< a cell is one sample where edge <= accuracy * distance to its box
   int walkLevel = 0;                   ///< the points of one lattice cube of this level share one walk (walkRegion)
   /// The far parts of a walk (FarRule): the level of the finest far regions, how many levels of them, and where
   /// each begins, in half-diagonals of its region (0 or less: no far part).
