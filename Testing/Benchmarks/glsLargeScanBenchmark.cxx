@@ -39,7 +39,7 @@
 
 #include "gls/Descriptors.h"
 #include "gls/Evaluation.h"
-#include "gls/MultiresolutionView.h"
+#include "gls/MultiresolutionReferenceWalk.h"
 #include "gls/ScaleAnalysis.h"
 #include "gls/ScaleSampling.h"
 #include "gls/ScaleSpaceEngine.h"

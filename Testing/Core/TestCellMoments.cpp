@@ -6,7 +6,7 @@
 #include "TestClouds.h"
 
 #include "gls/CellMoments.h"
-#include "gls/MultiresolutionView.h"
+#include "gls/MultiresolutionTakeWhole.h"
 #include "gls/ScaleSampling.h"
 #include "gls/ScaleSpaceEngine.h"
 #include "gls/WeightedSums.h"

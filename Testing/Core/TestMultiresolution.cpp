@@ -8,7 +8,7 @@
 
 #include "gls/MultiresolutionCloud.h"
 #include "gls/MultiresolutionKernel.h"
-#include "gls/MultiresolutionView.h"
+#include "gls/MultiresolutionReferenceWalk.h"
 #include "gls/ScaleSampling.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,7 @@
 #include "gls/MultiresolutionCloud.h"
 
 #include "gls/KeySort.h"
+#include "gls/MultiresolutionTakeWhole.h"
 #include "gls/NeighborGrid.h"
 #include "gls/Numeric.h"
 

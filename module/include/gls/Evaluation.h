@@ -11,7 +11,7 @@ namespace gls
 enum class Evaluation
 {
   Exact = 0,          ///< every point of every ball (bit for bit the one pass)
-  Multiresolution = 1 ///< cells of edge <= Accuracy * distance taken whole (MultiresolutionView.h)
+  Multiresolution = 1 ///< cells of edge <= Accuracy * distance taken whole (MultiresolutionTakeWhole.h)
 };
 
 /// The default Accuracy (epsilon) of the multi-resolution evaluation (docs/math.md gives the measurements).

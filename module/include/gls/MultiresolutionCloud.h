@@ -6,7 +6,7 @@
 #pragma once
 
 #include "gls/KeySort.h"
-#include "gls/MultiresolutionView.h"
+#include "gls/MultiresolutionFarRule.h"
 #include "gls/ParallelFor.h"
 #include "gls/UninitializedArray.h"
 

@@ -1,5 +1,5 @@
-// The CPU form of the multi-resolution evaluation (evaluateAllScalesMultiresolution in MultiresolutionView.h): the
-// same cells taken whole and the same points read one by one, found level by level instead of depth first, so
+// The CPU form of the multi-resolution evaluation (evaluateAllScalesMultiresolution, MultiresolutionReferenceWalk.h):
+// the same cells taken whole and the same points read one by one, found level by level instead of depth first, so
 // that each level's cells are classified in a loop without a branch per cell (the depth-first walk mispredicts
 // about one branch per cell: measured 20 ns per cell), then binned and added in batches. The walk depends on p's
 // walkRegion only, so it runs once for consecutive points of one region, and its samples are packed once with
@@ -10,7 +10,7 @@
 // parts.
 #pragma once
 
-#include "gls/MultiresolutionView.h"
+#include "gls/MultiresolutionReferenceWalk.h"
 #include "gls/OnePassKernel.h"
 
 #include <cstdint>

@@ -36,7 +36,7 @@ public:
 struct MultiresolutionSettings
 {
   double accuracy = kDefaultAccuracy; ///< epsilon: a cell is one sample where edge <= epsilon * distance
-  /// Cells at least this many walk-region half-diagonals away enter linearized (MultiresolutionView.h,
+  /// Cells at least this many walk-region half-diagonals away enter linearized (MultiresolutionFarRule.h,
   /// kLinearizedDistance); 0: none (every cell's shares formed for each point).
   double linearizedDistance = kLinearizedDistance;
   double spacing = 0.0;               ///< typical neighbour distance (length unit); 0: surfaceSpacingOfBox of the

@@ -4,6 +4,7 @@
 // the core tests run on the host against it. Inputs larger than the device's free memory allows are processed in
 // chunks. Every CUDA call is checked and turned into an error message.
 #include "gls/Backend.h"
+#include "gls/MultiresolutionReferenceWalk.h"
 
 #include <cuda_runtime.h>
 #include <thrust/binary_search.h>
