@@ -78,7 +78,10 @@ features = GLSContinuousFeatures(Input=variation)  # noqa: F405
 similar = GLSMultiScaleDissimilarity(Input=features, QueryPointId=1234, PriorMinScale=0.02)  # noqa: F405
 fused_variation = GLSGeometricVariation(Input=normals, **scales)  # noqa: F405
 tagged = ProgrammableFilter(Input=fused_variation, OutputDataSetType='vtkPolyData', Script=TAG_SCRIPT)  # noqa: F405
-fused_features = GLSContinuousFeatures(Input=normals, **scales)  # noqa: F405
+# The fused features at smaller scales than the rest: a rank's piece is then several bands of the largest scale wide,
+# so that its fit can be cut into tiles smaller than itself (--memory-budget; each tile holds its band besides).
+feature_scales = dict(scales, MaxScale=0.04)
+fused_features = GLSContinuousFeatures(Input=normals, **feature_scales)  # noqa: F405
 tagged_features = ProgrammableFilter(Input=fused_features, OutputDataSetType='vtkPolyData',  # noqa: F405
                                      Script=TAG_SCRIPT)
 fused_similar = GLSMultiScaleDissimilarity(Input=normals, UseQueryPointCoordinates=1,  # noqa: F405
@@ -92,7 +95,7 @@ bandwidth = GLSAdaptiveBandwidth(Input=normals, MinScale=0.005, MaxScale=0.03, N
 adaptive = GLSProjection(Input=bandwidth)  # noqa: F405  (the per-point GLSBandwidth)
 # The multi-resolution evaluation (forced: the bunny is below Auto's limit), whose cells reach past the largest scale.
 cells_space = GLSScaleSpace(Input=normals, Evaluation='Multiresolution', Accuracy=0.3, **scales)  # noqa: F405
-cells_features = GLSContinuousFeatures(Input=normals, Evaluation='Multiresolution', **scales)  # noqa: F405
+cells_features = GLSContinuousFeatures(Input=normals, Evaluation='Multiresolution', **feature_scales)  # noqa: F405
 for fused in (fused_variation, fused_similar):
     fused.MemoryBudget = args.memory_budget[0]
 for fused in (fused_features, cells_features):

@@ -202,8 +202,8 @@ GLS_INLINE SpreadDensity spreadDensity(double half)
 /// The share of the part [u, w] of a spread [mean - half, mean + half] (half > 0, density `density`): its points are
 /// those whose a . y = (s - mean) / 2 lies there, so their f regresses on a . y as F / m + (a . y) H / (m sigma^2);
 /// integrated over the uniform spread in d = s - mean. The CPU kernel's AVX2 build forms the same arithmetic for four
-/// cells at a time (pieceSharesAvx2 in src/MultiresolutionPieces.h; a change here goes there too: the test of the CPU
-/// kernel against the host/device loop fails otherwise).
+/// cells at a time (pieceSharesAvx2 in src/multiresolution/MultiresolutionPieces.h; a change here goes there too: the
+/// test of the CPU kernel against the host/device loop fails otherwise).
 GLS_INLINE ShellShare pieceShare(double mean, const SpreadDensity& density, double u, double w)
 {
   const double rho = density.rho;

@@ -1,13 +1,12 @@
 // The CPU form of the multi-resolution evaluation (evaluateAllScalesMultiresolution, MultiresolutionReferenceWalk.h):
-// the same cells taken whole and the same points read one by one, found level by level instead of depth first, so
-// that each level's cells are classified in a loop without a branch per cell (the depth-first walk mispredicts
-// about one branch per cell: measured 20 ns per cell), then binned and added in batches. The walk depends on p's
-// walkRegion only, so it runs once for consecutive points of one region, and its samples are packed once with
-// their sums about the region's corner (PackedSample); each point adds them as they are and moves the running sum
-// of its bins to itself at each scale (exact algebra, a shift of the origin). The sums are therefore the same sums
-// in another order and about another origin: results agree with the host/device loop to rounding (the tests bound
-// it) and are deterministic for any thread count. The implementation: src/MultiresolutionKernel.cpp, which lists its
-// parts.
+// the same cells taken whole and the same points read one by one, found level by level instead of depth first, so that
+// each level's cells are classified in a loop without a branch per cell (the depth-first walk mispredicts about one
+// branch per cell: measured 20 ns per cell), then binned and added in batches. The walk depends on p's walkRegion only,
+// so it runs once for consecutive points of one region, and its samples are packed once with their sums about the
+// region's corner (PackedSample); each point adds them as they are and moves the running sum of its bins to itself at
+// each scale (exact algebra, a shift of the origin). The sums are therefore the same sums in another order and about
+// another origin: results agree with the host/device loop to rounding (the tests bound it) and are deterministic for
+// any thread count. The implementation: src/multiresolution/MultiresolutionKernel.cpp, which lists its parts.
 #pragma once
 
 #include "gls/MultiresolutionReferenceWalk.h"
@@ -45,12 +44,12 @@ struct LinearizedBins
 };
 
 /// The samples of a walk that lie inside the smallest scale's sphere for every point of its walk region (the cells
-/// whose spread of squared distances stays below scales[0]^2, the points read one by one that stay there: near p,
-/// most of them), summed once per region as the exact polynomial of p that their share of the first shell is: each
-/// adds F, mean F + 2 H and (mean^2 + V) F + 4 mean H (wholeShare; a point: f, d2 f, d2^2 f) to the three moments,
-/// and mean = M - 2 a . u + |u|^2 with u = p - (the region's centre), a = its centroid (or position) - the centre,
-/// M = |a|^2 + its spread per point. The sums over the samples of F and H times 1, M, a_i, M a_i, a_i a_j and
-/// M^2 + V give those moments for every p of the region (addInnerSums in src/MultiresolutionPacking.h); their sums are
+/// whose spread of squared distances stays below scales[0]^2, the points read one by one that stay there: near p, most
+/// of them), summed once per region as the exact polynomial of p that their share of the first shell is: each adds F,
+/// mean F + 2 H and (mean^2 + V) F + 4 mean H (wholeShare; a point: f, d2 f, d2^2 f) to the three moments, and mean = M
+/// - 2 a . u + |u|^2 with u = p - (the region's centre), a = its centroid (or position) - the centre, M = |a|^2 + its
+/// spread per point. The sums over the samples of F and H times 1, M, a_i, M a_i, a_i a_j and M^2 + V give those
+/// moments for every p of the region (addInnerSums in src/multiresolution/MultiresolutionPacking.h); their sums are
 /// about the walk's origin, as the packed samples'.
 struct InnerSums
 {
@@ -67,8 +66,8 @@ struct PointSpan
   std::uint32_t first, last;
 };
 
-/// A point of a walk as every point of its region reads it (packWalk in src/MultiresolutionPacking.h): its position
-/// and its nine sums (1, x, n, x.n, |x|^2) about the region's corner.
+/// A point of a walk as every point of its region reads it (packWalk in src/multiresolution/MultiresolutionPacking.h):
+/// its position and its nine sums (1, x, n, x.n, |x|^2) about the region's corner.
 struct PackedPoint
 {
   Vec3 position;
