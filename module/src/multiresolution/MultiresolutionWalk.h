@@ -12,17 +12,118 @@ namespace gls
 namespace kernel
 {
 
+/// What the cells of one walk are compared with: the walk's part and region, the far rule, and the squared radius,
+/// accuracy and smallest scale.
+struct WalkTarget
+{
+  const MultiresolutionView& v;
+  const WalkRegion& region;
+  const FarRule& far;
+  int part;
+  double r2, eps2, floor2;
+};
+
+/// One level of a walk: each cell of the frontier is skipped (outside every ball of the region, or not this part's),
+/// taken whole (appended to s.taken from `takenBefore`; the end is returned in `taken`) or opened (the first
+/// `opened` of s.opened, returned); part 1 also records where part 0 takes over (s.nearSeeds). The writes only
+/// advance indices: no branch per cell.
+GLS_FORCE_INLINE std::size_t classifyLevel(
+  const WalkTarget& w, int level, std::size_t takenBefore, std::size_t& taken, MultiresolutionScratch& s)
+{
+  const bool recordSeeds = w.part == 1;
+  const double edge = w.v.levelSize[level];
+  const double edge2 = edge * edge;
+  const std::size_t n = s.frontier.size();
+  s.taken.resize(takenBefore + n);
+  s.takenFar.resize(takenBefore + n);
+  s.opened.resize(n);
+  if (recordSeeds)
+  {
+    s.nearSeeds.resize(s.nearSeedLevel.size() + n);
+  }
+  std::size_t opened = 0, seedCount = s.nearSeedLevel.size();
+  taken = takenBefore;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::uint32_t c = s.frontier[i];
+    const CellPlace place = placeCell(w.far, w.region, w.v.nodes[c].corner, edge);
+    const bool mine = w.part == 0 || place.far >= w.part;
+    const bool inside = mine && place.box2 < w.r2;
+    const bool whole = takenWhole(edge2, place.box2, w.eps2, w.floor2);
+    const bool sample = place.linearized == w.part;
+    s.taken[taken] = c;
+    s.takenFar[taken] = place.far > 0 ? 1 : 0;
+    taken += inside && whole && sample ? 1 : 0;
+    s.opened[opened] = c;
+    opened += inside && !whole ? 1 : 0;
+    if (recordSeeds)
+    {
+      // Part 0's from here: a cell of no far part (its distance is the walk region's), a far cell it samples, or a
+      // far cell of level 0 it reads point by point.
+      s.nearSeeds[seedCount] = c;
+      seedCount += !mine || (inside && (whole ? place.linearized == 0 : level == 0)) ? 1 : 0;
+    }
+  }
+  if (recordSeeds)
+  {
+    s.nearSeeds.resize(seedCount);
+    s.nearSeedLevel.resize(seedCount, level);
+  }
+  return opened;
+}
+
+/// The near cells taken whole at this level (s.taken[takenBefore, taken)) that hold too few points for a sample are
+/// read point by point instead (readPointByPoint; s.read); the others stay, with their level.
+GLS_FORCE_INLINE void readSmallNearCells(
+  const MultiresolutionView& v, int level, std::size_t takenBefore, std::size_t taken, MultiresolutionScratch& s)
+{
+  std::size_t kept = takenBefore;
+  for (std::size_t i = takenBefore; i < taken; ++i)
+  {
+    const std::uint32_t c = s.taken[i];
+    PointSpan span{};
+    if (!s.takenFar[i] && readPointByPoint(v, c, level, span.first, span.last))
+    {
+      s.read.push_back(span);
+    }
+    else
+    {
+      s.taken[kept] = c;
+      s.takenFar[kept] = s.takenFar[i];
+      ++kept;
+    }
+  }
+  s.taken.resize(kept);
+  s.takenFar.resize(kept);
+  s.takenLevel.resize(kept, level);
+}
+
+/// The children of the `opened` cells opened at a level above 0: the next level's frontier.
+GLS_FORCE_INLINE void openCells(const MultiresolutionView& v, std::size_t opened, MultiresolutionScratch& s)
+{
+  s.next.clear();
+  for (std::size_t i = 0; i < opened; ++i)
+  {
+    const PyramidNode& node = v.nodes[s.opened[i]];
+    for (std::uint32_t c = node.first; c < node.last; ++c)
+    {
+      s.next.push_back(c);
+    }
+  }
+  s.frontier.swap(s.next);
+}
+
 /// The walks of the CPU kernel (forEachMultiresolutionSample's rule, FarRule): a point's samples are those of its
 /// walk region's own walk (part 0: every sample but the linearized cells) and of each far part i's walk (part i + 1:
 /// its linearized cells, the same for every point of its far region).
 ///
-/// A walk, level by level: each cell of the frontier is skipped (outside every ball of the region, or not this
-/// part's), taken whole (s.taken, s.takenLevel), read point by point (s.read, part 0 only: a level-0 cell not taken
-/// whole, or a near cell taken whole that holds too few points for a sample) or opened (its children make the next
-/// level's frontier); the writes only advance indices. A far part's walk goes through the cells of its part and of
-/// the larger ones only (a cell's part is at most its parent's); part 1's records where part 0 takes over
-/// (s.nearSeeds). With `seeded`, part 0 starts from those instead of the top cells, each joining the frontier at its
-/// level (the cells above them are far cells opened, or linearized, by F_0's rule for every point of F_0).
+/// A walk, level by level (classifyLevel): each cell of the frontier is skipped, taken whole (s.taken, s.takenLevel),
+/// read point by point (s.read, part 0 only: a level-0 cell not taken whole, or a near cell taken whole that holds too
+/// few points for a sample: readSmallNearCells) or opened (its children make the next level's frontier: openCells). A
+/// far part's walk goes through the cells of its part and of the larger ones only (a cell's part is at most its
+/// parent's); part 1's records where part 0 takes over (s.nearSeeds). With `seeded`, part 0 starts from those instead
+/// of the top cells, each joining the frontier at its level (the cells above them are far cells opened, or
+/// linearized, by F_0's rule for every point of F_0).
 GLS_FORCE_INLINE void walk(const MultiresolutionView& v, const WalkRegion& region, const FarRule& far, int part,
   bool seeded, double r, double smallest, MultiresolutionScratch& s)
 {
@@ -31,15 +132,12 @@ GLS_FORCE_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regio
   s.takenFar.clear();
   s.read.clear();
   s.frontier.clear();
-  const bool recordSeeds = part == 1;
-  if (recordSeeds)
+  if (part == 1)
   {
     s.nearSeeds.clear();
     s.nearSeedLevel.clear();
   }
-  const double r2 = r * r;
-  const double eps2 = v.accuracy * v.accuracy;
-  const double floor2 = smallest * smallest;
+  const WalkTarget target{ v, region, far, part, r * r, v.accuracy * v.accuracy, smallest * smallest };
   if (!seeded && v.topEnd > v.topBegin && r > 0.0)
   {
     forEachTopCell(v, outermostRegion(far, region), r, [&](std::uint32_t c) { s.frontier.push_back(c); });
@@ -52,64 +150,10 @@ GLS_FORCE_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regio
     {
       s.frontier.push_back(s.nearSeeds[seed]);
     }
-    const double edge = v.levelSize[level];
-    const double edge2 = edge * edge;
-    const std::size_t n = s.frontier.size();
     const std::size_t takenBefore = s.taken.size();
-    s.taken.resize(takenBefore + n);
-    s.takenFar.resize(takenBefore + n);
-    s.opened.resize(n);
-    if (recordSeeds)
-    {
-      s.nearSeeds.resize(s.nearSeedLevel.size() + n);
-    }
-    std::size_t taken = takenBefore, opened = 0, seedCount = s.nearSeedLevel.size();
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const std::uint32_t c = s.frontier[i];
-      const CellPlace place = placeCell(far, region, v.nodes[c].corner, edge);
-      const bool mine = part == 0 || place.far >= part;
-      const bool inside = mine && place.box2 < r2;
-      const bool whole = takenWhole(edge2, place.box2, eps2, floor2);
-      const bool sample = place.linearized == part;
-      s.taken[taken] = c;
-      s.takenFar[taken] = place.far > 0 ? 1 : 0;
-      taken += inside && whole && sample ? 1 : 0;
-      s.opened[opened] = c;
-      opened += inside && !whole ? 1 : 0;
-      if (recordSeeds)
-      {
-        // Part 0's from here: a cell of no far part (its distance is the walk region's), a far cell it samples, or a
-        // far cell of level 0 it reads point by point.
-        s.nearSeeds[seedCount] = c;
-        seedCount += !mine || (inside && (whole ? place.linearized == 0 : level == 0)) ? 1 : 0;
-      }
-    }
-    if (recordSeeds)
-    {
-      s.nearSeeds.resize(seedCount);
-      s.nearSeedLevel.resize(seedCount, level);
-    }
-    // The near cells taken whole that hold too few points for a sample are read point by point (readPointByPoint).
-    std::size_t kept = takenBefore;
-    for (std::size_t i = takenBefore; i < taken; ++i)
-    {
-      const std::uint32_t c = s.taken[i];
-      PointSpan span{};
-      if (!s.takenFar[i] && readPointByPoint(v, c, level, span.first, span.last))
-      {
-        s.read.push_back(span);
-      }
-      else
-      {
-        s.taken[kept] = c;
-        s.takenFar[kept] = s.takenFar[i];
-        ++kept;
-      }
-    }
-    s.taken.resize(kept);
-    s.takenFar.resize(kept);
-    s.takenLevel.resize(kept, level);
+    std::size_t taken = takenBefore;
+    const std::size_t opened = classifyLevel(target, level, takenBefore, taken, s);
+    readSmallNearCells(v, level, takenBefore, taken, s);
     if (level == 0)
     {
       for (std::size_t i = 0; i < opened && part == 0; ++i)
@@ -119,16 +163,7 @@ GLS_FORCE_INLINE void walk(const MultiresolutionView& v, const WalkRegion& regio
       }
       break;
     }
-    s.next.clear();
-    for (std::size_t i = 0; i < opened; ++i)
-    {
-      const PyramidNode& node = v.nodes[s.opened[i]];
-      for (std::uint32_t c = node.first; c < node.last; ++c)
-      {
-        s.next.push_back(c);
-      }
-    }
-    s.frontier.swap(s.next);
+    openCells(v, opened, s);
   }
 }
 
