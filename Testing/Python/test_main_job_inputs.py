@@ -12,7 +12,9 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import main_job_helpers as helpers  # (first: it makes the main job's own modules importable)
-import gls_coincident  # noqa: E402 (the main job's own module)
+import gls_coincident  # noqa: E402 (the main job's own modules)
+import gls_io  # noqa: E402
+import gls_memory  # noqa: E402
 from main_job_helpers import central_background, error_lines, failure_text, point_array, read_vtp
 from shapes import sphere
 
@@ -371,6 +373,35 @@ class Inputs(unittest.TestCase):
         out = path('truncated-out')
         line = self.assertFailsInOneLine(run(truncated, '--output-dir', out), 'reader: Cannot read the LAS file', out)
         self.assertIn('truncated, or a wrong point count', line)
+
+    def test_a_file_whose_header_announces_too_many_points_is_refused_before_it_is_read(self):
+        # PLY, LAS and PCD headers say how many points follow: the memory check takes that count before any reader
+        # runs (no "input:" line), so a survey too large for the machine is refused in seconds, not after minutes of
+        # reading. The budget: the fixed part and 2,999 points' worth (one point too few for the 3,000 here).
+        n = len(self.points)
+        budget = (gls_memory.FIXED_BYTES + (n - 1) * gls_memory.DEFAULT_BYTES_PER_POINT) / gls_memory.GIB
+        ply = path('announced.ply')
+        helpers.write_ply(ply, helpers.polydata_from(self.points), binary=True)
+        las, _ = write_las('announced.las', self.points, np.zeros(n), self.colours)
+        pcd = path('announced.pcd')
+        with open(pcd, 'wb') as f:
+            f.write(('VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH %d\nHEIGHT 1\n'
+                     'VIEWPOINT 0 0 0 1 0 0 0\nPOINTS %d\nDATA binary\n' % (n, n)).encode() +
+                    self.points.astype('<f4').tobytes())
+        for cloud in (ply, las, pcd):
+            self.assertEqual(gls_io.announced_point_count(cloud), n, cloud)
+            out = path('announced-out')
+            result = run(cloud, '--output-dir', out, '--memory-budget', '%.9f' % budget, *QUICK)
+            line = self.assertFailsInOneLine(
+                result, "the analysis of %d points (as the file's header announces) needs about" % n, out)
+            self.assertIn('--memory-budget', line)
+            self.assertNotIn('input:', result.stdout)
+            # With the last point's worth more, the file is read and analysed.
+            result = run(cloud, '--output-dir', out, '--memory-budget', '%.9f' % (budget + 400.0 / gls_memory.GIB),
+                         *QUICK)
+            self.assertSucceeds(result, out, 'announced')
+            shutil.rmtree(out)
+        self.assertIsNone(gls_io.announced_point_count(path('cloud.xyz')))  # text: no header count
 
     def test_ptx_scan_faces_its_scanner(self):
         # The upper half of the sphere seen from (0, 0, 10), registered by a translation of (5, 0, 0), plus 40

@@ -39,6 +39,39 @@ def check_file(path):
         raise InputError('%s: the file is empty' % path)
 
 
+def announced_point_count(path):
+    """The number of points a file's header announces (PLY: its vertex element; LAS/LAZ: its point count, the 64-bit
+    one of LAS 1.4; PCD: POINTS), read from its first bytes before anything else; None for the formats without one
+    (text, PTX, OBJ, STL, VTP) or a header that cannot be read (the reader then reports what is wrong)."""
+    import struct
+    ext = os.path.splitext(path)[1].lower()
+    try:
+        with open(path, 'rb') as f:
+            head = f.read(65536)
+    except OSError:
+        return None
+    if ext == '.ply':
+        header = gls_ply.parse_header(head)
+        counts = [count for name, count, _ in header[1] if name == 'vertex'] if header else []
+        return counts[0] if counts else None
+    if ext in ('.las', '.laz'):
+        if len(head) < 227 or not head.startswith(b'LASF'):
+            return None
+        minor, header_size = head[25], struct.unpack_from('<H', head, 94)[0]
+        legacy = struct.unpack_from('<I', head, 107)[0]
+        if minor >= 4 and header_size >= 255 and len(head) >= 255:
+            return struct.unpack_from('<Q', head, 247)[0] or legacy
+        return legacy
+    if ext == '.pcd':
+        for line in head.split(b'\n'):
+            words = line.split()
+            if len(words) == 2 and words[0] == b'POINTS' and words[1].isdigit():
+                return int(words[1])
+            if words[:1] == [b'DATA']:
+                break
+    return None
+
+
 def output_of(proxy, port=0):
     """The data a proxy's algorithm produced, without a copy of its arrays (the main job runs ParaView's builtin
     session, where the algorithm is in this process; servermanager.Fetch would deep-copy a 10M-point cloud)."""

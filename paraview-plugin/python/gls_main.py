@@ -197,6 +197,11 @@ def analyze(args, outputs):
     from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkCommonCore import vtkLogger
     vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_WARNING)  # no INFO lines of VTK's own filters (the cutter)
+    # A file whose header announces its point count (PLY, LAS, PCD) is checked against the memory before it is read
+    # (a 10^8-point file takes minutes to read); every file is checked again once read, with its distinct points.
+    announced = gls_io.announced_point_count(args.input)
+    if announced:
+        gls_memory.check(announced, args.scales, args.per_scale, args.memory_budget, announced=True)
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
     watch = gls_watch.Watch()
     watch.handle_interruptions()

@@ -38,9 +38,10 @@ def needed_bytes(points, scales, per_scale):
     return FIXED_BYTES + points * per_point
 
 
-def check(points, scales, per_scale, budget_gib=None):
+def check(points, scales, per_scale, budget_gib=None, announced=False):
     """Raises BudgetError when the estimate exceeds the budget (GiB; default: the memory available now).
-    Returns (needed bytes, budget bytes or None)."""
+    Returns (needed bytes, budget bytes or None). `announced`: the count is the file's header's (checked before the
+    file is read; the message says so)."""
     budget = budget_gib * GIB if budget_gib is not None else available_bytes()
     needed = needed_bytes(points, scales, per_scale)
     if budget is None or needed <= budget:
@@ -53,7 +54,11 @@ def check(points, scales, per_scale, budget_gib=None):
         advice = 'drop --per-scale (the per-point summaries need about %.1f GiB)' % (default / GIB)
         if fitting >= 2:
             advice += ', or keep it with --scales %d' % fitting
-        raise BudgetError('storing every scale (--per-scale) of %d points at %d scales needs about %.1f GiB, '
-                           'above the %.1f GiB %s: %s' % (points, scales, needed / GIB, budget / GIB, where, advice))
-    raise BudgetError('the analysis of %d points needs about %.1f GiB, above the %.1f GiB %s: analyse a part of '
-                       'the cloud, or a machine with more memory' % (points, default / GIB, budget / GIB, where))
+        raise BudgetError('storing every scale (--per-scale) of %d points%s at %d scales needs about %.1f GiB, '
+                           'above the %.1f GiB %s: %s' % (points, ' (as the file\'s header announces)' if announced
+                                                           else '', scales, needed / GIB, budget / GIB, where,
+                                                           advice))
+    raise BudgetError('the analysis of %d points%s needs about %.1f GiB, above the %.1f GiB %s: analyse a part of '
+                       'the cloud, or a machine with more memory' % (points, ' (as the file\'s header announces)'
+                                                                       if announced else '', default / GIB,
+                                                                       budget / GIB, where))
