@@ -421,6 +421,7 @@ TEST(TextCloudFormat, TheContentTellsPcdAndPtxFilesWhateverTheirExtension)
   EXPECT_EQ(formatOf("2\n2\n0 0 0\n1 0 0\n0 1 0\n"), gls::TextCloudFormat::PointText); // short of a PTX header
   EXPECT_EQ(formatOf("x y z\n1 2 3\n"), gls::TextCloudFormat::PointText);
   EXPECT_EQ(formatOf("# VERSION\n1 2 3\n"), gls::TextCloudFormat::PointText);
+  EXPECT_EQ(formatOf("\"\" VERSION\n\"\"\n"), gls::TextCloudFormat::PointText); // an empty quoted first field
 
   // A scan renamed .txt or .csv is read by its format's parser, and its layout says so.
   const std::string pcd = pcdFile("binary_compressed"), ptx = twoScanPtx();

@@ -216,6 +216,19 @@ std::string pointCountMismatch(std::size_t declared, std::size_t found)
 
 } // namespace
 
+std::vector<std::string_view> blankSeparatedFields(const char* begin, const char* end)
+{
+  std::vector<Field> fields;
+  splitFields(Split::Blanks, begin, end, fields);
+  std::vector<std::string_view> out;
+  out.reserve(fields.size());
+  for (const Field& f : fields)
+  {
+    out.emplace_back(f.begin, static_cast<std::size_t>(f.end - f.begin));
+  }
+  return out;
+}
+
 std::string readTable(const char* text, std::size_t size, Table& table, bool wholeText)
 {
   table = Table();

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace gls
@@ -26,6 +27,10 @@ struct Table
   std::size_t rows() const { return lines.size(); }
   double at(std::size_t row, std::size_t column) const { return values[row * width + column]; }
 };
+
+/// The blank-separated fields of the text [begin, end) (quotes around a field removed), as the parser splits a line of
+/// blank-separated data.
+std::vector<std::string_view> blankSeparatedFields(const char* begin, const char* end);
 
 /// Reads `size` bytes into `table`; returns "" or "line N: what is wrong". With `wholeText` false the text is a file's
 /// first lines (its last point-count group may then hold fewer points than its count line says: the rest follows).

@@ -17,11 +17,6 @@ namespace gls
 namespace
 {
 
-bool isBlank(char c)
-{
-  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
 /// The blank-separated words of the text's first `maxLines` lines that are not blank (and, with `skipComments`, do
 /// not start with '#'), one list per line.
 std::vector<std::vector<std::string_view>> firstLinesWords(
@@ -33,26 +28,9 @@ std::vector<std::vector<std::string_view>> firstLinesWords(
   while (p < end && lines.size() < maxLines)
   {
     const char* eol = std::find(p, end, '\n');
-    std::vector<std::string_view> words;
-    for (const char* w = p; w < eol;)
-    {
-      while (w < eol && isBlank(*w))
-      {
-        ++w;
-      }
-      const char* e = w;
-      while (e < eol && !isBlank(*e))
-      {
-        ++e;
-      }
-      if (e > w)
-      {
-        words.emplace_back(w, static_cast<std::size_t>(e - w));
-      }
-      w = e;
-    }
+    std::vector<std::string_view> words = pointtext::blankSeparatedFields(p, eol);
     p = eol < end ? eol + 1 : end;
-    if (!words.empty() && !(skipComments && words[0][0] == '#'))
+    if (!words.empty() && !(skipComments && words[0].substr(0, 1) == "#"))
     {
       lines.push_back(std::move(words));
     }
