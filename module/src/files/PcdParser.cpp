@@ -110,6 +110,370 @@ bool lzfDecompress(const unsigned char* in, std::size_t inSize, unsigned char* o
   return o == outSize;
 }
 
+/// A PCD header: its fields, counts, viewpoint and encoding, and where its data begin.
+struct PcdHeader
+{
+  std::vector<PcdField> fields;
+  std::size_t width = 0, height = 1, points = 0;
+  bool havePoints = false;
+  double viewpoint[3] = { 0, 0, 0 };
+  bool placed = false; ///< a VIEWPOINT other than PCL's default (0 0 0 1 0 0 0)
+  std::string encoding;
+  std::size_t dataStart = 0; ///< the byte after the DATA line
+  std::size_t line = 0;      ///< the DATA line's number
+};
+
+/// Which field holds each value the cloud uses (-1: none; fields of one value only), and a point's size: bytes of a
+/// binary record, values of an ascii line.
+struct PcdRoles
+{
+  int x = -1, y = -1, z = -1, nx = -1, ny = -1, nz = -1, intensity = -1, rgb = -1;
+  std::size_t record = 0, values = 0;
+
+  bool used(int i) const
+  {
+    return i == x || i == y || i == z || i == nx || i == ny || i == nz || i == intensity || i == rgb;
+  }
+};
+
+/// A SIZE, TYPE or COUNT line (w: its words) into the fields; "" or what is wrong.
+std::string readFieldProperty(const std::vector<std::string>& w, std::vector<PcdField>& fields)
+{
+  const std::string& key = w[0];
+  if (w.size() != fields.size() + 1)
+  {
+    return key + " gives " + std::to_string(w.size() - 1) + " values for " + std::to_string(fields.size()) +
+      " FIELDS";
+  }
+  for (std::size_t k = 1; k < w.size(); ++k)
+  {
+    PcdField& f = fields[k - 1];
+    if (key == "TYPE")
+    {
+      f.type = w[k][0];
+      if (w[k].size() != 1 || (f.type != 'F' && f.type != 'U' && f.type != 'I'))
+      {
+        return "TYPE '" + w[k] + "' (F, U or I expected)";
+      }
+      continue;
+    }
+    const long v = std::strtol(w[k].c_str(), nullptr, 10);
+    if (key == "SIZE" && v != 1 && v != 2 && v != 4 && v != 8)
+    {
+      return "SIZE " + w[k] + " (1, 2, 4 or 8 expected)";
+    }
+    if (key == "COUNT" && !(v >= 1 && v <= 100000))
+    {
+      return "COUNT " + w[k] + " (1 to 100000 expected)";
+    }
+    (key == "SIZE" ? f.size : f.count) = static_cast<std::size_t>(v);
+  }
+  return {};
+}
+
+/// One header line (w: its words, not empty, no comment) into h; "" or what is wrong.
+std::string readHeaderLine(const std::vector<std::string>& w, PcdHeader& h)
+{
+  const std::string& key = w[0];
+  if (key == "VERSION")
+  {
+    return {};
+  }
+  if (key == "FIELDS")
+  {
+    h.fields.assign(w.size() - 1, PcdField());
+    for (std::size_t k = 1; k < w.size(); ++k)
+    {
+      h.fields[k - 1].name = w[k];
+    }
+    return {};
+  }
+  if (key == "SIZE" || key == "TYPE" || key == "COUNT")
+  {
+    return readFieldProperty(w, h.fields);
+  }
+  if (key == "WIDTH" || key == "HEIGHT" || key == "POINTS")
+  {
+    const double v = w.size() == 2 ? std::strtod(w[1].c_str(), nullptr) : -1.0;
+    if (!(v >= 0.0 && v <= 1e12) || v != std::floor(v))
+    {
+      return key + " needs one count";
+    }
+    (key == "WIDTH" ? h.width : key == "HEIGHT" ? h.height : h.points) = static_cast<std::size_t>(v);
+    h.havePoints = h.havePoints || key == "POINTS";
+    return {};
+  }
+  if (key == "VIEWPOINT")
+  {
+    if (w.size() != 8)
+    {
+      return "VIEWPOINT needs 7 numbers (tx ty tz qw qx qy qz)";
+    }
+    double q[7];
+    for (int a = 0; a < 7; ++a)
+    {
+      q[a] = std::strtod(w[1 + a].c_str(), nullptr);
+    }
+    std::copy(q, q + 3, h.viewpoint);
+    h.placed = q[0] != 0.0 || q[1] != 0.0 || q[2] != 0.0 || q[3] != 1.0 || q[4] != 0.0 || q[5] != 0.0 || q[6] != 0.0;
+    return {};
+  }
+  if (key == "DATA")
+  {
+    h.encoding = w.size() == 2 ? w[1] : "?";
+    if (h.encoding != "ascii" && h.encoding != "binary" && h.encoding != "binary_compressed")
+    {
+      return "DATA '" + h.encoding + "' (ascii, binary or binary_compressed expected)";
+    }
+    return {};
+  }
+  return "unknown PCD header line '" + key + "'";
+}
+
+/// The words of the line beginning at `at` (advanced past it).
+std::vector<std::string> nextLineWords(const char* data, std::size_t size, std::size_t& at)
+{
+  std::size_t end = at;
+  while (end < size && data[end] != '\n')
+  {
+    ++end;
+  }
+  std::vector<std::string> w = words(std::string(data + at, end - at));
+  at = end + 1;
+  return w;
+}
+
+/// The header: lines up to and including DATA; "" or what is wrong.
+std::string readPcdHeader(const char* data, std::size_t size, PcdHeader& h)
+{
+  std::size_t at = 0;
+  while (at < size && h.encoding.empty())
+  {
+    const std::vector<std::string> w = nextLineWords(data, size, at);
+    ++h.line;
+    if (w.empty() || w[0][0] == '#')
+    {
+      continue;
+    }
+    const std::string error = readHeaderLine(w, h);
+    if (!error.empty())
+    {
+      return "line " + std::to_string(h.line) + ": " + error;
+    }
+  }
+  h.dataStart = at;
+  if (h.encoding.empty() || h.fields.empty())
+  {
+    return "not a PCD file: no FIELDS and DATA lines";
+  }
+  if (!h.havePoints)
+  {
+    h.points = h.width * h.height;
+  }
+  return {};
+}
+
+/// Where each field is (its offset), and which the cloud uses; "" or what is wrong.
+std::string layOutFields(PcdHeader& h, PcdRoles& r)
+{
+  for (std::size_t k = 0; k < h.fields.size(); ++k)
+  {
+    PcdField& f = h.fields[k];
+    f.offset = h.encoding == "ascii" ? r.values : r.record;
+    r.record += f.size * f.count;
+    r.values += f.count;
+    const std::string& n = f.name;
+    int* role = n == "x" ? &r.x : n == "y" ? &r.y : n == "z" ? &r.z : n == "normal_x" ? &r.nx
+      : n == "normal_y" ? &r.ny : n == "normal_z" ? &r.nz : n == "intensity" ? &r.intensity
+      : (n == "rgb" || n == "rgba") ? &r.rgb : nullptr;
+    if (role && f.count == 1)
+    {
+      *role = static_cast<int>(k);
+    }
+  }
+  return r.x < 0 || r.y < 0 || r.z < 0 ? "the PCD file has no x, y and z fields" : "";
+}
+
+/// The values of every point of ascii data, field-major in v (the first value of each field); "" or what is wrong.
+std::string readAsciiValues(
+  const char* data, std::size_t size, const PcdHeader& h, const PcdRoles& r, std::vector<double>& v)
+{
+  std::size_t at = h.dataStart, line = h.line, point = 0;
+  while (at < size && point < h.points)
+  {
+    const std::vector<std::string> w = nextLineWords(data, size, at);
+    ++line;
+    if (w.empty())
+    {
+      continue;
+    }
+    if (w.size() != r.values)
+    {
+      return "line " + std::to_string(line) + ": " + std::to_string(w.size()) + " values, " +
+        std::to_string(r.values) + " expected";
+    }
+    for (std::size_t k = 0; k < h.fields.size(); ++k)
+    {
+      const std::string& s = w[h.fields[k].offset];
+      char* stop = nullptr;
+      double value = std::strtod(s.c_str(), &stop);
+      if (stop == s.c_str())
+      {
+        return "line " + std::to_string(line) + ": not a number: '" + s + "'";
+      }
+      if (static_cast<int>(k) == r.rgb)
+      {
+        // Packed colours in text: PCL writes the float's bits as an integer (or the float itself).
+        const std::uint32_t bits = value == std::floor(value) && value >= 0 && value < 4294967296.0
+          ? static_cast<std::uint32_t>(value)
+          : [&] { float f = static_cast<float>(value); std::uint32_t b; std::memcpy(&b, &f, 4); return b; }();
+        value = static_cast<double>(bits);
+      }
+      v[k * h.points + point] = value;
+    }
+    ++point;
+  }
+  if (point < h.points)
+  {
+    return "the file ends after " + std::to_string(point) + " of its " + std::to_string(h.points) +
+      " points (truncated)";
+  }
+  return {};
+}
+
+/// The values of every point of binary or binary_compressed data, field-major in v; "" or what is wrong.
+std::string readBinaryValues(
+  const char* data, std::size_t size, const PcdHeader& h, const PcdRoles& r, std::vector<double>& v)
+{
+  std::vector<unsigned char> unpacked;
+  const unsigned char* bytes = reinterpret_cast<const unsigned char*>(data) + h.dataStart;
+  std::size_t available = size - std::min(h.dataStart, size);
+  const bool columns = h.encoding == "binary_compressed";
+  if (columns)
+  {
+    if (available < 8)
+    {
+      return "binary_compressed data without its two sizes";
+    }
+    std::uint32_t packed = 0, plain = 0;
+    for (int b = 3; b >= 0; --b)
+    {
+      packed = (packed << 8) | bytes[b];
+      plain = (plain << 8) | bytes[4 + b];
+    }
+    if (plain != h.points * r.record || packed > available - 8)
+    {
+      return "binary_compressed sizes (" + std::to_string(packed) + " packed, " + std::to_string(plain) +
+        " unpacked) do not match " + std::to_string(h.points) + " points of " + std::to_string(r.record) +
+        " bytes in a file of " + std::to_string(size) + " bytes";
+    }
+    unpacked.resize(plain);
+    if (!lzfDecompress(bytes + 8, packed, unpacked.data(), plain))
+    {
+      return "damaged binary_compressed (LZF) data";
+    }
+    bytes = unpacked.data();
+    available = plain;
+  }
+  if (available < h.points * r.record)
+  {
+    return "the file holds " + std::to_string(available / std::max<std::size_t>(r.record, 1)) + " of its " +
+      std::to_string(h.points) + " points (truncated)";
+  }
+  std::size_t columnStart = 0;
+  for (std::size_t k = 0; k < h.fields.size(); ++k)
+  {
+    const PcdField& f = h.fields[k];
+    for (std::size_t p = 0; p < h.points; ++p)
+    {
+      // binary: point-major records; binary_compressed: each field's values for every point, in turn.
+      const unsigned char* at8 = columns ? bytes + columnStart + p * f.size * f.count : bytes + p * r.record + f.offset;
+      v[k * h.points + p] = binaryValue(at8, f);
+    }
+    columnStart += h.points * f.size * f.count;
+  }
+  return {};
+}
+
+/// The packed 0x00RRGGBB colour of a value of the rgb field (a float's bits, for PCL's F rgb in binary data).
+std::uint32_t packedColour(double value, const PcdField& f, const std::string& encoding)
+{
+  if (f.type == 'F' && encoding != "ascii")
+  {
+    const float fv = static_cast<float>(value);
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &fv, 4);
+    return bits;
+  }
+  return static_cast<std::uint32_t>(value);
+}
+
+/// The cloud of the field-major values v: points, the viewpoint, normals, intensity, colours, the other fields.
+PointText cloudOfValues(const PcdHeader& h, const PcdRoles& r, const std::vector<double>& v)
+{
+  const std::size_t points = h.points;
+  const auto value = [&](int field, std::size_t p) { return v[static_cast<std::size_t>(field) * points + p]; };
+  PointText out;
+  out.points.resize(3 * points);
+  for (std::size_t p = 0; p < points; ++p)
+  {
+    out.points[3 * p] = value(r.x, p);
+    out.points[3 * p + 1] = value(r.y, p);
+    out.points[3 * p + 2] = value(r.z, p);
+    if (h.placed)
+    {
+      out.viewpoints.insert(out.viewpoints.end(), h.viewpoint, h.viewpoint + 3);
+    }
+  }
+  for (std::size_t p = 0; r.nx >= 0 && r.ny >= 0 && r.nz >= 0 && p < points; ++p)
+  {
+    for (int c : { r.nx, r.ny, r.nz })
+    {
+      out.normals.push_back(value(c, p));
+    }
+  }
+  for (std::size_t p = 0; r.intensity >= 0 && p < points; ++p)
+  {
+    out.intensity.push_back(static_cast<float>(value(r.intensity, p)));
+  }
+  for (std::size_t p = 0; r.rgb >= 0 && p < points; ++p)
+  {
+    const std::uint32_t bits = packedColour(value(r.rgb, p), h.fields[static_cast<std::size_t>(r.rgb)], h.encoding);
+    out.colors.push_back(static_cast<unsigned char>((bits >> 16) & 255));
+    out.colors.push_back(static_cast<unsigned char>((bits >> 8) & 255));
+    out.colors.push_back(static_cast<unsigned char>(bits & 255));
+  }
+  std::ostringstream layout;
+  layout << "PCD (" << h.encoding << "):";
+  for (std::size_t k = 0; k < h.fields.size(); ++k)
+  {
+    layout << " " << h.fields[k].name;
+    if (r.used(static_cast<int>(k)))
+    {
+      continue;
+    }
+    if (h.fields[k].count == 1)
+    {
+      PointTextColumn column;
+      column.name = h.fields[k].name;
+      column.values.assign(v.begin() + static_cast<std::ptrdiff_t>(k * points),
+        v.begin() + static_cast<std::ptrdiff_t>((k + 1) * points));
+      out.otherColumns.push_back(std::move(column));
+    }
+    else
+    {
+      layout << "[" << h.fields[k].count << " values: not read]";
+    }
+  }
+  if (h.placed)
+  {
+    layout << "; VIEWPOINT (" << h.viewpoint[0] << ", " << h.viewpoint[1] << ", " << h.viewpoint[2]
+           << ") as every point's scanner position";
+  }
+  out.layout = layout.str();
+  return out;
+}
+
 } // namespace
 
 PointText parsePcd(const char* data, std::size_t size)
@@ -119,332 +483,28 @@ PointText parsePcd(const char* data, std::size_t size)
     failed.error = what;
     return failed;
   };
-  // The header: lines up to and including DATA.
-  std::vector<PcdField> fields;
-  std::size_t width = 0, height = 1, points = 0, at = 0, line = 0;
-  double viewpoint[3] = { 0, 0, 0 };
-  bool placed = false; // a VIEWPOINT other than PCL's default (0 0 0 1 0 0 0)
-  std::string encoding;
-  bool havePoints = false;
-  while (at < size && encoding.empty())
+  PcdHeader h;
+  PcdRoles r;
+  std::string error = readPcdHeader(data, size, h);
+  if (error.empty())
   {
-    std::size_t end = at;
-    while (end < size && data[end] != '\n')
-    {
-      ++end;
-    }
-    const std::string text(data + at, end - at);
-    at = end + 1;
-    ++line;
-    const std::vector<std::string> w = words(text);
-    if (w.empty() || w[0][0] == '#')
-    {
-      continue;
-    }
-    const std::string key = w[0];
-    const auto here = [&](const std::string& what) { return "line " + std::to_string(line) + ": " + what; };
-    if (key == "VERSION")
-    {
-      continue;
-    }
-    if (key == "FIELDS")
-    {
-      fields.assign(w.size() - 1, PcdField());
-      for (std::size_t k = 1; k < w.size(); ++k)
-      {
-        fields[k - 1].name = w[k];
-      }
-    }
-    else if (key == "SIZE" || key == "TYPE" || key == "COUNT")
-    {
-      if (w.size() != fields.size() + 1)
-      {
-        return fail(here(key + " gives " + std::to_string(w.size() - 1) + " values for " +
-          std::to_string(fields.size()) + " FIELDS"));
-      }
-      for (std::size_t k = 1; k < w.size(); ++k)
-      {
-        PcdField& f = fields[k - 1];
-        if (key == "TYPE")
-        {
-          f.type = w[k][0];
-          if (w[k].size() != 1 || (f.type != 'F' && f.type != 'U' && f.type != 'I'))
-          {
-            return fail(here("TYPE '" + w[k] + "' (F, U or I expected)"));
-          }
-        }
-        else
-        {
-          const long v = std::strtol(w[k].c_str(), nullptr, 10);
-          if (key == "SIZE" && v != 1 && v != 2 && v != 4 && v != 8)
-          {
-            return fail(here("SIZE " + w[k] + " (1, 2, 4 or 8 expected)"));
-          }
-          if (key == "COUNT" && !(v >= 1 && v <= 100000))
-          {
-            return fail(here("COUNT " + w[k] + " (1 to 100000 expected)"));
-          }
-          (key == "SIZE" ? f.size : f.count) = static_cast<std::size_t>(v);
-        }
-      }
-    }
-    else if (key == "WIDTH" || key == "HEIGHT" || key == "POINTS")
-    {
-      const double v = w.size() == 2 ? std::strtod(w[1].c_str(), nullptr) : -1.0;
-      if (!(v >= 0.0 && v <= 1e12) || v != std::floor(v))
-      {
-        return fail(here(key + " needs one count"));
-      }
-      (key == "WIDTH" ? width : key == "HEIGHT" ? height : points) = static_cast<std::size_t>(v);
-      havePoints = havePoints || key == "POINTS";
-    }
-    else if (key == "VIEWPOINT")
-    {
-      if (w.size() != 8)
-      {
-        return fail(here("VIEWPOINT needs 7 numbers (tx ty tz qw qx qy qz)"));
-      }
-      double q[7];
-      for (int a = 0; a < 7; ++a)
-      {
-        q[a] = std::strtod(w[1 + a].c_str(), nullptr);
-      }
-      std::copy(q, q + 3, viewpoint);
-      placed = q[0] != 0.0 || q[1] != 0.0 || q[2] != 0.0 || q[3] != 1.0 || q[4] != 0.0 || q[5] != 0.0 || q[6] != 0.0;
-    }
-    else if (key == "DATA")
-    {
-      encoding = w.size() == 2 ? w[1] : "?";
-      if (encoding != "ascii" && encoding != "binary" && encoding != "binary_compressed")
-      {
-        return fail(here("DATA '" + encoding + "' (ascii, binary or binary_compressed expected)"));
-      }
-    }
-    else
-    {
-      return fail(here("unknown PCD header line '" + key + "'"));
-    }
+    error = layOutFields(h, r);
   }
-  if (encoding.empty() || fields.empty())
+  if (!error.empty())
   {
-    return fail("not a PCD file: no FIELDS and DATA lines");
-  }
-  if (!havePoints)
-  {
-    points = width * height;
-  }
-  // Where each field is, and which the cloud uses.
-  std::size_t record = 0, values = 0;
-  int x = -1, y = -1, z = -1, nx = -1, ny = -1, nz = -1, intensity = -1, rgb = -1;
-  for (std::size_t k = 0; k < fields.size(); ++k)
-  {
-    PcdField& f = fields[k];
-    f.offset = encoding == "ascii" ? values : record;
-    record += f.size * f.count;
-    values += f.count;
-    const int i = static_cast<int>(k);
-    const std::string& n = f.name;
-    int* role = n == "x" ? &x : n == "y" ? &y : n == "z" ? &z : n == "normal_x" ? &nx : n == "normal_y" ? &ny
-      : n == "normal_z" ? &nz : n == "intensity" ? &intensity : (n == "rgb" || n == "rgba") ? &rgb : nullptr;
-    if (role && f.count == 1)
-    {
-      *role = i;
-    }
-  }
-  if (x < 0 || y < 0 || z < 0)
-  {
-    return fail("the PCD file has no x, y and z fields");
+    return fail(error);
   }
   // At least 2 characters a value in text, a record a point in binary, and LZF expands at most about 132 times.
-  const double held = static_cast<double>(size - std::min(at, size)) * (encoding == "binary_compressed" ? 140.0 : 1.0);
-  if (static_cast<double>(points) * static_cast<double>(encoding == "ascii" ? 2 * values : record) > held)
+  const double held =
+    static_cast<double>(size - std::min(h.dataStart, size)) * (h.encoding == "binary_compressed" ? 140.0 : 1.0);
+  if (static_cast<double>(h.points) * static_cast<double>(h.encoding == "ascii" ? 2 * r.values : r.record) > held)
   {
-    return fail("the header announces " + std::to_string(points) +
+    return fail("the header announces " + std::to_string(h.points) +
       " points, more than the file holds (truncated, or a wrong POINTS)");
   }
-  // The values of every point, field-major in one array of doubles (the first value of each field).
-  std::vector<double> v(fields.size() * points, std::numeric_limits<double>::quiet_NaN());
-  const auto put = [&](std::size_t field, std::size_t point, double value) { v[field * points + point] = value; };
-  if (encoding == "ascii")
-  {
-    std::size_t point = 0;
-    while (at < size && point < points)
-    {
-      std::size_t end = at;
-      while (end < size && data[end] != '\n')
-      {
-        ++end;
-      }
-      const std::vector<std::string> w = words(std::string(data + at, end - at));
-      at = end + 1;
-      ++line;
-      if (w.empty())
-      {
-        continue;
-      }
-      if (w.size() != values)
-      {
-        return fail("line " + std::to_string(line) + ": " + std::to_string(w.size()) + " values, " +
-          std::to_string(values) + " expected");
-      }
-      for (std::size_t k = 0; k < fields.size(); ++k)
-      {
-        const std::string& s = w[fields[k].offset];
-        char* stop = nullptr;
-        double value = std::strtod(s.c_str(), &stop);
-        if (stop == s.c_str())
-        {
-          return fail("line " + std::to_string(line) + ": not a number: '" + s + "'");
-        }
-        if (static_cast<int>(k) == rgb)
-        {
-          // Packed colours in text: PCL writes the float's bits as an integer (or the float itself).
-          const std::uint32_t bits = value == std::floor(value) && value >= 0 && value < 4294967296.0
-            ? static_cast<std::uint32_t>(value)
-            : [&] { float f = static_cast<float>(value); std::uint32_t b; std::memcpy(&b, &f, 4); return b; }();
-          value = static_cast<double>(bits);
-        }
-        put(k, point, value);
-      }
-      ++point;
-    }
-    if (point < points)
-    {
-      return fail("the file ends after " + std::to_string(point) + " of its " + std::to_string(points) +
-        " points (truncated)");
-    }
-  }
-  else
-  {
-    std::vector<unsigned char> unpacked;
-    const unsigned char* bytes = reinterpret_cast<const unsigned char*>(data) + at;
-    std::size_t available = size - std::min(at, size);
-    const bool columns = encoding == "binary_compressed";
-    if (columns)
-    {
-      if (available < 8)
-      {
-        return fail("binary_compressed data without its two sizes");
-      }
-      std::uint32_t packed = 0, plain = 0;
-      for (int b = 3; b >= 0; --b)
-      {
-        packed = (packed << 8) | bytes[b];
-        plain = (plain << 8) | bytes[4 + b];
-      }
-      if (plain != points * record || packed > available - 8)
-      {
-        return fail("binary_compressed sizes (" + std::to_string(packed) + " packed, " + std::to_string(plain) +
-          " unpacked) do not match " + std::to_string(points) + " points of " + std::to_string(record) +
-          " bytes in a file of " + std::to_string(size) + " bytes");
-      }
-      unpacked.resize(plain);
-      if (!lzfDecompress(bytes + 8, packed, unpacked.data(), plain))
-      {
-        return fail("damaged binary_compressed (LZF) data");
-      }
-      bytes = unpacked.data();
-      available = plain;
-    }
-    if (available < points * record)
-    {
-      return fail("the file holds " + std::to_string(available / std::max<std::size_t>(record, 1)) + " of its " +
-        std::to_string(points) + " points (truncated)");
-    }
-    std::size_t columnStart = 0;
-    for (std::size_t k = 0; k < fields.size(); ++k)
-    {
-      const PcdField& f = fields[k];
-      for (std::size_t p = 0; p < points; ++p)
-      {
-        // binary: point-major records; binary_compressed: each field's values for every point, in turn.
-        const unsigned char* at8 = columns ? bytes + columnStart + p * f.size * f.count : bytes + p * record + f.offset;
-        put(k, p, binaryValue(at8, f));
-      }
-      columnStart += points * f.size * f.count;
-    }
-  }
-  // The cloud.
-  PointText out;
-  out.points.resize(3 * points);
-  for (std::size_t p = 0; p < points; ++p)
-  {
-    out.points[3 * p] = v[static_cast<std::size_t>(x) * points + p];
-    out.points[3 * p + 1] = v[static_cast<std::size_t>(y) * points + p];
-    out.points[3 * p + 2] = v[static_cast<std::size_t>(z) * points + p];
-    if (placed)
-    {
-      out.viewpoints.insert(out.viewpoints.end(), viewpoint, viewpoint + 3);
-    }
-  }
-  if (nx >= 0 && ny >= 0 && nz >= 0)
-  {
-    for (std::size_t p = 0; p < points; ++p)
-    {
-      for (int c : { nx, ny, nz })
-      {
-        out.normals.push_back(v[static_cast<std::size_t>(c) * points + p]);
-      }
-    }
-  }
-  if (intensity >= 0)
-  {
-    for (std::size_t p = 0; p < points; ++p)
-    {
-      out.intensity.push_back(static_cast<float>(v[static_cast<std::size_t>(intensity) * points + p]));
-    }
-  }
-  if (rgb >= 0)
-  {
-    const PcdField& f = fields[static_cast<std::size_t>(rgb)];
-    for (std::size_t p = 0; p < points; ++p)
-    {
-      // The packed 0x00RRGGBB in the field's bits (a float's, for PCL's F rgb).
-      double value = v[static_cast<std::size_t>(rgb) * points + p];
-      std::uint32_t bits = 0;
-      if (f.type == 'F' && encoding != "ascii")
-      {
-        const float fv = static_cast<float>(value);
-        std::memcpy(&bits, &fv, 4);
-      }
-      else
-      {
-        bits = static_cast<std::uint32_t>(value);
-      }
-      out.colors.push_back(static_cast<unsigned char>((bits >> 16) & 255));
-      out.colors.push_back(static_cast<unsigned char>((bits >> 8) & 255));
-      out.colors.push_back(static_cast<unsigned char>(bits & 255));
-    }
-  }
-  std::ostringstream layout;
-  layout << "PCD (" << encoding << "):";
-  for (std::size_t k = 0; k < fields.size(); ++k)
-  {
-    const int i = static_cast<int>(k);
-    layout << " " << fields[k].name;
-    if (i != x && i != y && i != z && i != nx && i != ny && i != nz && i != intensity && i != rgb)
-    {
-      if (fields[k].count == 1)
-      {
-        PointTextColumn column;
-        column.name = fields[k].name;
-        column.values.assign(v.begin() + static_cast<std::ptrdiff_t>(k * points),
-          v.begin() + static_cast<std::ptrdiff_t>((k + 1) * points));
-        out.otherColumns.push_back(std::move(column));
-      }
-      else
-      {
-        layout << "[" << fields[k].count << " values: not read]";
-      }
-    }
-  }
-  if (placed)
-  {
-    layout << "; VIEWPOINT (" << viewpoint[0] << ", " << viewpoint[1] << ", " << viewpoint[2]
-           << ") as every point's scanner position";
-  }
-  out.layout = layout.str();
-  return out;
+  std::vector<double> v(h.fields.size() * h.points, std::numeric_limits<double>::quiet_NaN());
+  error = h.encoding == "ascii" ? readAsciiValues(data, size, h, r, v) : readBinaryValues(data, size, h, r, v);
+  return error.empty() ? cloudOfValues(h, r, v) : fail(error);
 }
 
 } // namespace gls
