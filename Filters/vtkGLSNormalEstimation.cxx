@@ -54,20 +54,48 @@ constexpr std::size_t kAutomaticRadiusSamples = 10000;
 
 int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
 {
-  vtkPointSet* input = run.Input;
-  const vtkIdType n = input->GetNumberOfPoints();
+  gls::NormalEstimationSettings settings;
+  std::vector<double> reference;
+  if (!this->CheckRun(run) || !this->ResolveSettings(settings) || !this->GatherReference(run, reference, settings))
+  {
+    return FAILED;
+  }
+  gls::NormalEstimationResult result;
+  if (run.Distributed.IsParallel())
+  {
+    if (!this->EstimateDistributed(run, reference, settings, result) ||
+      (this->Refinement == GLS_REFINEMENT && !this->RefineDistributed(run, settings.parallel, result)))
+    {
+      return FAILED;
+    }
+  }
+  else
+  {
+    const int status = this->EstimateSerial(run, reference, settings, result);
+    if (status != COMPLETED)
+    {
+      return status;
+    }
+  }
+  this->WriteNormals(run, settings, result);
+  this->UpdateProgress(1.0);
+  return COMPLETED;
+}
+
+bool vtkGLSNormalEstimation::CheckRun(const vtkGLSRun& run)
+{
   const vtkGLSDistributedCloud& dist = run.Distributed;
   const bool byRadius = this->NeighborhoodType == RADIUS;
   if (byRadius && !(this->Radius >= 0.0 && std::isfinite(this->Radius)))
   {
     vtkErrorMacro("Radius must be a finite length >= 0 in RADIUS mode (0: automatic; got " << this->Radius << ").");
-    return FAILED;
+    return false;
   }
   if (byRadius && this->Radius == 0.0 && dist.IsParallel())
   {
     vtkErrorMacro("The automatic Radius (0) is measured on the whole cloud and is not supported on several "
                   "processes: set Radius to a length (a serial run records the automatic one in GLSNormalRadius).");
-    return FAILED;
+    return false;
   }
   if (dist.IsParallel())
   {
@@ -76,11 +104,14 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
     {
       vtkErrorMacro("Distributed normal estimation of a planar input (every point in the plane z = "
         << run.Bounds[4] << ") is not supported: run it on one process.");
-      return FAILED;
+      return false;
     }
   }
+  return true;
+}
 
-  gls::NormalEstimationSettings settings;
+bool vtkGLSNormalEstimation::ResolveSettings(gls::NormalEstimationSettings& settings)
+{
   settings.neighborhood = static_cast<gls::NeighborhoodType>(this->NeighborhoodType);
   settings.k = this->NumberOfNeighbors;
   settings.radius = this->Radius;
@@ -94,7 +125,7 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
     {
       vtkErrorMacro("UpDirection (" << u[0] << ", " << u[1] << ", " << u[2]
                                     << ") must be a finite direction, not zero (UP orientation).");
-      return FAILED;
+      return false;
     }
     settings.orientation = gls::NormalOrientation::Up;
     settings.up = { u[0], u[1], u[2] };
@@ -104,94 +135,93 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
   settings.maximumGrowth = this->MaximumGrowth;
   settings.parallel.threads = this->NumberOfThreads;
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 0.9); };
+  return true;
+}
 
+bool vtkGLSNormalEstimation::GatherReference(
+  const vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings& settings)
+{
   // AGREE_WITH_EXISTING follows the selected normals; TOWARDS_VIEWPOINT_ARRAY follows the directions from each point
   // to its viewpoint (the same rule: n . reference >= 0).
-  std::vector<double> reference;
-  if (this->Orientation == AGREE_WITH_EXISTING || this->Orientation == TOWARDS_VIEWPOINT_ARRAY)
+  if (this->Orientation != AGREE_WITH_EXISTING && this->Orientation != TOWARDS_VIEWPOINT_ARRAY)
   {
-    const bool viewpoints = this->Orientation == TOWARDS_VIEWPOINT_ARRAY;
-    std::string problem;
-    bool absent = false;
-    vtkDataArray* existing = nullptr;
-    if (n > 0 && viewpoints && !this->SelectedArrayName(1))
-    {
-      problem = "no viewpoint array is selected"; // no automatic choice: any 3-vector array could be taken
-    }
-    else if (n > 0)
-    {
-      existing = this->SelectNormals(viewpoints ? 1 : 0, input, problem, absent);
-    }
-    if (!dist.AllTrue(existing || (dist.IsParallel() && n == 0)))
-    {
-      if (viewpoints)
-      {
-        vtkErrorMacro("TOWARDS_VIEWPOINT_ARRAY needs the scanner position of every point (a floating-point "
-                      "3-component point array; select it with SetInputArrayToProcess(1, ...)): "
-                      << (problem.empty() ? "another process has none" : problem) << ".");
-      }
-      else
-      {
-        vtkErrorMacro("AGREE_WITH_EXISTING needs existing normals (a floating-point 3-component point array with "
-                      "one tuple per point; select it with SetInputArrayToProcess, or set active normals): "
-                      << (problem.empty() ? "another process has none" : problem) << ".");
-      }
-      return FAILED;
-    }
-    reference.resize(3 * static_cast<std::size_t>(n));
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      existing->GetTuple(i, &reference[3 * i]);
-      for (int a = 0; viewpoints && a < 3; ++a)
-      {
-        reference[3 * i + a] -= run.Cloud.Points[3 * i + a]; // towards the viewpoint
-      }
-    }
-    settings.orientation = gls::NormalOrientation::AgreeWithReference;
+    return true;
   }
+  vtkPointSet* input = run.Input;
+  const vtkIdType n = input->GetNumberOfPoints();
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  const bool viewpoints = this->Orientation == TOWARDS_VIEWPOINT_ARRAY;
+  std::string problem;
+  bool absent = false;
+  vtkDataArray* existing = nullptr;
+  if (n > 0 && viewpoints && !this->SelectedArrayName(1))
+  {
+    problem = "no viewpoint array is selected"; // no automatic choice: any 3-vector array could be taken
+  }
+  else if (n > 0)
+  {
+    existing = this->SelectNormals(viewpoints ? 1 : 0, input, problem, absent);
+  }
+  if (!dist.AllTrue(existing || (dist.IsParallel() && n == 0)))
+  {
+    if (viewpoints)
+    {
+      vtkErrorMacro("TOWARDS_VIEWPOINT_ARRAY needs the scanner position of every point (a floating-point "
+                    "3-component point array; select it with SetInputArrayToProcess(1, ...)): "
+                    << (problem.empty() ? "another process has none" : problem) << ".");
+    }
+    else
+    {
+      vtkErrorMacro("AGREE_WITH_EXISTING needs existing normals (a floating-point 3-component point array with "
+                    "one tuple per point; select it with SetInputArrayToProcess, or set active normals): "
+                    << (problem.empty() ? "another process has none" : problem) << ".");
+    }
+    return false;
+  }
+  reference.resize(3 * static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    existing->GetTuple(i, &reference[3 * i]);
+    for (int a = 0; viewpoints && a < 3; ++a)
+    {
+      reference[3 * i + a] -= run.Cloud.Points[3 * i + a]; // towards the viewpoint
+    }
+  }
+  settings.orientation = gls::NormalOrientation::AgreeWithReference;
+  return true;
+}
 
-  gls::NormalEstimationResult result;
-  if (dist.IsParallel())
+int vtkGLSNormalEstimation::EstimateSerial(vtkGLSRun& run, std::vector<double>& reference,
+  gls::NormalEstimationSettings& settings, gls::NormalEstimationResult& result)
+{
+  this->MergeCoincidentPoints(run);
+  if (run.Cloud.IsMerged() && !reference.empty())
   {
-    if (!this->EstimateDistributed(run, reference, settings, result) ||
-      (this->Refinement == GLS_REFINEMENT && !this->RefineDistributed(run, settings.parallel, result)))
+    reference = gls::mergedNormals(run.Cloud.Copies, reference.data());
+  }
+  settings.reference = reference.empty() ? nullptr : reference.data();
+  if (this->NeighborhoodType == RADIUS && settings.radius == 0.0)
+  {
+    settings.radius = gls::medianKNearestDistance(
+      run.Cloud.Points.data(), run.Cloud.Owned, this->NumberOfNeighbors, kAutomaticRadiusSamples);
+    if (!(settings.radius > 0.0))
     {
+      vtkErrorMacro("The automatic Radius is 0: the input has fewer than 2 distinct finite points.");
       return FAILED;
     }
   }
-  else
+  if (!gls::estimateNormals(run.Cloud.Points.data(), run.Cloud.Owned, settings, result))
   {
-    this->MergeCoincidentPoints(run);
-    if (run.Cloud.IsMerged() && !reference.empty())
-    {
-      reference = gls::mergedNormals(run.Cloud.Copies, reference.data());
-    }
-    settings.reference = reference.empty() ? nullptr : reference.data();
-    if (byRadius && settings.radius == 0.0)
-    {
-      settings.radius = gls::medianKNearestDistance(
-        run.Cloud.Points.data(), run.Cloud.Owned, this->NumberOfNeighbors, kAutomaticRadiusSamples);
-      if (!(settings.radius > 0.0))
-      {
-        vtkErrorMacro("The automatic Radius is 0: the input has fewer than 2 distinct finite points.");
-        return FAILED;
-      }
-    }
-    if (!gls::estimateNormals(run.Cloud.Points.data(), run.Cloud.Owned, settings, result))
-    {
-      return ABORTED; // the output is the input, without partial normals
-    }
-    gls::ParallelOptions refinement = settings.parallel;
-    refinement.progress = [this](double f) { return this->ReportProgress(f, 0.9, 0.99); };
-    if (this->Refinement == GLS_REFINEMENT &&
-      !gls::refineNormalsByGls(run.Cloud.Points.data(), run.Cloud.Owned, result.reach, this->RefinementScale,
-        result.normals.data(), refinement))
-    {
-      return ABORTED;
-    }
+    return ABORTED; // the output is the input, without partial normals
   }
-  this->WriteNormals(run, settings, result);
-  this->UpdateProgress(1.0);
+  gls::ParallelOptions refinement = settings.parallel;
+  refinement.progress = [this](double f) { return this->ReportProgress(f, 0.9, 0.99); };
+  if (this->Refinement == GLS_REFINEMENT &&
+    !gls::refineNormalsByGls(run.Cloud.Points.data(), run.Cloud.Owned, result.reach, this->RefinementScale,
+      result.normals.data(), refinement))
+  {
+    return ABORTED;
+  }
   return COMPLETED;
 }
 

@@ -194,6 +194,22 @@ protected:
 
   int Execute(vtkGLSRun& run) override;
 
+  /// The run's own refusals (a bad or, on several processes, automatic Radius; a planar distributed input), with an
+  /// error; false then.
+  bool CheckRun(const vtkGLSRun& run);
+  /// The core's settings from the properties (UpDirection checked: false, with an error, when it is zero or not
+  /// finite).
+  bool ResolveSettings(gls::NormalEstimationSettings& settings);
+  /// AGREE_WITH_EXISTING and TOWARDS_VIEWPOINT_ARRAY: the reference directions of every point (the selected normals,
+  /// or the directions to each point's viewpoint) and the orientation that follows them; false, with an error, when
+  /// the selected array is missing here or on another process. Nothing for the other orientations.
+  bool GatherReference(
+    const vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings& settings);
+  /// The serial estimate: coincident points merged, the automatic radius measured, the normals, their GLS
+  /// refinement. COMPLETED, FAILED (with an error) or ABORTED.
+  int EstimateSerial(vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings& settings,
+    gls::NormalEstimationResult& result);
+
   /// The distributed estimate (see the class documentation): ghosts, normals of the owned points, and the
   /// minimum-spanning-tree orientation on rank 0. The run's cloud and `reference` are scratch. False (with an
   /// error) on a communication failure.
