@@ -130,10 +130,14 @@ std::size_t lasFormatSize(int format)
   return format >= 0 && format <= 10 ? sizes[format] : 0;
 }
 
-bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::string& error)
+namespace
 {
-  h = LasHeader();
-  unsigned char b[375] = {};
+
+/// The header's first bytes: the signature, no compression, the version, a header size the version allows and the
+/// file holds (the whole header is then in b). False with the error otherwise.
+bool readLasPreamble(std::istream& in, std::uint64_t fileSize, unsigned char* b, LasHeader& h,
+  std::size_t& headerSize, std::string& error)
+{
   if (fileSize < 227 || !readBytes(in, 0, b, 227))
   {
     error = "too short for a LAS header (" + std::to_string(fileSize) + " bytes, at least 227 needed)";
@@ -146,9 +150,8 @@ bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::
   }
   h.versionMajor = b[24];
   h.versionMinor = b[25];
-  const std::size_t headerSize = u16(b + 94);
-  const int formatByte = b[104];
-  if ((formatByte & 0xC0) != 0)
+  headerSize = u16(b + 94);
+  if ((b[104] & 0xC0) != 0)
   {
     error = "compressed (LAZ) point records: decompress the file first (laszip -i in.laz -o out.las, "
             "pdal translate in.laz out.las, or CloudCompare), then read the .las";
@@ -169,14 +172,21 @@ bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::
     error = msg.str();
     return false;
   }
-  h.format = formatByte;
+  return true;
+}
+
+/// The header's fields (b: the whole header): the format, where the points are, how many, their scale, offset and
+/// bounds. False with the error when the format is not one of 0 to 10.
+bool readLasFields(const unsigned char* b, LasHeader& h, std::uint32_t& vlrCount, std::string& error)
+{
+  h.format = b[104];
   if (lasFormatSize(h.format) == 0)
   {
     error = "point data record format " + std::to_string(h.format) + " (this reader takes 0 to 10)";
     return false;
   }
   h.pointOffset = u32(b + 96);
-  const std::uint32_t vlrCount = u32(b + 100);
+  vlrCount = u32(b + 100);
   h.recordLength = u16(b + 105);
   h.pointCount = u32(b + 107);
   if (h.versionMinor >= 4 && h.pointCount == 0)
@@ -190,6 +200,13 @@ bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::
     h.max[a] = f64(b + 179 + 16 * a);
     h.min[a] = f64(b + 187 + 16 * a);
   }
+  return true;
+}
+
+/// The records as the file holds them: at least the format's size, usable scales and offsets, and every point
+/// inside the file. False with the error otherwise.
+bool checkLasRecords(const LasHeader& h, std::size_t headerSize, std::uint64_t fileSize, std::string& error)
+{
   if (h.recordLength < lasFormatSize(h.format))
   {
     std::ostringstream msg;
@@ -217,7 +234,14 @@ bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::
     error = msg.str();
     return false;
   }
-  // The variable-length records between the header and the points: the Extra Bytes descriptors.
+  return true;
+}
+
+/// The variable-length records between the header and the points: the Extra Bytes descriptors into h.extra. False
+/// with the error when a record runs into the points or its descriptors do not fit the point records.
+bool readVariableLengthRecords(
+  std::istream& in, std::size_t headerSize, std::uint32_t vlrCount, LasHeader& h, std::string& error)
+{
   std::uint64_t at = headerSize;
   for (std::uint32_t r = 0; r < vlrCount; ++r)
   {
@@ -248,6 +272,18 @@ bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::
     at += 54 + length;
   }
   return true;
+}
+
+} // namespace
+
+bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::string& error)
+{
+  h = LasHeader();
+  unsigned char b[375] = {};
+  std::size_t headerSize = 0;
+  std::uint32_t vlrCount = 0;
+  return readLasPreamble(in, fileSize, b, h, headerSize, error) && readLasFields(b, h, vlrCount, error) &&
+    checkLasRecords(h, headerSize, fileSize, error) && readVariableLengthRecords(in, headerSize, vlrCount, h, error);
 }
 
 bool readLasPoints(std::istream& in, const LasHeader& h, LasColumns& c, std::string& error)
