@@ -77,6 +77,100 @@ private:
   std::size_t Line = 0;
 };
 
+/// One scan's header: its columns and rows, the scanner's position, the 4x4 registration matrix (rows: the axes, then
+/// the translation).
+struct PtxScan
+{
+  double columns = 0.0, rows = 0.0;
+  double scanner[3] = { 0, 0, 0 };
+  double m[4][4] = {};
+};
+
+/// A scan's header from its first line (already in v); "" or what is wrong.
+std::string readPtxScanHeader(NumberLines& lines, std::vector<double>& v, std::string& error, PtxScan& scan)
+{
+  if (v.size() != 1 || !(v[0] >= 0.0) || v[0] != std::floor(v[0]))
+  {
+    return "line " + std::to_string(lines.line()) + ": a PTX scan begins with its column count (one integer)";
+  }
+  scan.columns = v[0];
+  if (!lines.next(v, error) || v.size() != 1 || !(v[0] >= 0.0) || v[0] != std::floor(v[0]))
+  {
+    return error.empty() ? "line " + std::to_string(lines.line()) + ": the row count (one integer) expected" : error;
+  }
+  scan.rows = v[0];
+  for (int k = 0; k < 4; ++k) // position, then the three axes
+  {
+    if (!lines.next(v, error) || v.size() != 3)
+    {
+      return error.empty() ? "line " + std::to_string(lines.line()) +
+          ": 3 numbers expected (the scanner's position and axes in the PTX header)"
+                           : error;
+    }
+    if (k == 0)
+    {
+      std::copy(v.begin(), v.end(), scan.scanner);
+    }
+  }
+  for (int r = 0; r < 4; ++r)
+  {
+    if (!lines.next(v, error) || v.size() != 4)
+    {
+      return error.empty()
+        ? "line " + std::to_string(lines.line()) + ": 4 numbers expected (a row of the PTX registration matrix)"
+        : error;
+    }
+    std::copy(v.begin(), v.end(), scan.m[r]);
+  }
+  return {};
+}
+
+/// The scan's point lines (scan number `index`): the registered points with intensity, colours (every scan with or
+/// every one without: colourColumns, -1 before the first point) and the scanner's position into out; lines at 0 0 0
+/// are counted in `missing`. "" or what is wrong.
+std::string readPtxScanPoints(NumberLines& lines, std::vector<double>& v, std::string& error, const PtxScan& scan,
+  std::size_t index, int& colourColumns, std::size_t& missing, PointText& out)
+{
+  const double count = scan.columns * scan.rows;
+  for (double k = 0; k < count; ++k)
+  {
+    if (!lines.next(v, error))
+    {
+      std::ostringstream msg;
+      msg << (error.empty() ? "" : error + "; ") << "scan " << index << " announces " << scan.columns << " x "
+          << scan.rows << " = " << count << " points, the file ends after " << k << " (truncated)";
+      return msg.str();
+    }
+    if (v.size() != 4 && v.size() != 7)
+    {
+      return "line " + std::to_string(lines.line()) + ": " + std::to_string(v.size()) +
+        " numbers; a PTX point line has 4 (x y z intensity) or 7 (and r g b)";
+    }
+    const int colours = v.size() == 7 ? 3 : 0;
+    if (colourColumns >= 0 && colours != colourColumns)
+    {
+      return "line " + std::to_string(lines.line()) + ": points with and without colours in one file";
+    }
+    colourColumns = colours;
+    if (v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0)
+    {
+      ++missing;
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      out.points.push_back(v[0] * scan.m[0][c] + v[1] * scan.m[1][c] + v[2] * scan.m[2][c] + scan.m[3][c]);
+    }
+    out.intensity.push_back(static_cast<float>(v[3]));
+    for (int c = 0; c < colours; ++c)
+    {
+      out.colors.push_back(static_cast<unsigned char>(std::min(255.0, std::max(0.0, std::round(v[4 + c])))));
+    }
+    out.viewpoints.insert(out.viewpoints.end(), scan.scanner, scan.scanner + 3);
+  }
+  return {};
+}
+
 } // namespace
 
 PointText parsePtx(const char* text, std::size_t size)
@@ -87,94 +181,22 @@ PointText parsePtx(const char* text, std::size_t size)
   std::string error;
   std::size_t scans = 0, missing = 0;
   int colourColumns = -1; // 0 or 3 once the first point line is read
-  const auto fail = [&](const std::string& what) {
+  const auto fail = [](const std::string& what) {
     PointText failed;
     failed.error = what;
     return failed;
   };
   while (lines.next(v, error))
   {
-    // The scan's header: columns, rows, the scanner's position and axes, the 4x4 matrix.
-    const std::size_t headerLine = lines.line();
-    double columns = 0.0, rows = 0.0;
-    if (v.size() != 1 || !(v[0] >= 0.0) || v[0] != std::floor(v[0]))
+    PtxScan scan;
+    std::string problem = readPtxScanHeader(lines, v, error, scan);
+    if (problem.empty())
     {
-      return fail("line " + std::to_string(headerLine) + ": a PTX scan begins with its column count (one integer)");
+      problem = readPtxScanPoints(lines, v, error, scan, ++scans, colourColumns, missing, out);
     }
-    columns = v[0];
-    if (!lines.next(v, error) || v.size() != 1 || !(v[0] >= 0.0) || v[0] != std::floor(v[0]))
+    if (!problem.empty())
     {
-      return fail(error.empty() ? "line " + std::to_string(lines.line()) + ": the row count (one integer) expected"
-                                : error);
-    }
-    rows = v[0];
-    double scanner[3] = { 0, 0, 0 }, m[4][4];
-    for (int k = 0; k < 4; ++k) // position, then the three axes
-    {
-      if (!lines.next(v, error) || v.size() != 3)
-      {
-        return fail(error.empty() ? "line " + std::to_string(lines.line()) +
-              ": 3 numbers expected (the scanner's position and axes in the PTX header)"
-                                  : error);
-      }
-      if (k == 0)
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          scanner[a] = v[a];
-        }
-      }
-    }
-    for (int r = 0; r < 4; ++r)
-    {
-      if (!lines.next(v, error) || v.size() != 4)
-      {
-        return fail(error.empty() ? "line " + std::to_string(lines.line()) +
-              ": 4 numbers expected (a row of the PTX registration matrix)"
-                                  : error);
-      }
-      for (int c = 0; c < 4; ++c)
-      {
-        m[r][c] = v[c];
-      }
-    }
-    ++scans;
-    const double count = columns * rows;
-    for (double k = 0; k < count; ++k)
-    {
-      if (!lines.next(v, error))
-      {
-        std::ostringstream msg;
-        msg << (error.empty() ? "" : error + "; ") << "scan " << scans << " announces " << columns << " x " << rows
-            << " = " << count << " points, the file ends after " << k << " (truncated)";
-        return fail(msg.str());
-      }
-      if (v.size() != 4 && v.size() != 7)
-      {
-        return fail("line " + std::to_string(lines.line()) + ": " + std::to_string(v.size()) +
-          " numbers; a PTX point line has 4 (x y z intensity) or 7 (and r g b)");
-      }
-      const int colours = v.size() == 7 ? 3 : 0;
-      if (colourColumns >= 0 && colours != colourColumns)
-      {
-        return fail("line " + std::to_string(lines.line()) + ": points with and without colours in one file");
-      }
-      colourColumns = colours;
-      if (v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0)
-      {
-        ++missing;
-        continue;
-      }
-      for (int c = 0; c < 3; ++c)
-      {
-        out.points.push_back(v[0] * m[0][c] + v[1] * m[1][c] + v[2] * m[2][c] + m[3][c]);
-      }
-      out.intensity.push_back(static_cast<float>(v[3]));
-      for (int c = 0; c < colours; ++c)
-      {
-        out.colors.push_back(static_cast<unsigned char>(std::min(255.0, std::max(0.0, std::round(v[4 + c])))));
-      }
-      out.viewpoints.insert(out.viewpoints.end(), scanner, scanner + 3);
+      return fail(problem);
     }
   }
   if (!error.empty())
