@@ -286,93 +286,91 @@ bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::
     checkLasRecords(h, headerSize, fileSize, error) && readVariableLengthRecords(in, headerSize, vlrCount, h, error);
 }
 
-bool readLasPoints(std::istream& in, const LasHeader& h, LasColumns& c, std::string& error)
+namespace
 {
-  // Blocks of about 4 MiB (never more records than the file has).
-  const std::size_t block = static_cast<std::size_t>(
-    std::max<std::uint64_t>(1, std::min<std::uint64_t>(h.pointCount, (std::size_t(4) << 20) / h.recordLength)));
-  std::vector<unsigned char> buffer(block * h.recordLength);
-  double low[3], high[3];
-  const bool ext = h.extended();
-  for (std::uint64_t first = 0; first < h.pointCount; first += block)
+
+/// Point i's position (X * scale + offset in double precision) from its record p, into c.xyz when asked, and into
+/// the running bounds of the points.
+void readLasPosition(
+  const unsigned char* p, std::uint64_t i, const LasHeader& h, LasColumns& c, double* low, double* high)
+{
+  for (int a = 0; a < 3; ++a)
   {
-    const std::size_t count = static_cast<std::size_t>(std::min<std::uint64_t>(block, h.pointCount - first));
-    if (!readBytes(in, h.pointOffset + first * h.recordLength, buffer.data(), count * h.recordLength))
+    const double v = i32(p + 4 * a) * h.scale[a] + h.offset[a];
+    low[a] = i == 0 ? v : std::min(low[a], v);
+    high[a] = i == 0 ? v : std::max(high[a], v);
+    if (c.xyz)
     {
-      error = "cannot read the point records from point " + std::to_string(first);
-      return false;
-    }
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      const unsigned char* p = buffer.data() + k * h.recordLength;
-      const std::uint64_t i = first + k;
-      for (int a = 0; a < 3; ++a)
-      {
-        const double v = i32(p + 4 * a) * h.scale[a] + h.offset[a];
-        low[a] = i == 0 ? v : std::min(low[a], v);
-        high[a] = i == 0 ? v : std::max(high[a], v);
-        if (c.xyz)
-        {
-          c.xyz[3 * i + a] = v;
-        }
-      }
-      if (c.intensity)
-      {
-        c.intensity[i] = u16(p + 12);
-      }
-      const int returns = p[14];
-      if (c.returnNumber)
-      {
-        c.returnNumber[i] = static_cast<std::uint8_t>(ext ? returns & 15 : returns & 7);
-      }
-      if (c.numberOfReturns)
-      {
-        c.numberOfReturns[i] = static_cast<std::uint8_t>(ext ? returns >> 4 : (returns >> 3) & 7);
-      }
-      if (c.classification)
-      {
-        c.classification[i] = ext ? p[16] : static_cast<std::uint8_t>(p[15] & 31);
-      }
-      if (c.scanAngle)
-      {
-        c.scanAngle[i] = ext ? static_cast<float>(static_cast<std::int16_t>(u16(p + 18)) * 0.006)
-                             : static_cast<float>(static_cast<std::int8_t>(p[16]));
-      }
-      if (c.userData)
-      {
-        c.userData[i] = p[17];
-      }
-      if (c.pointSourceId)
-      {
-        c.pointSourceId[i] = u16(p + (ext ? 20 : 18));
-      }
-      if (c.gpsTime && h.hasGpsTime())
-      {
-        c.gpsTime[i] = f64(p + (ext ? 22 : 20));
-      }
-      if (c.rgb && h.hasRgb())
-      {
-        const std::size_t at = ext ? 30 : (h.format == 2 ? 20 : 28);
-        for (int a = 0; a < 3; ++a)
-        {
-          c.rgb[3 * i + a] = u16(p + at + 2 * a);
-        }
-      }
-      if (c.nir && h.hasNir())
-      {
-        c.nir[i] = u16(p + 36);
-      }
-      for (std::size_t e = 0; e < h.extra.size() && e < c.extra.size(); ++e)
-      {
-        if (c.extra[e])
-        {
-          const LasExtraBytes& x = h.extra[e];
-          c.extra[e][i] = extraValue(p + x.offset, x.dataType) * x.scale + x.shift;
-        }
-      }
+      c.xyz[3 * i + a] = v;
     }
   }
-  // The header's bounds against the points (within a scale step and a relative 1e-9 of rounding).
+}
+
+/// Point i's attributes from its record p into the columns asked for (formats 6-10: 4-bit returns, the whole
+/// classification byte, a 16-bit scan angle).
+void readLasAttributes(const unsigned char* p, std::uint64_t i, const LasHeader& h, LasColumns& c)
+{
+  const bool ext = h.extended();
+  if (c.intensity)
+  {
+    c.intensity[i] = u16(p + 12);
+  }
+  const int returns = p[14];
+  if (c.returnNumber)
+  {
+    c.returnNumber[i] = static_cast<std::uint8_t>(ext ? returns & 15 : returns & 7);
+  }
+  if (c.numberOfReturns)
+  {
+    c.numberOfReturns[i] = static_cast<std::uint8_t>(ext ? returns >> 4 : (returns >> 3) & 7);
+  }
+  if (c.classification)
+  {
+    c.classification[i] = ext ? p[16] : static_cast<std::uint8_t>(p[15] & 31);
+  }
+  if (c.scanAngle)
+  {
+    c.scanAngle[i] = ext ? static_cast<float>(static_cast<std::int16_t>(u16(p + 18)) * 0.006)
+                         : static_cast<float>(static_cast<std::int8_t>(p[16]));
+  }
+  if (c.userData)
+  {
+    c.userData[i] = p[17];
+  }
+  if (c.pointSourceId)
+  {
+    c.pointSourceId[i] = u16(p + (ext ? 20 : 18));
+  }
+  if (c.gpsTime && h.hasGpsTime())
+  {
+    c.gpsTime[i] = f64(p + (ext ? 22 : 20));
+  }
+  if (c.rgb && h.hasRgb())
+  {
+    const std::size_t at = ext ? 30 : (h.format == 2 ? 20 : 28);
+    for (int a = 0; a < 3; ++a)
+    {
+      c.rgb[3 * i + a] = u16(p + at + 2 * a);
+    }
+  }
+  if (c.nir && h.hasNir())
+  {
+    c.nir[i] = u16(p + 36);
+  }
+  for (std::size_t e = 0; e < h.extra.size() && e < c.extra.size(); ++e)
+  {
+    if (c.extra[e])
+    {
+      const LasExtraBytes& x = h.extra[e];
+      c.extra[e][i] = extraValue(p + x.offset, x.dataType) * x.scale + x.shift;
+    }
+  }
+}
+
+/// The header's bounds against the points' (within a scale step and a relative 1e-9 of rounding); false with the
+/// error when the points leave them.
+bool checkLasBounds(const LasHeader& h, const double* low, const double* high, std::string& error)
+{
   for (int a = 0; a < 3 && h.pointCount > 0; ++a)
   {
     const double slack = std::abs(h.scale[a]) + 1e-9 * (std::abs(h.min[a]) + std::abs(h.max[a]));
@@ -387,6 +385,33 @@ bool readLasPoints(std::istream& in, const LasHeader& h, LasColumns& c, std::str
     }
   }
   return true;
+}
+
+} // namespace
+
+bool readLasPoints(std::istream& in, const LasHeader& h, LasColumns& c, std::string& error)
+{
+  // Blocks of about 4 MiB (never more records than the file has).
+  const std::size_t block = static_cast<std::size_t>(
+    std::max<std::uint64_t>(1, std::min<std::uint64_t>(h.pointCount, (std::size_t(4) << 20) / h.recordLength)));
+  std::vector<unsigned char> buffer(block * h.recordLength);
+  double low[3], high[3];
+  for (std::uint64_t first = 0; first < h.pointCount; first += block)
+  {
+    const std::size_t count = static_cast<std::size_t>(std::min<std::uint64_t>(block, h.pointCount - first));
+    if (!readBytes(in, h.pointOffset + first * h.recordLength, buffer.data(), count * h.recordLength))
+    {
+      error = "cannot read the point records from point " + std::to_string(first);
+      return false;
+    }
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      const unsigned char* p = buffer.data() + k * h.recordLength;
+      readLasPosition(p, first + k, h, c, low, high);
+      readLasAttributes(p, first + k, h, c);
+    }
+  }
+  return checkLasBounds(h, low, high, error);
 }
 
 } // namespace gls
