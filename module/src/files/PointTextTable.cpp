@@ -229,6 +229,149 @@ std::vector<std::string_view> blankSeparatedFields(const char* begin, const char
   return out;
 }
 
+namespace
+{
+
+/// Reads a table line by line: the header line, point-count lines and data rows, each checked where it is read.
+class TableReader
+{
+public:
+  explicit TableReader(Table& table)
+    : T(table)
+  {
+  }
+
+  /// One line's content [begin, stop) (no comment, not blank), line number `line`; "" or the error.
+  std::string read(const char* begin, const char* stop, std::size_t line)
+  {
+    this->Line = line;
+    const Split lineSplit = this->SplitKnown ? this->LineSplit : detectSplit(begin, stop);
+    splitFields(lineSplit, begin, stop, this->Fields);
+    this->Row.resize(this->Fields.size());
+    std::size_t bad = this->Fields.size();
+    bool usedComma = false;
+    for (std::size_t i = 0; i < this->Fields.size() && bad == this->Fields.size(); ++i)
+    {
+      if (!parseNumber(this->Fields[i], lineSplit != Split::Commas, this->Row[i], usedComma))
+      {
+        bad = i;
+      }
+    }
+    if (bad < this->Fields.size())
+    {
+      return this->readHeader(begin, stop) ? "" : this->notANumber(bad);
+    }
+    if (this->Fields.size() == 1 && isPointCount(this->Row[0]))
+    {
+      return this->readCount();
+    }
+    return this->addRow(lineSplit, usedComma);
+  }
+
+  /// After the last line (`lines` lines in all, blank ones included): "" or the error (a point-count group short of
+  /// its count, unless `wholeText` is false and the rest of the text may hold the rest; no points).
+  std::string finish(bool wholeText, std::size_t lines) const
+  {
+    if (!this->countHolds() && (wholeText || this->T.rows() - this->RowsBeforeCount > this->Declared))
+    {
+      return fail(this->CountLine, pointCountMismatch(this->Declared, this->T.rows() - this->RowsBeforeCount));
+    }
+    return this->T.rows() == 0 ? fail(lines, "no points found") : "";
+  }
+
+  static std::string fail(std::size_t line, const std::string& what)
+  {
+    return "line " + std::to_string(line) + ": " + what;
+  }
+
+private:
+  bool countHolds() const
+  {
+    return this->CountLine == 0 || this->T.rows() - this->RowsBeforeCount == this->Declared;
+  }
+
+  /// A line with a field that is no number, before any data and any other header: the header line, when it names
+  /// its columns (or is CloudCompare's //X,Y,Z,...). Whether it was one.
+  bool readHeader(const char* begin, const char* stop)
+  {
+    const bool named = std::any_of(this->Fields.begin(), this->Fields.end(), startsWithName);
+    if (this->T.rows() != 0 || !this->T.names.empty() || !(named || isCloudCompareHeader(begin, stop)))
+    {
+      return false;
+    }
+    if (isCloudCompareHeader(begin, stop))
+    {
+      begin += 2; // CloudCompare writes its header line as //X,Y,Z,...
+    }
+    splitFields(Split::Header, begin, stop, this->Fields);
+    for (const Field& f : this->Fields)
+    {
+      this->T.names.emplace_back(f.begin, f.end);
+    }
+    this->T.width = this->T.names.size();
+    this->T.headerLine = this->Line;
+    return true;
+  }
+
+  /// The error of a data line whose field `bad` is not a number.
+  std::string notANumber(std::size_t bad) const
+  {
+    const std::string field(this->Fields[bad].begin, this->Fields[bad].end);
+    return fail(this->Line,
+      (field.empty() ? "empty field in column " + std::to_string(bad + 1)
+                     : "not a number in column " + std::to_string(bad + 1) + ": '" + field + "'") +
+        (this->SplitKnown ? "; this file's fields are separated by " + this->T.separators : ""));
+  }
+
+  /// A point-count line: the group before it must hold its own count.
+  std::string readCount()
+  {
+    if (!this->countHolds())
+    {
+      return fail(this->CountLine, pointCountMismatch(this->Declared, this->T.rows() - this->RowsBeforeCount));
+    }
+    this->CountLine = this->Line;
+    this->Declared = static_cast<std::size_t>(this->Row[0]);
+    this->RowsBeforeCount = this->T.rows();
+    ++this->T.countLines;
+    return {};
+  }
+
+  /// A data row: the first fixes the separators (and, without a header, the width); every row has the width.
+  std::string addRow(Split lineSplit, bool usedComma)
+  {
+    if (!this->SplitKnown)
+    {
+      this->SplitKnown = true;
+      this->LineSplit = lineSplit;
+      this->T.separators = describe(lineSplit);
+    }
+    if (this->T.width == 0)
+    {
+      this->T.width = this->Fields.size();
+    }
+    if (this->Fields.size() != this->T.width)
+    {
+      return fail(this->Line, "expected " + std::to_string(this->T.width) + " columns " +
+          (this->T.rows() == 0 ? "as the header line names" : "like the lines before") + ", got " +
+          std::to_string(this->Fields.size()));
+    }
+    this->T.decimalCommas = this->T.decimalCommas || usedComma;
+    this->T.values.insert(this->T.values.end(), this->Row.begin(), this->Row.end());
+    this->T.lines.push_back(this->Line);
+    return {};
+  }
+
+  Table& T;
+  bool SplitKnown = false;
+  Split LineSplit = Split::Blanks;
+  std::vector<Field> Fields;
+  std::vector<double> Row;
+  std::size_t Line = 0, CountLine = 0, Declared = 0, RowsBeforeCount = 0;
+};
+
+} // namespace
+
 std::string readTable(const char* text, std::size_t size, Table& table, bool wholeText)
 {
   table = Table();
@@ -238,17 +381,10 @@ std::string readTable(const char* text, std::size_t size, Table& table, bool who
   {
     p += 3;
   }
-  bool splitKnown = false;
-  Split split = Split::Blanks;
-  std::vector<Field> fields;
-  std::vector<double> row;
-  std::size_t lineNumber = 0, countLine = 0, declared = 0, rowsBeforeCount = 0;
-  const auto fail = [&](std::size_t line, const std::string& what) {
-    table = Table();
-    return "line " + std::to_string(line) + ": " + what;
-  };
-  const auto countHolds = [&]() { return countLine == 0 || table.rows() - rowsBeforeCount == declared; };
-  while (p < end)
+  TableReader reader(table);
+  std::size_t lineNumber = 0;
+  std::string error;
+  while (p < end && error.empty())
   {
     const char* eol = std::find(p, end, '\n');
     const char* stop = std::find(p, eol, '#');
@@ -259,87 +395,20 @@ std::string readTable(const char* text, std::size_t size, Table& table, bool who
     {
       ++begin;
     }
-    if (begin == stop)
+    if (begin != stop)
     {
-      continue;
+      error = reader.read(begin, stop, lineNumber);
     }
-    const Split lineSplit = splitKnown ? split : detectSplit(begin, stop);
-    splitFields(lineSplit, begin, stop, fields);
-    row.resize(fields.size());
-    std::size_t bad = fields.size();
-    bool usedComma = false;
-    for (std::size_t i = 0; i < fields.size() && bad == fields.size(); ++i)
-    {
-      if (!parseNumber(fields[i], lineSplit != Split::Commas, row[i], usedComma))
-      {
-        bad = i;
-      }
-    }
-    if (bad < fields.size())
-    {
-      const bool named = std::any_of(fields.begin(), fields.end(), startsWithName);
-      if (table.rows() == 0 && table.names.empty() && (named || isCloudCompareHeader(begin, stop)))
-      {
-        if (isCloudCompareHeader(begin, stop))
-        {
-          begin += 2; // CloudCompare writes its header line as //X,Y,Z,...
-        }
-        splitFields(Split::Header, begin, stop, fields);
-        for (const Field& f : fields)
-        {
-          table.names.emplace_back(f.begin, f.end);
-        }
-        table.width = table.names.size();
-        table.headerLine = lineNumber;
-        continue;
-      }
-      const std::string field(fields[bad].begin, fields[bad].end);
-      return fail(lineNumber,
-        (field.empty() ? "empty field in column " + std::to_string(bad + 1)
-                       : "not a number in column " + std::to_string(bad + 1) + ": '" + field + "'") +
-          (splitKnown ? "; this file's fields are separated by " + table.separators : ""));
-    }
-    if (fields.size() == 1 && isPointCount(row[0]))
-    {
-      if (!countHolds())
-      {
-        return fail(countLine, pointCountMismatch(declared, table.rows() - rowsBeforeCount));
-      }
-      countLine = lineNumber;
-      declared = static_cast<std::size_t>(row[0]);
-      rowsBeforeCount = table.rows();
-      ++table.countLines;
-      continue;
-    }
-    if (!splitKnown)
-    {
-      splitKnown = true;
-      split = lineSplit;
-      table.separators = describe(split);
-    }
-    if (table.width == 0)
-    {
-      table.width = fields.size();
-    }
-    if (fields.size() != table.width)
-    {
-      return fail(lineNumber, "expected " + std::to_string(table.width) + " columns " +
-          (table.rows() == 0 ? "as the header line names" : "like the lines before") + ", got " +
-          std::to_string(fields.size()));
-    }
-    table.decimalCommas = table.decimalCommas || usedComma;
-    table.values.insert(table.values.end(), row.begin(), row.end());
-    table.lines.push_back(lineNumber);
   }
-  if (!countHolds() && (wholeText || table.rows() - rowsBeforeCount > declared))
+  if (error.empty())
   {
-    return fail(countLine, pointCountMismatch(declared, table.rows() - rowsBeforeCount));
+    error = reader.finish(wholeText, lineNumber);
   }
-  if (table.rows() == 0)
+  if (!error.empty())
   {
-    return fail(lineNumber, "no points found");
+    table = Table();
   }
-  return {};
+  return error;
 }
 
 } // namespace pointtext
