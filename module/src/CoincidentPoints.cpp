@@ -39,54 +39,59 @@ std::uint64_t positionKey(const double* p)
   return mix(coordinateBits(p[0]) ^ mix(coordinateBits(p[1]) ^ mix(coordinateBits(p[2]))));
 }
 
-} // namespace
-
-CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int threads)
+/// The parallel loop options of the whole-cloud passes: large chunks.
+ParallelOptions wholeCloudPass(int threads)
 {
-  CoincidentPoints c;
-  const auto finite = [xyz](std::uint64_t i) {
-    return std::isfinite(xyz[3 * i]) && std::isfinite(xyz[3 * i + 1]) && std::isfinite(xyz[3 * i + 2]);
-  };
-  const auto same = [xyz](std::uint64_t a, std::uint64_t b) {
-    return xyz[3 * a] == xyz[3 * b] && xyz[3 * a + 1] == xyz[3 * b + 1] && xyz[3 * a + 2] == xyz[3 * b + 2];
-  };
-  // The points sorted by (key of their position, index): equal positions are in one run of equal keys, in input
-  // order. Sorting keys rather than comparing coordinates through the indices keeps the sort in cache.
+  ParallelOptions o;
+  o.threads = threads;
+  o.chunk = 65536;
+  return o;
+}
+
+/// The points sorted by (key of their position, index): equal positions are in one run of equal keys, in input
+/// order. Sorting keys rather than comparing coordinates through the indices keeps the sort in cache.
+KeyedIndices keyedByPosition(const double* xyz, std::size_t n, int threads)
+{
   KeyedIndices keyed(n);
-  ParallelOptions keying;
-  keying.threads = threads;
-  keying.chunk = 65536;
-  parallelFor(n, keying, [&](std::size_t begin, std::size_t end, int) {
+  parallelFor(n, wholeCloudPass(threads), [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t i = begin; i < end; ++i)
     {
       keyed[i] = { positionKey(xyz + 3 * i), i };
     }
   });
   sortByKey(keyed, threads);
-  std::size_t repeated = 1;
-  while (repeated < n && keyed[repeated].key != keyed[repeated - 1].key)
-  {
-    ++repeated;
-  }
-  if (repeated >= n)
-  {
-    // No two keys alike (most clouds): every point is a position of its own. (The arrays filled on all threads: at
-    // 10M points, 0.23 s on one.)
-    c.representative.resize(n);
-    c.distinct.resize(n);
-    c.copies.resize(n);
-    c.copyStart.resize(n + 1);
-    parallelFor(n, keying, [&](std::size_t begin, std::size_t end, int) {
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        c.representative[i] = c.distinct[i] = c.copies[i] = c.copyStart[i] = i;
-      }
-    });
-    c.copyStart[n] = n;
-    return c;
-  }
-  // first[i]: the first point (input order) of i's group; a non-finite point is a group of its own.
-  std::vector<std::uint64_t> first(n);
+  return keyed;
+}
+
+/// Every point a position of its own (most clouds). (The arrays filled on all threads: at 10M points, 0.23 s on one.)
+CoincidentPoints everyPointDistinct(std::size_t n, int threads)
+{
+  CoincidentPoints c;
+  c.representative.resize(n);
+  c.distinct.resize(n);
+  c.copies.resize(n);
+  c.copyStart.resize(n + 1);
+  parallelFor(n, wholeCloudPass(threads), [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      c.representative[i] = c.distinct[i] = c.copies[i] = c.copyStart[i] = i;
+    }
+  });
+  c.copyStart[n] = n;
+  return c;
+}
+
+/// first[i]: the first point (input order) at i's position; a non-finite point is a group of its own. Within a run of
+/// equal keys (input order), each finite point joins the first earlier point at its position, if any.
+std::vector<std::uint64_t> firstOfEachPosition(const double* xyz, const KeyedIndices& keyed)
+{
+  const auto finite = [xyz](std::uint64_t i) {
+    return std::isfinite(xyz[3 * i]) && std::isfinite(xyz[3 * i + 1]) && std::isfinite(xyz[3 * i + 2]);
+  };
+  const auto same = [xyz](std::uint64_t a, std::uint64_t b) {
+    return xyz[3 * a] == xyz[3 * b] && xyz[3 * a + 1] == xyz[3 * b + 1] && xyz[3 * a + 2] == xyz[3 * b + 2];
+  };
+  std::vector<std::uint64_t> first(keyed.size());
   std::iota(first.begin(), first.end(), std::uint64_t(0));
   std::vector<std::uint64_t> leaders;
   for (std::size_t s = 0; s < keyed.size();)
@@ -96,7 +101,6 @@ CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int thre
     {
       ++e;
     }
-    // Within a run (input order), each finite point joins the first earlier point at its position, if any.
     leaders.clear();
     for (std::size_t k = s; k < e; ++k)
     {
@@ -117,7 +121,14 @@ CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int thre
     }
     s = e;
   }
-  // Distinct positions numbered in the input order of their first point.
+  return first;
+}
+
+/// The groups of `first`: distinct positions numbered in the input order of their first point, and their copies.
+CoincidentPoints groupsOf(const std::vector<std::uint64_t>& first)
+{
+  const std::size_t n = first.size();
+  CoincidentPoints c;
   c.representative.assign(n, 0);
   std::vector<std::uint64_t> groupSize;
   for (std::size_t i = 0; i < n; ++i)
@@ -146,6 +157,19 @@ CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int thre
     c.copies[fill[c.representative[i]]++] = i;
   }
   return c;
+}
+
+} // namespace
+
+CoincidentPoints findCoincidentPoints(const double* xyz, std::size_t n, int threads)
+{
+  const KeyedIndices keyed = keyedByPosition(xyz, n, threads);
+  std::size_t repeated = 1;
+  while (repeated < n && keyed[repeated].key != keyed[repeated - 1].key)
+  {
+    ++repeated;
+  }
+  return repeated >= n ? everyPointDistinct(n, threads) : groupsOf(firstOfEachPosition(xyz, keyed));
 }
 
 std::vector<double> distinctValues(const CoincidentPoints& c, const double* values, int width)
