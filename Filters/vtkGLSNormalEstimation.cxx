@@ -286,6 +286,15 @@ void vtkGLSNormalEstimation::WriteNormals(
 bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<double>& reference,
   gls::NormalEstimationSettings& settings, gls::NormalEstimationResult& result)
 {
+  const bool mst = settings.orientation == gls::NormalOrientation::MinimumSpanningTree;
+  std::vector<int> degrees;
+  return this->EstimateWithGhosts(run, reference, settings, result, degrees) &&
+    (!mst || this->OrientAcrossPieces(run, settings, degrees, result));
+}
+
+bool vtkGLSNormalEstimation::EstimateWithGhosts(vtkGLSRun& run, std::vector<double>& reference,
+  gls::NormalEstimationSettings& settings, gls::NormalEstimationResult& result, std::vector<int>& graphDegrees)
+{
   const vtkGLSDistributedCloud& dist = run.Distributed;
   vtkGLSCloud& cloud = run.Cloud;
   const std::size_t n = cloud.Owned;
@@ -310,11 +319,10 @@ bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<dou
     }
     settings.reference = reference.data();
   }
-  const bool mst = settings.orientation == gls::NormalOrientation::MinimumSpanningTree;
   gls::NormalEstimationSettings local = settings;
-  if (mst)
+  if (settings.orientation == gls::NormalOrientation::MinimumSpanningTree)
   {
-    local.orientation = gls::NormalOrientation::None; // oriented below, over the whole cloud
+    local.orientation = gls::NormalOrientation::None; // oriented over the whole cloud (OrientAcrossPieces)
   }
   local.parallel.progress = nullptr; // no abort half-way through a collective run
   gls::NormalEstimationResult estimate;
@@ -328,23 +336,70 @@ bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<dou
   result.neighborCounts = ownedPart(estimate.neighborCounts, 1);
   result.spread = ownedPart(estimate.spread, 1);
   result.reach = ownedPart(estimate.reach, 1);
-  if (!mst)
-  {
-    return true;
-  }
+  graphDegrees = ownedPart(estimate.graphDegree, 1);
+  return true;
+}
 
-  // Minimum spanning tree over the whole cloud, on rank 0, in global-id order (the serial order): each distinct
-  // position of this piece goes with the global id of its first copy.
+namespace
+{
+
+/// The columns of a row gathered for the distributed orientation: global id, position, unoriented normal, the
+/// node's degree in the tree's graph.
+constexpr int kOrientationColumns = 8;
+
+/// Rank 0's orientation of every piece's rows (kOrientationColumns each) along one minimum spanning tree, in
+/// global-id order (the serial order): the oriented normals, 3 per row in the rows' order.
+std::vector<double> orientGatheredRows(const std::vector<double>& all, const gls::NormalEstimationSettings& settings,
+  int threads, std::size_t& components)
+{
+  constexpr int W = kOrientationColumns;
+  const std::size_t total = all.size() / W;
+  std::vector<std::size_t> order(total);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(
+    order.begin(), order.end(), [&all](std::size_t a, std::size_t b) { return all[W * a] < all[W * b]; });
+  std::vector<double> sortedXyz(3 * total), sortedNormals(3 * total), sortedDegrees(total);
+  for (std::size_t j = 0; j < total; ++j)
+  {
+    std::copy(&all[W * order[j] + 1], &all[W * order[j] + 4], &sortedXyz[3 * j]);
+    std::copy(&all[W * order[j] + 4], &all[W * order[j] + 7], &sortedNormals[3 * j]);
+    sortedDegrees[j] = all[W * order[j] + 7];
+  }
+  // A position held by several pieces is one node of the tree, as in a serial run.
+  const gls::CoincidentPoints shared = gls::findCoincidentPoints(sortedXyz.data(), total, threads);
+  std::vector<double> xyz = gls::distinctValues(shared, sortedXyz.data(), 3);
+  std::vector<double> normals = gls::distinctValues(shared, sortedNormals.data(), 3);
+  const std::vector<double> degreeValues = gls::distinctValues(shared, sortedDegrees.data(), 1);
+  const std::vector<int> degrees(degreeValues.begin(), degreeValues.end());
+  gls::orientByMinimumSpanningTree(xyz.data(), xyz.size() / 3, settings.graphNeighbors, normals.data(),
+    settings.parallel, components, degrees.data());
+  gls::scatterToCopies(shared, normals.data(), 3, sortedNormals.data());
+  std::vector<double> oriented(3 * total);
+  for (std::size_t j = 0; j < total; ++j)
+  {
+    std::copy(&sortedNormals[3 * j], &sortedNormals[3 * j] + 3, &oriented[3 * order[j]]);
+  }
+  return oriented;
+}
+
+} // namespace
+
+bool vtkGLSNormalEstimation::OrientAcrossPieces(const vtkGLSRun& run, const gls::NormalEstimationSettings& settings,
+  const std::vector<int>& graphDegrees, gls::NormalEstimationResult& result)
+{
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  const vtkGLSCloud& cloud = run.Cloud;
+  const std::size_t owned = cloud.Owned;
+  // Each distinct position of this piece goes with the global id of its first copy.
   const std::vector<long long> ids = dist.GlobalIds(run.Input);
-  // Columns: global id, position, unoriented normal, the node's degree in the tree's graph.
-  constexpr int W = 8;
+  constexpr int W = kOrientationColumns;
   std::vector<double> rows(W * owned);
   for (std::size_t u = 0; u < owned; ++u)
   {
     rows[W * u] = static_cast<double>(ids[cloud.IsMerged() ? cloud.Copies.distinct[u] : u]);
     std::copy(&cloud.Points[3 * u], &cloud.Points[3 * u] + 3, &rows[W * u + 1]);
     std::copy(&result.normals[3 * u], &result.normals[3 * u] + 3, &rows[W * u + 4]);
-    rows[W * u + 7] = static_cast<double>(estimate.graphDegree[u]);
+    rows[W * u + 7] = static_cast<double>(graphDegrees[u]);
   }
   std::vector<double> all;
   std::vector<long long> counts;
@@ -353,36 +408,9 @@ bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<dou
     vtkErrorMacro("Gathering the points on rank 0 for the minimum-spanning-tree orientation failed.");
     return false;
   }
-  std::vector<double> oriented;
-  if (dist.GetRank() == 0)
-  {
-    const std::size_t total = all.size() / W;
-    std::vector<std::size_t> order(total);
-    std::iota(order.begin(), order.end(), std::size_t(0));
-    std::stable_sort(order.begin(), order.end(),
-      [&all](std::size_t a, std::size_t b) { return all[W * a] < all[W * b]; });
-    std::vector<double> sortedXyz(3 * total), sortedNormals(3 * total), sortedDegrees(total);
-    for (std::size_t j = 0; j < total; ++j)
-    {
-      std::copy(&all[W * order[j] + 1], &all[W * order[j] + 4], &sortedXyz[3 * j]);
-      std::copy(&all[W * order[j] + 4], &all[W * order[j] + 7], &sortedNormals[3 * j]);
-      sortedDegrees[j] = all[W * order[j] + 7];
-    }
-    // A position held by several pieces is one node of the tree, as in a serial run.
-    const gls::CoincidentPoints shared = gls::findCoincidentPoints(sortedXyz.data(), total, this->NumberOfThreads);
-    std::vector<double> xyz = gls::distinctValues(shared, sortedXyz.data(), 3);
-    std::vector<double> normals = gls::distinctValues(shared, sortedNormals.data(), 3);
-    const std::vector<double> degreeValues = gls::distinctValues(shared, sortedDegrees.data(), 1);
-    const std::vector<int> degrees(degreeValues.begin(), degreeValues.end());
-    gls::orientByMinimumSpanningTree(xyz.data(), xyz.size() / 3, settings.graphNeighbors, normals.data(),
-      settings.parallel, result.components, degrees.data());
-    gls::scatterToCopies(shared, normals.data(), 3, sortedNormals.data());
-    oriented.resize(3 * total);
-    for (std::size_t j = 0; j < total; ++j)
-    {
-      std::copy(&sortedNormals[3 * j], &sortedNormals[3 * j] + 3, &oriented[3 * order[j]]);
-    }
-  }
+  const std::vector<double> oriented = dist.GetRank() == 0
+    ? orientGatheredRows(all, settings, this->NumberOfThreads, result.components)
+    : std::vector<double>();
   std::vector<double> mine;
   if (!dist.ScatterRows(oriented, 3, 0, counts, mine))
   {

@@ -215,6 +215,14 @@ protected:
   /// error) on a communication failure.
   bool EstimateDistributed(vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings& settings,
     gls::NormalEstimationResult& result);
+  /// This piece's part of a distributed estimate: the ghosts within the reach of its neighbourhoods, then the normals
+  /// of its owned points (unoriented when the tree orients them: OrientAcrossPieces) and their graph degrees.
+  bool EstimateWithGhosts(vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings& settings,
+    gls::NormalEstimationResult& result, std::vector<int>& graphDegrees);
+  /// The minimum spanning tree's orientation of every piece's normals: gathered on rank 0, oriented in global-id
+  /// order as a serial run would, sent back. False (with an error) on a communication failure.
+  bool OrientAcrossPieces(const vtkGLSRun& run, const gls::NormalEstimationSettings& settings,
+    const std::vector<int>& graphDegrees, gls::NormalEstimationResult& result);
 
   /// GLS refinement of a distributed estimate: the ghosts (other pieces' points within RefinementScale times this
   /// piece's largest reach) with their oriented normals, coincident positions counted once as in a serial run, then
