@@ -235,9 +235,26 @@ vtkGLSScaleFilterBase::SampleRequest vtkGLSMultiScaleDissimilarity::GetSampleReq
   return request;
 }
 
+/// The query point's descriptors at the run's scales.
+struct vtkGLSMultiScaleDissimilarity::QueryDescriptors
+{
+  std::vector<gls::ScaleSample> Samples;
+};
+
 int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
 {
-  const QueryState& query = static_cast<const QueryState&>(*run.State);
+  const std::vector<double> prior = this->ResolvePrior(run);
+  if (prior.empty())
+  {
+    return FAILED;
+  }
+  QueryDescriptors query;
+  const int status = this->DescribeQuery(run, prior, query);
+  return status == COMPLETED ? this->WriteDissimilarity(run, prior, query) : status;
+}
+
+std::vector<double> vtkGLSMultiScaleDissimilarity::ResolvePrior(const vtkGLSRun& run)
+{
   const std::vector<double>& scales = run.Scales;
   // The prior, clipped to the sampled range so that a Gaussian is centred where there are scales.
   const double pmin = std::max(this->ToAbsoluteLength(run, this->PriorMinScale), scales.front());
@@ -255,9 +272,15 @@ int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
       << "] (absolute: [" << this->ToAbsoluteLength(run, this->PriorMinScale) << ", "
       << (this->PriorMaxScale > 0.0 ? this->ToAbsoluteLength(run, this->PriorMaxScale) : scales.back())
       << "]); the sampled scales span [" << scales.front() << ", " << scales.back() << "] (absolute).");
-    return FAILED;
   }
+  return prior;
+}
 
+int vtkGLSMultiScaleDissimilarity::DescribeQuery(
+  vtkGLSRun& run, const std::vector<double>& prior, QueryDescriptors& descriptors)
+{
+  const QueryState& query = static_cast<const QueryState&>(*run.State);
+  const std::vector<double>& scales = run.Scales;
   // The query's descriptors: computed where it lives (with the ghosts of that piece), then sent to every rank.
   CaptureSink querySink;
   querySink.Samples.resize(scales.size());
@@ -310,7 +333,13 @@ int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
                                         "too few neighbours): pick another point or larger scales.");
     return FAILED;
   }
+  descriptors.Samples = std::move(querySink.Samples);
+  return COMPLETED;
+}
 
+int vtkGLSMultiScaleDissimilarity::WriteDissimilarity(
+  vtkGLSRun& run, const std::vector<double>& prior, const QueryDescriptors& query)
+{
   const vtkIdType n = run.Input->GetNumberOfPoints();
   vtkNew<vtkDoubleArray> delta;
   delta->SetName(vtkGLSArrayNames::Dissimilarity);
@@ -319,9 +348,9 @@ int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
   similar->SetName(vtkGLSArrayNames::Similar);
   similar->SetNumberOfTuples(n);
   DissimilaritySink sink;
-  sink.Scales = &scales;
+  sink.Scales = &run.Scales;
   sink.Prior = &prior;
-  sink.Query = querySink.Samples.data();
+  sink.Query = query.Samples.data();
   sink.Threshold = this->Threshold;
   sink.Delta = delta->GetPointer(0);
   sink.Similar = similar->GetPointer(0);
@@ -335,7 +364,7 @@ int vtkGLSMultiScaleDissimilarity::ComputeOutputs(vtkGLSRun& run)
   output->GetPointData()->SetActiveScalars(vtkGLSArrayNames::Dissimilarity);
   vtkNew<vtkIdTypeArray> queryArray;
   queryArray->SetName(vtkGLSArrayNames::QueryPointId);
-  queryArray->InsertNextValue(static_cast<vtkIdType>(query.GlobalId));
+  queryArray->InsertNextValue(static_cast<vtkIdType>(static_cast<const QueryState&>(*run.State).GlobalId));
   output->GetFieldData()->AddArray(queryArray);
   return COMPLETED;
 }

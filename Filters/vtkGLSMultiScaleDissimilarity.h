@@ -112,6 +112,17 @@ protected:
   SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
   int ComputeOutputs(vtkGLSRun& run) override;
 
+  struct QueryDescriptors;
+  /// The scale prior at the run's scales (PriorShape over [PriorMinScale, PriorMaxScale] clipped to the sampled
+  /// range); empty, with an error naming the range given, when no sampled scale lies in it.
+  std::vector<double> ResolvePrior(const vtkGLSRun& run);
+  /// The query point's descriptors at the run's scales: fitted on the piece that holds it and sent to every rank, or
+  /// those of the query's block of a composite input. COMPLETED, ABORTED, or FAILED with an error (no defined fit at
+  /// any scale of the prior; blocks at different scales).
+  int DescribeQuery(vtkGLSRun& run, const std::vector<double>& prior, QueryDescriptors& descriptors);
+  /// GLSDissimilarity and GLSSimilar of every point against the query's descriptors, and GLSQueryPointId.
+  int WriteDissimilarity(vtkGLSRun& run, const std::vector<double>& prior, const QueryDescriptors& query);
+
   /// Distributed run: finds the query over all pieces (by global id, or the nearest point to QueryPoint given this
   /// piece's nearest squared distance `localBest2`), sets `query` to its index in this piece (-1 elsewhere),
   /// `globalId`, and `owner` (the rank whose piece holds it). False (with an error, on every rank) when no piece
