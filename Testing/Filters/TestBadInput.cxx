@@ -530,8 +530,14 @@ TEST(BadInput, OneStrayPointChangesNothingElse)
   stray->GetPoints()->InsertNextPoint(10.0, 10.0, 10.0);
   vtkDataArray* normals = stray->GetPointData()->GetNormals();
   normals->InsertNextTuple3(0.0, 0.0, 1.0);
-  stray->GetVerts()->InsertNextCell(1);
-  stray->GetVerts()->InsertCellPoint(n);
+  // The stray point as a vertex cell, in a cell array of its own: a mesh without vertices answers GetVerts() with
+  // VTK's one shared empty array, and writing to it corrupted every later polydata of the process (a crash of the
+  // next test's vtkPolyDataNormals when the tests ran in one process).
+  vtkNew<vtkCellArray> verts;
+  verts->DeepCopy(stray->GetVerts());
+  verts->InsertNextCell(1);
+  verts->InsertCellPoint(n);
+  stray->SetVerts(verts);
   vtkNew<vtkGLSContinuousFeatures> a, b;
   a->SetInputData(clean);
   b->SetInputData(stray);
