@@ -136,6 +136,23 @@ bool vtkGLSScaleFilterBase::GatherFitCloud(vtkGLSRun& run)
 
 bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& request)
 {
+  bool ok = true;
+  if (request.MayReuseInput && this->TakeStoredSamples(run, request, ok))
+  {
+    return ok;
+  }
+  return this->PrepareFit(run, request);
+}
+
+double vtkGLSScaleFilterBase::RunBytes(const vtkGLSRun& run, const SampleRequest& request, double bytes, double scales)
+{
+  // Every large allocation of the run, counted before any is made: per (point, scale), per point and per scale.
+  return bytes + static_cast<double>(run.Input->GetNumberOfPoints()) * request.BytesPerPoint +
+    scales * request.BytesPerScale;
+}
+
+bool vtkGLSScaleFilterBase::TakeStoredSamples(vtkGLSRun& run, const SampleRequest& request, bool& ok)
+{
   const vtkGLSDistributedCloud& dist = run.Distributed;
   vtkPointSet* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
@@ -144,50 +161,48 @@ bool vtkGLSScaleFilterBase::PrepareSamples(vtkGLSRun& run, const SampleRequest& 
   const auto everywhere = [&](bool local) {
     return dist.AllTrue(local || emptyPiece) && (!dist.IsParallel() || dist.Max(local ? 1.0 : 0.0) > 0.5);
   };
-  // Every large allocation of the run, counted before any is made: per (point, scale), per point and per scale.
-  const auto needed = [&](double bytes, double scales) {
-    return bytes + static_cast<double>(n) * request.BytesPerPoint + scales * request.BytesPerScale;
-  };
-  const auto budget = [&](double bytes, double scales) {
-    return this->CheckMemoryBudget(needed(bytes, scales), request.What, request.Advice);
-  };
-
-  if (request.MayReuseInput)
+  const std::vector<double> stored = ReadStoredScales(input->GetFieldData());
+  const double S = static_cast<double>(stored.size());
+  if (request.VariationWillDo)
   {
-    const std::vector<double> stored = ReadStoredScales(input->GetFieldData());
-    const double S = static_cast<double>(stored.size());
-    if (request.VariationWillDo)
-    {
-      vtkDataArray* nu = input->GetPointData()->GetArray(vtkGLSArrayNames::Variation);
-      const bool haveNu = !stored.empty() && nu && nu->GetNumberOfComponents() == static_cast<int>(stored.size()) &&
-        nu->GetNumberOfTuples() == n;
-      if (everywhere(haveNu))
-      {
-        run.Scales = stored;
-        run.StoredVariation = haveNu ? nu : nullptr;
-        run.Samples = vtkGLSSampleSource::Empty();
-        return true;
-      }
-    }
-    std::unique_ptr<vtkGLSSampleSource> samples = stored.empty()
-      ? nullptr
-      : vtkGLSSampleSource::Stored(input, stored.size(), request.Descriptors, request.Derivatives);
-    if (everywhere(samples != nullptr))
+    vtkDataArray* nu = input->GetPointData()->GetArray(vtkGLSArrayNames::Variation);
+    const bool haveNu = !stored.empty() && nu && nu->GetNumberOfComponents() == static_cast<int>(stored.size()) &&
+      nu->GetNumberOfTuples() == n;
+    if (everywhere(haveNu))
     {
       run.Scales = stored;
-      run.Samples = samples ? std::move(samples) : vtkGLSSampleSource::Empty();
-      return this->AgreeToContinue(run, budget(static_cast<double>(n) * S * request.BytesPerPointScale, S));
+      run.StoredVariation = haveNu ? nu : nullptr;
+      run.Samples = vtkGLSSampleSource::Empty();
+      ok = true;
+      return true;
     }
   }
+  std::unique_ptr<vtkGLSSampleSource> samples = stored.empty()
+    ? nullptr
+    : vtkGLSSampleSource::Stored(input, stored.size(), request.Descriptors, request.Derivatives);
+  if (!everywhere(samples != nullptr))
+  {
+    return false;
+  }
+  run.Scales = stored;
+  run.Samples = samples ? std::move(samples) : vtkGLSSampleSource::Empty();
+  ok = this->AgreeToContinue(run,
+    this->CheckMemoryBudget(RunBytes(run, request, static_cast<double>(n) * S * request.BytesPerPointScale, S),
+      request.What, request.Advice));
+  return true;
+}
 
+bool vtkGLSScaleFilterBase::PrepareFit(vtkGLSRun& run, const SampleRequest& request)
+{
   // A fit of the points and normals at this filter's scales: the outputs must fit in the budget; the engine too, or
   // else its largest tile (ChooseTiles, once the cloud is complete).
+  const vtkGLSDistributedCloud& dist = run.Distributed;
   bool ok = this->ResolveScales(run);
   const std::size_t owned = run.Cloud.Owned;
   const double S = static_cast<double>(run.Scales.size());
   const double outputs = static_cast<double>(owned) * S * (request.BytesPerPointScale + CoverageBytesPerPointScale);
-  const double fixed = needed(outputs, S);
-  ok = ok && budget(outputs, S) && this->GatherFitCloud(run);
+  const double fixed = RunBytes(run, request, outputs, S);
+  ok = ok && this->CheckMemoryBudget(fixed, request.What, request.Advice) && this->GatherFitCloud(run);
   if (!this->AgreeToContinue(run, ok))
   {
     return false;

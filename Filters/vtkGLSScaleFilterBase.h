@@ -243,6 +243,13 @@ private:
   /// The samples of the run: stored arrays when the request allows and they are there, else a fit of the cloud
   /// (scales, memory budget, cloud, ghosts, engine). Collective; false (with an error) on failure.
   bool PrepareSamples(vtkGLSRun& run, const SampleRequest& request);
+  /// The stored arrays' samples, when every piece has them: whether they were taken (then `ok` says whether the
+  /// memory budget holds their outputs). Collective.
+  bool TakeStoredSamples(vtkGLSRun& run, const SampleRequest& request, bool& ok);
+  /// A fit of the cloud: scales, the memory budget, the cloud, ghosts, evaluation, tiles, engine. Collective.
+  bool PrepareFit(vtkGLSRun& run, const SampleRequest& request);
+  /// The bytes a run's large allocations take: `bytes` (per point and scale), plus its per-point and per-scale ones.
+  static double RunBytes(const vtkGLSRun& run, const SampleRequest& request, double bytes, double scales);
 
   /// The largest ghost reach the fit may need (gls::ghostReach): the largest scale, or for a multi-resolution
   /// evaluation (Auto included) the farthest point of a cell a walk may take whole. Collective.
