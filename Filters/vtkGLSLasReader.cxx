@@ -49,6 +49,82 @@ int vtkGLSLasReader::CanReadFile(const char* name)
   return ext == "las" || ext == "laz";
 }
 
+namespace
+{
+
+/// The point arrays of a LAS file's points: those of every format, and GpsTime, RGB, NIR and the extra bytes where
+/// the file has them.
+struct LasArrays
+{
+  vtkSmartPointer<vtkDoubleArray> xyz;
+  std::vector<vtkSmartPointer<vtkDataArray>> always;   ///< every format's attributes, in output order
+  std::vector<vtkSmartPointer<vtkDataArray>> optional; ///< the format's and the extra bytes' (added when present)
+  gls::LasColumns columns;                             ///< where readLasPoints writes each
+
+  LasArrays(const gls::LasHeader& h, vtkIdType n)
+  {
+    xyz = newArray<vtkDoubleArray>("Points", 3, n);
+    auto intensity = newArray<vtkUnsignedShortArray>("Intensity", 1, n);
+    auto returnNumber = newArray<vtkUnsignedCharArray>("ReturnNumber", 1, n);
+    auto returns = newArray<vtkUnsignedCharArray>("NumberOfReturns", 1, n);
+    auto classification = newArray<vtkUnsignedCharArray>("Classification", 1, n);
+    auto angle = newArray<vtkFloatArray>("ScanAngle", 1, n);
+    auto user = newArray<vtkUnsignedCharArray>("UserData", 1, n);
+    auto source = newArray<vtkUnsignedShortArray>("PointSourceId", 1, n);
+    always = { intensity, returnNumber, returns, classification, angle, user, source };
+    columns.xyz = xyz->GetPointer(0);
+    columns.intensity = intensity->GetPointer(0);
+    columns.returnNumber = returnNumber->GetPointer(0);
+    columns.numberOfReturns = returns->GetPointer(0);
+    columns.classification = classification->GetPointer(0);
+    columns.scanAngle = angle->GetPointer(0);
+    columns.userData = user->GetPointer(0);
+    columns.pointSourceId = source->GetPointer(0);
+    if (h.hasGpsTime())
+    {
+      auto gps = newArray<vtkDoubleArray>("GpsTime", 1, n);
+      columns.gpsTime = gps->GetPointer(0);
+      optional.push_back(gps);
+    }
+    if (h.hasRgb())
+    {
+      auto rgb = newArray<vtkUnsignedShortArray>("RGB", 3, n);
+      columns.rgb = rgb->GetPointer(0);
+      optional.push_back(rgb);
+    }
+    if (h.hasNir())
+    {
+      auto nir = newArray<vtkUnsignedShortArray>("NIR", 1, n);
+      columns.nir = nir->GetPointer(0);
+      optional.push_back(nir);
+    }
+    for (const gls::LasExtraBytes& x : h.extra)
+    {
+      auto extra = newArray<vtkDoubleArray>(x.name.c_str(), 1, n);
+      columns.extra.push_back(extra->GetPointer(0));
+      optional.push_back(extra);
+    }
+  }
+
+  /// The points, one vertex cell each, and the point arrays into `output`.
+  void moveInto(vtkPolyData* output, vtkIdType n) const
+  {
+    vtkNew<vtkPoints> points;
+    points->SetData(xyz);
+    output->SetPoints(points);
+    output->SetVerts(vtkGLSVertexCells(n));
+    for (const auto& list : { always, optional })
+    {
+      for (const auto& a : list)
+      {
+        output->GetPointData()->AddArray(a);
+      }
+    }
+  }
+};
+
+} // namespace
+
 int vtkGLSLasReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
@@ -69,67 +145,13 @@ int vtkGLSLasReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
     return 0;
   }
   const vtkIdType n = static_cast<vtkIdType>(h.pointCount);
-  auto xyz = newArray<vtkDoubleArray>("Points", 3, n);
-  auto intensity = newArray<vtkUnsignedShortArray>("Intensity", 1, n);
-  auto returnNumber = newArray<vtkUnsignedCharArray>("ReturnNumber", 1, n);
-  auto returns = newArray<vtkUnsignedCharArray>("NumberOfReturns", 1, n);
-  auto classification = newArray<vtkUnsignedCharArray>("Classification", 1, n);
-  auto angle = newArray<vtkFloatArray>("ScanAngle", 1, n);
-  auto user = newArray<vtkUnsignedCharArray>("UserData", 1, n);
-  auto source = newArray<vtkUnsignedShortArray>("PointSourceId", 1, n);
-  auto gps = newArray<vtkDoubleArray>("GpsTime", 1, h.hasGpsTime() ? n : 0);
-  auto rgb = newArray<vtkUnsignedShortArray>("RGB", 3, h.hasRgb() ? n : 0);
-  auto nir = newArray<vtkUnsignedShortArray>("NIR", 1, h.hasNir() ? n : 0);
-  gls::LasColumns columns;
-  columns.xyz = xyz->GetPointer(0);
-  columns.intensity = intensity->GetPointer(0);
-  columns.returnNumber = returnNumber->GetPointer(0);
-  columns.numberOfReturns = returns->GetPointer(0);
-  columns.classification = classification->GetPointer(0);
-  columns.scanAngle = angle->GetPointer(0);
-  columns.userData = user->GetPointer(0);
-  columns.pointSourceId = source->GetPointer(0);
-  columns.gpsTime = h.hasGpsTime() ? gps->GetPointer(0) : nullptr;
-  columns.rgb = h.hasRgb() ? rgb->GetPointer(0) : nullptr;
-  columns.nir = h.hasNir() ? nir->GetPointer(0) : nullptr;
-  std::vector<vtkSmartPointer<vtkDoubleArray>> extra;
-  for (const gls::LasExtraBytes& x : h.extra)
-  {
-    extra.push_back(newArray<vtkDoubleArray>(x.name.c_str(), 1, n));
-    columns.extra.push_back(extra.back()->GetPointer(0));
-  }
-  if (!gls::readLasPoints(in, h, columns, error))
+  LasArrays arrays(h, n);
+  if (!gls::readLasPoints(in, h, arrays.columns, error))
   {
     vtkErrorMacro("Cannot read the LAS file '" << this->FileName << "': " << error << ".");
     return 0;
   }
-  vtkNew<vtkPoints> points;
-  points->SetData(xyz);
-  output->SetPoints(points);
-  output->SetVerts(vtkGLSVertexCells(n));
-  vtkPointData* pd = output->GetPointData();
-  for (vtkDataArray* a : { static_cast<vtkDataArray*>(intensity), static_cast<vtkDataArray*>(returnNumber),
-         static_cast<vtkDataArray*>(returns), static_cast<vtkDataArray*>(classification),
-         static_cast<vtkDataArray*>(angle), static_cast<vtkDataArray*>(user), static_cast<vtkDataArray*>(source) })
-  {
-    pd->AddArray(a);
-  }
-  if (h.hasGpsTime())
-  {
-    pd->AddArray(gps);
-  }
-  if (h.hasRgb())
-  {
-    pd->AddArray(rgb);
-  }
-  if (h.hasNir())
-  {
-    pd->AddArray(nir);
-  }
-  for (const auto& a : extra)
-  {
-    pd->AddArray(a);
-  }
+  arrays.moveInto(output, n);
   std::ostringstream d;
   d << "LAS " << h.versionMajor << "." << h.versionMinor << ", point format " << h.format << ", " << h.pointCount
     << " points";
