@@ -284,8 +284,53 @@ int vtkGLSFilterBase::RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVect
     return 0;
   }
   output->CopyStructure(input);
-  // Every block must be a point set (or empty); lengths are relative to the whole composite's diagonal.
   const vtkGLSDistributedCloud dist(this->Controller);
+  double diagonal = 0.0;
+  if (!this->CompositeDiagonal(input, dist, diagonal))
+  {
+    return 0;
+  }
+  // The blocks as point sets (an empty one stands for a missing block: it still takes part in a distributed run).
+  std::vector<vtkSmartPointer<vtkPointSet>> blocks;
+  std::vector<bool> present;
+  auto it = Leaves(input);
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    vtkSmartPointer<vtkPointSet> block = vtkPointSet::SafeDownCast(it->GetCurrentDataObject());
+    present.push_back(block != nullptr);
+    blocks.push_back(block ? block : vtkSmartPointer<vtkPointSet>(vtkSmartPointer<vtkPolyData>::New()));
+  }
+  std::vector<std::size_t> order(blocks.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  if (!this->BeginComposite(blocks, diagonal, order))
+  {
+    this->EndComposite();
+    return 0;
+  }
+  std::vector<vtkSmartPointer<vtkDataObject>> outputs(blocks.size());
+  int computed = 0;
+  int result = this->RunBlocksInOrder(dist, blocks, order, outputVector, diagonal, outputs, computed);
+  std::size_t leaf = 0;
+  for (it->InitTraversal(); !it->IsDoneWithTraversal() && result; it->GoToNextItem(), ++leaf)
+  {
+    if (present[leaf])
+    {
+      output->SetDataSet(it, outputs[leaf]);
+    }
+  }
+  this->EndComposite();
+  if (result && computed == 0)
+  {
+    vtkErrorMacro("The input has no points (none of its blocks has any).");
+    return 0;
+  }
+  return result;
+}
+
+bool vtkGLSFilterBase::CompositeDiagonal(
+  vtkCompositeDataSet* input, const vtkGLSDistributedCloud& dist, double& diagonal)
+{
+  // Every block must be a point set (or empty); lengths are relative to the whole composite's diagonal.
   std::vector<double> xyz;
   bool ok = true;
   auto it = Leaves(input);
@@ -309,35 +354,24 @@ int vtkGLSFilterBase::RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVect
   }
   if (!dist.AllTrue(ok))
   {
-    return 0;
+    return false;
   }
   std::vector<std::uint64_t> stray;
   if (!BlankStrayPoints(dist, xyz, stray)) // the blocks' runs leave them out too: the diagonal of one block of it all
   {
-    return 0;
+    return false;
   }
   double bounds[6];
-  const double diagonal = dist.FiniteBounds(xyz.data(), xyz.size() / 3, bounds) ? DiagonalOf(bounds) : 0.0;
-  xyz = std::vector<double>();
-  // The blocks as point sets (an empty one stands for a missing block: it still takes part in a distributed run).
-  std::vector<vtkSmartPointer<vtkPointSet>> blocks;
-  std::vector<bool> present;
-  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
-  {
-    vtkSmartPointer<vtkPointSet> block = vtkPointSet::SafeDownCast(it->GetCurrentDataObject());
-    present.push_back(block != nullptr);
-    blocks.push_back(block ? block : vtkSmartPointer<vtkPointSet>(vtkSmartPointer<vtkPolyData>::New()));
-  }
-  std::vector<std::size_t> order(blocks.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  if (!this->BeginComposite(blocks, diagonal, order))
-  {
-    this->EndComposite();
-    return 0;
-  }
-  std::vector<vtkSmartPointer<vtkDataObject>> outputs(blocks.size());
+  diagonal = dist.FiniteBounds(xyz.data(), xyz.size() / 3, bounds) ? DiagonalOf(bounds) : 0.0;
+  return true;
+}
+
+int vtkGLSFilterBase::RunBlocksInOrder(const vtkGLSDistributedCloud& dist,
+  const std::vector<vtkSmartPointer<vtkPointSet>>& blocks, const std::vector<std::size_t>& order,
+  vtkInformationVector* outputVector, double diagonal, std::vector<vtkSmartPointer<vtkDataObject>>& outputs,
+  int& computed)
+{
   int result = 1;
-  int computed = 0;
   for (std::size_t k = 0; k < order.size() && result; ++k)
   {
     vtkPointSet* block = blocks[order[k]];
@@ -352,20 +386,6 @@ int vtkGLSFilterBase::RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVect
     {
       blockOutput->ShallowCopy(block); // a block without points (on every process) passes through
     }
-  }
-  std::size_t leaf = 0;
-  for (it->InitTraversal(); !it->IsDoneWithTraversal() && result; it->GoToNextItem(), ++leaf)
-  {
-    if (present[leaf])
-    {
-      output->SetDataSet(it, outputs[leaf]);
-    }
-  }
-  this->EndComposite();
-  if (result && computed == 0)
-  {
-    vtkErrorMacro("The input has no points (none of its blocks has any).");
-    return 0;
   }
   return result;
 }

@@ -206,6 +206,14 @@ private:
   int RunOn(vtkPointSet* input, vtkInformationVector* outputVector, vtkDataObject* blockOutput, double diagonal);
   /// Every block of a composite input, with the whole composite's diagonal.
   int RunOnBlocks(vtkCompositeDataSet* input, vtkInformationVector* outputVector);
+  /// The diagonal of a composite input's finite points, its stray points left out (every block must be a point set
+  /// or empty: false with an error otherwise). Collective.
+  bool CompositeDiagonal(vtkCompositeDataSet* input, const vtkGLSDistributedCloud& dist, double& diagonal);
+  /// Runs the blocks in `order` (a block without points on every process passes through), their outputs into
+  /// `outputs`; `computed` counts the blocks run. The first failure stops the runs and is returned. Collective.
+  int RunBlocksInOrder(const vtkGLSDistributedCloud& dist, const std::vector<vtkSmartPointer<vtkPointSet>>& blocks,
+    const std::vector<std::size_t>& order, vtkInformationVector* outputVector, double diagonal,
+    std::vector<vtkSmartPointer<vtkDataObject>>& outputs, int& computed);
 
   /// The distributed context, the input's points (run.Cloud, without normals), the check that some process has
   /// points, and the bounds of the whole input.
