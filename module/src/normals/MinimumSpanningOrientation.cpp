@@ -16,21 +16,129 @@ namespace gls
 namespace
 {
 
+/// The nearest-other lists of every node (nearestLists): which nodes are, each node's degree in the graph, which
+/// stored lists answer, and the queries of the others.
+template <typename Index>
+class NearestListBuilder
+{
+public:
+  static constexpr Index kNone = std::numeric_limits<Index>::max();
+
+  NearestListBuilder(const OrientationGraph& graph, NearestLists<Index>& lists)
+    : Graph(graph)
+    , G(graph.grid->view())
+    , Width(static_cast<std::size_t>(std::max(graph.graphNeighbors, 1)))
+    , Lists(lists)
+  {
+  }
+
+  bool isNode(std::size_t s) const { return this->Graph.nodes == nullptr || this->Graph.nodes[s] != 0; }
+
+  /// A node's k in the tree's graph (at least the graph's width).
+  std::size_t degreeOf(std::size_t s) const
+  {
+    const int d = this->Graph.sortedDegrees ? this->Graph.sortedDegrees[s] : 0;
+    return std::max(this->Width, static_cast<std::size_t>(std::max(d, 0)));
+  }
+
+  /// The nodes whose stored list is not their answer (incomplete, holding a point that is not a node, or a node
+  /// that needs more than the graph's width), in order; their extra storage is laid out. The other lists lose
+  /// nothing; a point that is no node gets an empty list.
+  std::vector<Index> listsToQuery(int threads)
+  {
+    const std::size_t count = this->G.count;
+    std::vector<unsigned char> queried(count, 0);
+    ParallelOptions checkOptions;
+    checkOptions.threads = threads;
+    checkOptions.chunk = 65536;
+    parallelFor(count, checkOptions, [&](std::size_t begin, std::size_t end, int) {
+      for (std::size_t s = begin; s < end; ++s)
+      {
+        Index* row = this->Lists.fixed.data() + s * this->Width;
+        if (!this->isNode(s))
+        {
+          std::fill(row, row + this->Width, kNone);
+          continue;
+        }
+        bool complete = this->degreeOf(s) == this->Width;
+        for (std::size_t j = 0; complete && j < this->Width; ++j)
+        {
+          complete = row[j] != kNone && this->isNode(row[j]);
+        }
+        queried[s] = complete ? 0 : 1;
+      }
+    });
+    std::vector<Index> ask;
+    for (std::size_t s = 0; s < count; ++s)
+    {
+      if (queried[s])
+      {
+        ask.push_back(static_cast<Index>(s));
+        if (this->degreeOf(s) > this->Width)
+        {
+          this->Lists.extraNodes.push_back(static_cast<Index>(s));
+          this->Lists.extraStart.push_back(this->Lists.extraStart.back() + this->degreeOf(s) - this->Width);
+        }
+      }
+    }
+    this->Lists.extra.assign(this->Lists.extraStart.back(), kNone);
+    return ask;
+  }
+
+  /// The lists of the nodes in `ask`, from k-nearest queries among the nodes. False if aborted.
+  bool query(const std::vector<Index>& ask, const ParallelOptions& parallel)
+  {
+    const int threads = resolveThreadCount(parallel.threads);
+    std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
+    return parallelFor(ask.size(), parallel, [&](std::size_t begin, std::size_t end, int t) {
+      for (std::size_t a = begin; a < end; ++a)
+      {
+        this->queryList(ask[a], knn[static_cast<std::size_t>(t)]);
+      }
+    });
+  }
+
+private:
+  /// Node s's list (and its extra storage past the graph's width) from its k-nearest nodes but itself.
+  void queryList(std::size_t s, std::vector<std::pair<double, std::uint64_t>>& knn)
+  {
+    const std::size_t d = this->degreeOf(s);
+    this->Graph.grid->kNearest(this->G.points[s], static_cast<int>(d) + 1, knn, this->Graph.nodes);
+    Index* row = this->Lists.fixed.data() + s * this->Width;
+    std::fill(row, row + this->Width, kNone);
+    Index* more = nullptr;
+    if (d > this->Width)
+    {
+      const auto e =
+        std::lower_bound(this->Lists.extraNodes.begin(), this->Lists.extraNodes.end(), static_cast<Index>(s));
+      const std::size_t extraIndex = static_cast<std::size_t>(e - this->Lists.extraNodes.begin());
+      more = this->Lists.extra.data() + this->Lists.extraStart[extraIndex];
+    }
+    std::size_t j = 0;
+    for (const auto& c : knn)
+    {
+      if (c.second != s && j < d)
+      {
+        (j < this->Width ? row[j] : more[j - this->Width]) = static_cast<Index>(c.second);
+        ++j;
+      }
+    }
+  }
+
+  const OrientationGraph& Graph;
+  const GridView& G;
+  const std::size_t Width;
+  NearestLists<Index>& Lists;
+};
+
 /// The nearest-other lists of every node: those the caller's earlier query completed are kept, the others (lists
 /// that are incomplete, hold a point that is not a node, or nodes that need more than the graph's k) are queried on
 /// the grid among the nodes. False if aborted.
 template <typename Index>
 bool nearestLists(OrientationGraph& graph, NearestLists<Index>& lists, const ParallelOptions& parallel)
 {
-  const GridView& g = graph.grid->view();
-  const std::size_t count = g.count;
-  const Index none = std::numeric_limits<Index>::max();
+  const std::size_t count = graph.grid->view().count;
   const std::size_t width = static_cast<std::size_t>(std::max(graph.graphNeighbors, 1));
-  const auto isNode = [&graph](std::size_t s) { return graph.nodes == nullptr || graph.nodes[s] != 0; };
-  const auto degreeOf = [&](std::size_t s) {
-    const int d = graph.sortedDegrees ? graph.sortedDegrees[s] : 0;
-    return std::max(width, static_cast<std::size_t>(std::max(d, 0)));
-  };
   lists.width = width;
   if constexpr (std::is_same_v<Index, std::uint32_t>)
   {
@@ -38,74 +146,10 @@ bool nearestLists(OrientationGraph& graph, NearestLists<Index>& lists, const Par
   }
   if (lists.fixed.size() != count * width)
   {
-    lists.fixed.assign(count * width, none);
+    lists.fixed.assign(count * width, NearestListBuilder<Index>::kNone);
   }
-
-  // Which lists must be queried (the nodes whose stored list is not their answer); the others' lists lose nothing.
-  std::vector<unsigned char> queried(count, 0);
-  ParallelOptions checkOptions;
-  checkOptions.threads = parallel.threads;
-  checkOptions.chunk = 65536;
-  parallelFor(count, checkOptions, [&](std::size_t begin, std::size_t end, int) {
-    for (std::size_t s = begin; s < end; ++s)
-    {
-      Index* row = lists.fixed.data() + s * width;
-      if (!isNode(s))
-      {
-        std::fill(row, row + width, none);
-        continue;
-      }
-      bool complete = degreeOf(s) == width;
-      for (std::size_t j = 0; complete && j < width; ++j)
-      {
-        complete = row[j] != none && isNode(row[j]);
-      }
-      queried[s] = complete ? 0 : 1;
-    }
-  });
-  std::vector<Index> ask;
-  for (std::size_t s = 0; s < count; ++s)
-  {
-    if (queried[s])
-    {
-      ask.push_back(static_cast<Index>(s));
-      if (degreeOf(s) > width)
-      {
-        lists.extraNodes.push_back(static_cast<Index>(s));
-        lists.extraStart.push_back(lists.extraStart.back() + degreeOf(s) - width);
-      }
-    }
-  }
-  std::vector<unsigned char>().swap(queried);
-  lists.extra.assign(lists.extraStart.back(), none);
-
-  const int threads = resolveThreadCount(parallel.threads);
-  std::vector<std::vector<std::pair<double, std::uint64_t>>> knn(static_cast<std::size_t>(threads));
-  return parallelFor(ask.size(), parallel, [&](std::size_t begin, std::size_t end, int t) {
-    for (std::size_t a = begin; a < end; ++a)
-    {
-      const std::size_t s = ask[a];
-      const std::size_t d = degreeOf(s);
-      graph.grid->kNearest(g.points[s], static_cast<int>(d) + 1, knn[t], graph.nodes);
-      Index* row = lists.fixed.data() + s * width;
-      std::fill(row, row + width, none);
-      Index* more = nullptr;
-      if (d > width)
-      {
-        const auto e = std::lower_bound(lists.extraNodes.begin(), lists.extraNodes.end(), static_cast<Index>(s));
-        more = lists.extra.data() + lists.extraStart[static_cast<std::size_t>(e - lists.extraNodes.begin())];
-      }
-      std::size_t j = 0;
-      for (const auto& c : knn[t])
-      {
-        if (c.second != s && j < d)
-        {
-          (j < width ? row[j] : more[j - width]) = static_cast<Index>(c.second);
-          ++j;
-        }
-      }
-    }
-  });
+  NearestListBuilder<Index> builder(graph, lists);
+  return builder.query(builder.listsToQuery(parallel.threads), parallel);
 }
 
 /// The cost of the edge between two normals: 1 - |n_a . n_b| (the same for either order and either sign).

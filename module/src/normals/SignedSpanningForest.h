@@ -119,6 +119,145 @@ struct EdgeOrder
   }
 };
 
+/// Boruvka's rounds of the signed minimum spanning forest (signedSpanningForest): the nodes that may still have an
+/// edge out of their tree (a node without one never gets one again: trees only grow), per node the other end of its
+/// cheapest such edge and its cost (none before its first scan), per tree (its forest.tree node) the node whose edge
+/// is the tree's cheapest.
+template <typename Index, typename Cost, typename Differ>
+class SignedForestRounds
+{
+public:
+  SignedForestRounds(const IncidentEdges<Index>& edges, std::size_t count, const EdgeOrder& order, const Cost& cost,
+    const Differ& differ, SignedForest<Index>& forest, int threads)
+    : Edges(edges)
+    , Order(order)
+    , EdgeCost(cost)
+    , Differs(differ)
+    , Forest(forest)
+    , Sets(count)
+    , Active(count)
+    , Cheapest(count, kNone)
+    , CheapestCost(count, 0.0)
+    , From(count)
+  {
+    forest.tree.resize(count);
+    std::iota(forest.tree.begin(), forest.tree.end(), Index(0));
+    forest.turned.assign(count, 0);
+    std::iota(this->Active.begin(), this->Active.end(), Index(0));
+    for (auto& f : this->From)
+    {
+      f.store(kNone, std::memory_order_relaxed);
+    }
+    this->Scan.threads = threads;
+    this->Scan.chunk = 4096;
+  }
+
+  bool anyActive() const { return !this->Active.empty(); }
+
+  /// Each active node's cheapest edge out of its tree, and each tree's (the strict order makes it one edge, whatever
+  /// the order in which the nodes offer theirs).
+  void findCheapestEdges()
+  {
+    parallelFor(this->Active.size(), this->Scan, [&](std::size_t begin, std::size_t end, int) {
+      for (std::size_t a = begin; a < end; ++a)
+      {
+        const Index u = this->Active[a];
+        if (this->cheapestOutOf(u) != kNone)
+        {
+          this->offerToTree(u);
+        }
+      }
+    });
+  }
+
+  /// The nodes without an edge out leave; each tree joins the tree at the other end of its cheapest edge, and every
+  /// node's tree and sign follow. Whether any tree was joined.
+  bool joinTrees()
+  {
+    std::size_t kept = 0;
+    bool merged = false;
+    for (const Index u : this->Active)
+    {
+      if (this->Cheapest[u] == kNone)
+      {
+        continue;
+      }
+      this->Active[kept++] = u;
+      std::atomic<Index>& f = this->From[this->Forest.tree[u]];
+      if (f.load(std::memory_order_relaxed) == u)
+      {
+        merged = this->Sets.join(u, this->Cheapest[u], this->Differs(u, this->Cheapest[u]) ? 1 : 0) || merged;
+        f.store(kNone, std::memory_order_relaxed);
+      }
+    }
+    this->Active.resize(kept);
+    if (merged)
+    {
+      this->Sets.flatten(this->Forest, this->Scan);
+    }
+    return merged;
+  }
+
+private:
+  static constexpr Index kNone = std::numeric_limits<Index>::max();
+
+  /// Node u's cheapest edge out of its tree (its other end, kNone without one). The node's edges out of its tree only
+  /// become fewer: where last round's cheapest is still out, it is still the cheapest; else all its edges are scanned.
+  Index cheapestOutOf(Index u)
+  {
+    const Index tree = this->Forest.tree[u];
+    Index best = this->Cheapest[u];
+    if (best != kNone && this->Forest.tree[best] != tree)
+    {
+      return best;
+    }
+    best = kNone;
+    double bestCost = this->CheapestCost[u];
+    this->Edges.forEach(u, [&](Index v) {
+      if (this->Forest.tree[v] == tree)
+      {
+        return;
+      }
+      const double c = this->EdgeCost(u, v);
+      if (best == kNone || this->Order.before(c, u, v, bestCost, u, best))
+      {
+        best = v;
+        bestCost = c;
+      }
+    });
+    this->Cheapest[u] = best;
+    this->CheapestCost[u] = bestCost;
+    return best;
+  }
+
+  /// Offers u's cheapest edge as its tree's (compare-and-swap under the strict edge order).
+  void offerToTree(Index u)
+  {
+    const auto beforeCheapest = [&](Index a, Index b) {
+      return this->Order.before(
+        this->CheapestCost[a], a, this->Cheapest[a], this->CheapestCost[b], b, this->Cheapest[b]);
+    };
+    std::atomic<Index>& f = this->From[this->Forest.tree[u]];
+    Index held = f.load(std::memory_order_acquire);
+    while ((held == kNone || beforeCheapest(u, held)) &&
+      !f.compare_exchange_weak(held, u, std::memory_order_acq_rel, std::memory_order_acquire))
+    {
+    }
+  }
+
+  const IncidentEdges<Index>& Edges;
+  const EdgeOrder& Order;
+  const Cost& EdgeCost;
+  const Differ& Differs;
+  SignedForest<Index>& Forest;
+  SignedUnionFind<Index> Sets;
+  std::vector<Index> Active;
+  std::vector<Index> Cheapest;
+  std::vector<double> CheapestCost;
+  std::vector<std::atomic<Index>> From;
+  ParallelOptions Scan;
+};
+
 /// The signed minimum spanning forest of the graph of `count` nodes, its edges in `order`. cost(a, b): an edge's cost
 /// (the same both ways); differ(a, b): whether the normals of a and b disagree (the same both ways). False if aborted
 /// through the progress callback.
@@ -126,99 +265,18 @@ template <typename Index, typename Cost, typename Differ>
 bool signedSpanningForest(const IncidentEdges<Index>& edges, std::size_t count, const EdgeOrder& order,
   const Cost& cost, const Differ& differ, SignedForest<Index>& forest, const ParallelOptions& parallel)
 {
-  const Index none = std::numeric_limits<Index>::max();
-  forest.tree.resize(count);
-  std::iota(forest.tree.begin(), forest.tree.end(), Index(0));
-  forest.turned.assign(count, 0);
-  SignedUnionFind<Index> sets(count);
-  // The nodes that may still have an edge out of their tree (a node without one never gets one again: trees only
-  // grow); per node the other end of its cheapest such edge and its cost (none before its first scan); per tree (its
-  // forest.tree node), the node whose edge is the tree's cheapest.
-  std::vector<Index> active(count);
-  std::iota(active.begin(), active.end(), Index(0));
-  std::vector<Index> cheapest(count, none);
-  std::vector<double> cheapestCost(count, 0.0);
-  std::vector<std::atomic<Index>> from(count);
-  for (auto& f : from)
-  {
-    f.store(none, std::memory_order_relaxed);
-  }
-  const auto beforeCheapest = [&](Index u, Index f) {
-    return order.before(cheapestCost[u], u, cheapest[u], cheapestCost[f], f, cheapest[f]);
-  };
-  ParallelOptions scan;
-  scan.threads = parallel.threads;
-  scan.chunk = 4096;
-  for (int round = 0; !active.empty(); ++round)
+  SignedForestRounds<Index, Cost, Differ> rounds(edges, count, order, cost, differ, forest, parallel.threads);
+  for (int round = 0; rounds.anyActive(); ++round)
   {
     if (parallel.progress && parallel.progress(std::min(0.9, 0.15 * round)))
     {
       return false;
     }
-    // Each active node's cheapest edge out of its tree, and each tree's (the strict order makes it one edge,
-    // whatever the order in which the nodes offer theirs).
-    parallelFor(active.size(), scan, [&](std::size_t begin, std::size_t end, int) {
-      for (std::size_t a = begin; a < end; ++a)
-      {
-        const Index u = active[a];
-        const Index tree = forest.tree[u];
-        Index best = cheapest[u];
-        double bestCost = cheapestCost[u];
-        // The node's edges out of its tree only become fewer: where last round's cheapest is still out, it is
-        // still the cheapest. Else all its edges are scanned.
-        if (best == none || forest.tree[best] == tree)
-        {
-          best = none;
-          edges.forEach(u, [&](Index v) {
-            if (forest.tree[v] == tree)
-            {
-              return;
-            }
-            const double c = cost(u, v);
-            if (best == none || order.before(c, u, v, bestCost, u, best))
-            {
-              best = v;
-              bestCost = c;
-            }
-          });
-          cheapest[u] = best;
-          cheapestCost[u] = bestCost;
-        }
-        if (best == none)
-        {
-          continue;
-        }
-        std::atomic<Index>& f = from[tree];
-        Index held = f.load(std::memory_order_acquire);
-        while ((held == none || beforeCheapest(u, held)) &&
-          !f.compare_exchange_weak(held, u, std::memory_order_acq_rel, std::memory_order_acquire))
-        {
-        }
-      }
-    });
-    // The nodes without an edge out leave; each tree joins the tree at the other end of its cheapest edge.
-    std::size_t kept = 0;
-    bool merged = false;
-    for (const Index u : active)
-    {
-      if (cheapest[u] == none)
-      {
-        continue;
-      }
-      active[kept++] = u;
-      std::atomic<Index>& f = from[forest.tree[u]];
-      if (f.load(std::memory_order_relaxed) == u)
-      {
-        merged = sets.join(u, cheapest[u], differ(u, cheapest[u]) ? 1 : 0) || merged;
-        f.store(none, std::memory_order_relaxed);
-      }
-    }
-    active.resize(kept);
-    if (!merged)
+    rounds.findCheapestEdges();
+    if (!rounds.joinTrees())
     {
       break;
     }
-    sets.flatten(forest, scan);
   }
   return true;
 }
