@@ -11,6 +11,7 @@
 #include "vtkDataSet.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -42,6 +43,49 @@ bool ghostsDisabled()
 {
   const char* v = std::getenv("GLS_DISTRIBUTED_NO_GHOSTS");
   return v && std::strcmp(v, "1") == 0;
+}
+
+/// This piece's box of finite points and the reach it needs: lo (3), hi (3), reach. An empty piece has lo > hi: it
+/// needs nothing.
+std::array<double, 7> boxAndReach(const double* rows, std::size_t n, int width, double reach)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  std::array<double, 7> box = { inf, inf, inf, -inf, -inf, -inf, reach };
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* p = rows + static_cast<std::size_t>(width) * i;
+    if (!finite3(p))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      box[a] = std::min(box[a], p[a]);
+      box[3 + a] = std::max(box[3 + a], p[a]);
+    }
+  }
+  return box;
+}
+
+/// The rows (finite ones) within a partner's reach of its box (boxAndReach's 7 values); none for a partner without
+/// points or reach.
+std::vector<double> rowsNear(const double* rows, std::size_t n, int width, const double* box)
+{
+  std::vector<double> out;
+  if (!(box[0] <= box[3]) || !(box[6] >= 0.0))
+  {
+    return out;
+  }
+  const double r2 = box[6] * box[6];
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double* p = rows + static_cast<std::size_t>(width) * i;
+    if (finite3(p) && distance2ToBox(p, box, box + 3) <= r2)
+    {
+      out.insert(out.end(), p, p + width);
+    }
+  }
+  return out;
 }
 
 /// Per-rank lengths (in doubles) and offsets of `counts` rows of `width` doubles laid end to end; returns the total.
@@ -146,31 +190,15 @@ bool vtkGLSDistributedCloud::ExchangeGhosts(const double* rows, std::size_t n, i
   {
     return true;
   }
-  // Every rank's box of finite points and the reach it needs (an empty piece has lo > hi: it needs nothing).
-  const double inf = std::numeric_limits<double>::infinity();
-  double mine[7] = { inf, inf, inf, -inf, -inf, -inf, reach };
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double* p = rows + static_cast<std::size_t>(width) * i;
-    if (!finite3(p))
-    {
-      continue;
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      mine[a] = std::min(mine[a], p[a]);
-      mine[3 + a] = std::max(mine[3 + a], p[a]);
-    }
-  }
+  // Every rank's box of finite points and the reach it needs.
+  const std::array<double, 7> mine = boxAndReach(rows, n, width, reach);
   std::vector<double> boxes(7 * static_cast<std::size_t>(this->Size));
-  if (!this->Controller->AllGather(mine, boxes.data(), 7))
+  if (!this->Controller->AllGather(mine.data(), boxes.data(), 7))
   {
     return false;
   }
   const bool disabled = ghostsDisabled();
-
-  // Round-robin pairing (circle method): in round r, rank i talks to (r - i) mod P; every pair meets once. The
-  // lower rank of a pair sends first, so blocking sends and receives never wait on each other in a cycle.
+  // Round-robin pairing (circle method): in round r, rank i talks to (r - i) mod P; every pair meets once.
   const int P = this->Size % 2 == 0 ? this->Size : this->Size + 1;
   std::vector<std::vector<double>> received(static_cast<std::size_t>(this->Size));
   for (int round = 0; round < P; ++round)
@@ -181,39 +209,9 @@ bool vtkGLSDistributedCloud::ExchangeGhosts(const double* rows, std::size_t n, i
       continue;
     }
     // What the partner needs from us.
-    std::vector<double> out;
-    const double* box = &boxes[7 * static_cast<std::size_t>(partner)];
-    const double partnerReach = box[6];
-    const bool partnerHasPoints = box[0] <= box[3];
-    if (!disabled && partnerHasPoints && partnerReach >= 0.0)
-    {
-      const double r2 = partnerReach * partnerReach;
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        const double* p = rows + static_cast<std::size_t>(width) * i;
-        if (finite3(p) && distance2ToBox(p, box, box + 3) <= r2)
-        {
-          out.insert(out.end(), p, p + width);
-        }
-      }
-    }
-    std::vector<double>& in = received[static_cast<std::size_t>(partner)];
-    auto sendOut = [&]() {
-      vtkIdType count = static_cast<vtkIdType>(out.size());
-      return this->Controller->Send(&count, 1, partner, kGhostCountTag) &&
-        (count == 0 || this->Controller->Send(out.data(), count, partner, kGhostRowsTag));
-    };
-    auto receiveIn = [&]() {
-      vtkIdType count = 0;
-      if (!this->Controller->Receive(&count, 1, partner, kGhostCountTag))
-      {
-        return false;
-      }
-      in.resize(static_cast<std::size_t>(count));
-      return count == 0 || this->Controller->Receive(in.data(), count, partner, kGhostRowsTag);
-    };
-    const bool ok = this->Rank < partner ? (sendOut() && receiveIn()) : (receiveIn() && sendOut());
-    if (!ok)
+    const std::vector<double> out =
+      disabled ? std::vector<double>() : rowsNear(rows, n, width, &boxes[7 * static_cast<std::size_t>(partner)]);
+    if (!this->SwapRows(partner, out, received[static_cast<std::size_t>(partner)]))
     {
       return false;
     }
@@ -224,6 +222,26 @@ bool vtkGLSDistributedCloud::ExchangeGhosts(const double* rows, std::size_t n, i
     ghostCount += block.size() / static_cast<std::size_t>(width);
   }
   return true;
+}
+
+bool vtkGLSDistributedCloud::SwapRows(int partner, const std::vector<double>& out, std::vector<double>& in) const
+{
+  const auto sendOut = [&]() {
+    vtkIdType count = static_cast<vtkIdType>(out.size());
+    return this->Controller->Send(&count, 1, partner, kGhostCountTag) &&
+      (count == 0 || this->Controller->Send(out.data(), count, partner, kGhostRowsTag));
+  };
+  const auto receiveIn = [&]() {
+    vtkIdType count = 0;
+    if (!this->Controller->Receive(&count, 1, partner, kGhostCountTag))
+    {
+      return false;
+    }
+    in.resize(static_cast<std::size_t>(count));
+    return count == 0 || this->Controller->Receive(in.data(), count, partner, kGhostRowsTag);
+  };
+  // The lower rank of a pair sends first, so blocking sends and receives never wait on each other in a cycle.
+  return this->Rank < partner ? (sendOut() && receiveIn()) : (receiveIn() && sendOut());
 }
 
 bool vtkGLSDistributedCloud::AppendGhosts(std::vector<double>& points, std::size_t owned,

@@ -116,6 +116,9 @@ private:
   /// `ghostCount`. Rows with non-finite coordinates are never sent. False on a communication error.
   bool ExchangeGhosts(const double* rows, std::size_t n, int width, double reach, std::vector<double>& ghosts,
     std::size_t& ghostCount) const;
+  /// Sends `out` to `partner` and receives its rows into `in` (the lower rank sends first). False on a communication
+  /// error.
+  bool SwapRows(int partner, const std::vector<double>& out, std::vector<double>& in) const;
 
   vtkMultiProcessController* Controller = nullptr;
   int Rank = 0;
