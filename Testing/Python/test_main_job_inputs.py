@@ -285,6 +285,15 @@ class Inputs(unittest.TestCase):
             line = self.assertFailsInOneLine(run(name, '--output-dir', out),
                                              '%s: a damaged or truncated PLY file: ' % name, out)
             self.assertIn('vertex record', line)
+        # A header whose element line gives no count (a ValueError and a traceback once, exit 1).
+        malformed = path('malformed.ply')
+        with open(malformed, 'w') as f:
+            f.write('ply\nformat ascii 1.0\nelement vertex abc\nproperty float x\nproperty float y\n'
+                    'property float z\nend_header\n0 0 0\n')
+        out = path('malformed-out')
+        self.assertFailsInOneLine(run(malformed, '--output-dir', out), "%s: a damaged or truncated PLY file: a "
+                                  "malformed header: the header line 'element vertex abc' gives no count" % malformed,
+                                  out)
 
         out = path('four-out')
         four = write_text('four.xyz', ['0 0 0', '1 0 0', '0 1 0', '0 0 1'])

@@ -51,7 +51,10 @@ def announced_point_count(path):
     except OSError:
         return None
     if ext == '.ply':
-        header = gls_ply.parse_header(head)
+        try:
+            header = gls_ply.parse_header(head)
+        except ValueError:
+            return None  # a malformed header: the PLY check before the reader says what is wrong
         counts = [count for name, count, _ in header[1] if name == 'vertex'] if header else []
         return counts[0] if counts else None
     if ext in ('.las', '.laz'):

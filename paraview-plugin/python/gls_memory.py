@@ -47,6 +47,7 @@ def check(points, scales, per_scale, budget_gib=None, announced=False):
     if budget is None or needed <= budget:
         return needed, budget
     where = '--memory-budget' if budget_gib is not None else 'available'
+    counted = ' (as the file\'s header announces)' if announced else ''
     default = needed_bytes(points, scales, False)
     if per_scale and default <= budget:
         fitting = int(math.floor(((budget - FIXED_BYTES) / points - DEFAULT_BYTES_PER_POINT)
@@ -55,10 +56,8 @@ def check(points, scales, per_scale, budget_gib=None, announced=False):
         if fitting >= 2:
             advice += ', or keep it with --scales %d' % fitting
         raise BudgetError('storing every scale (--per-scale) of %d points%s at %d scales needs about %.1f GiB, '
-                           'above the %.1f GiB %s: %s' % (points, ' (as the file\'s header announces)' if announced
-                                                           else '', scales, needed / GIB, budget / GIB, where,
-                                                           advice))
+                           'above the %.1f GiB %s: %s' % (points, counted, scales, needed / GIB, budget / GIB,
+                                                           where, advice))
     raise BudgetError('the analysis of %d points%s needs about %.1f GiB, above the %.1f GiB %s: analyse a part of '
-                       'the cloud, or a machine with more memory' % (points, ' (as the file\'s header announces)'
-                                                                       if announced else '', default / GIB,
-                                                                       budget / GIB, where))
+                       'the cloud, or a machine with more memory' % (points, counted, default / GIB, budget / GIB,
+                                                                       where))

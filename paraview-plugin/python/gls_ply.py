@@ -10,7 +10,8 @@ CODES = {1: 'B', 2: 'H', 4: 'I'}
 
 
 def parse_header(data):
-    """(format, elements [(name, count, [(list count type or None, value type)])], body offset) or None."""
+    """(format, elements [(name, count, [(list count type or None, value type)])], body offset), or None without a PLY
+    header; ValueError, saying which line, when an element line gives no count."""
     end = data.find(b'end_header')
     if not data.startswith(b'ply') or end < 0:
         return None
@@ -22,6 +23,8 @@ def parse_header(data):
         if len(words) >= 2 and words[0] == 'format':
             fmt = words[1]
         elif len(words) >= 3 and words[0] == 'element':
+            if not words[2].isdigit():
+                raise ValueError('the header line %r gives no count' % line.strip())
             elements.append((words[1], int(words[2]), []))
         elif len(words) >= 3 and words[0] == 'property' and elements:
             listed = words[1] == 'list' and len(words) >= 4
@@ -83,7 +86,10 @@ def check_binary(body, elements, order):
 def check(path):
     with open(path, 'rb') as f:
         data = f.read()
-    header = parse_header(data)
+    try:
+        header = parse_header(data)
+    except ValueError as e:
+        return 'a malformed header: %s' % e
     if header is None:
         return None
     fmt, elements, start = header
