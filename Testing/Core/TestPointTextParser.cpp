@@ -256,6 +256,11 @@ TEST(PtxParser, DamagedFilesAreRefusedWithTheLine)
   EXPECT_NE(errorOf("x\n").find("line 1: not a number"), std::string::npos) << errorOf("x\n");
   EXPECT_NE(errorOf("2 2\n").find("column count"), std::string::npos);
   EXPECT_NE(errorOf("").find("no PTX scan"), std::string::npos);
+  // A NUL byte is no number (it ended the line once: "2\0LAS" read as "2").
+  const std::string nul = std::string("2\0LAS\n", 6) + header.substr(2);
+  EXPECT_NE(errorOf(nul).find("line 1: not a number"), std::string::npos) << errorOf(nul);
+  EXPECT_EQ(gls::textCloudFormat(nul.data(), nul.size()), gls::TextCloudFormat::PointText);
+  EXPECT_EQ(gls::textCloudFormat(header.data(), header.size()), gls::TextCloudFormat::Ptx);
 }
 
 namespace

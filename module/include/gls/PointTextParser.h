@@ -77,7 +77,8 @@ enum class TextCloudFormat
 {
   PointText, ///< anything else: the point text above
   Pcd,       ///< a PCL PCD header: the first line that is not blank or a '#' comment starts with VERSION or FIELDS
-  Ptx        ///< a Leica PTX scan header: two lines of one integer, four lines of three numbers, four of four
+  Ptx        ///< a Leica PTX scan header as parsePtx reads it: two lines of one integer count, four lines of three
+             ///< numbers, four of four
 };
 TextCloudFormat textCloudFormat(const char* head, std::size_t size);
 

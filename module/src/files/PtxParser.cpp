@@ -1,5 +1,7 @@
 #include "gls/PointTextParser.h"
 
+#include "TextCloudFormat.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -38,14 +40,17 @@ public:
       ++this->At;
       ++this->Line;
       v.clear();
+      // To the line's end, not to its first NUL byte: a NUL is no number (it ended the line once, so "1\0LAS..."
+      // read as "1").
       const char* p = line.c_str();
-      while (*p)
+      const char* stop = p + line.size();
+      while (p < stop)
       {
-        while (*p == ' ' || *p == '\t' || *p == '\r')
+        while (p < stop && (*p == ' ' || *p == '\t' || *p == '\r'))
         {
           ++p;
         }
-        if (!*p)
+        if (p == stop)
         {
           break;
         }
@@ -172,6 +177,20 @@ std::string readPtxScanPoints(NumberLines& lines, std::vector<double>& v, std::s
 }
 
 } // namespace
+
+namespace pointtext
+{
+
+bool beginsWithPtxHeader(const char* text, std::size_t size)
+{
+  NumberLines lines(text, size);
+  std::vector<double> v;
+  std::string error;
+  PtxScan scan;
+  return lines.next(v, error) && readPtxScanHeader(lines, v, error, scan).empty();
+}
+
+} // namespace pointtext
 
 PointText parsePtx(const char* text, std::size_t size)
 {

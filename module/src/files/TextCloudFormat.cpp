@@ -7,7 +7,6 @@
 #include "TextCloudFormat.h"
 
 #include <algorithm>
-#include <charconv>
 #include <fstream>
 #include <string_view>
 #include <vector>
@@ -17,61 +16,22 @@ namespace gls
 namespace
 {
 
-/// The blank-separated words of the text's first `maxLines` lines that are not blank (and, with `skipComments`, do
-/// not start with '#'), one list per line.
-std::vector<std::vector<std::string_view>> firstLinesWords(
-  const char* text, std::size_t size, std::size_t maxLines, bool skipComments)
+/// A PCL PCD header: the first line that is not blank or a '#' comment starts with VERSION or FIELDS.
+bool isPcdHeader(const char* text, std::size_t size)
 {
-  std::vector<std::vector<std::string_view>> lines;
   const char* p = text;
   const char* end = text + size;
-  while (p < end && lines.size() < maxLines)
+  while (p < end)
   {
     const char* eol = std::find(p, end, '\n');
-    std::vector<std::string_view> words = pointtext::blankSeparatedFields(p, eol);
+    const std::vector<std::string_view> words = pointtext::blankSeparatedFields(p, eol);
     p = eol < end ? eol + 1 : end;
-    if (!words.empty() && !(skipComments && words[0].substr(0, 1) == "#"))
+    if (!words.empty() && words[0].substr(0, 1) != "#")
     {
-      lines.push_back(std::move(words));
+      return words[0] == "VERSION" || words[0] == "FIELDS";
     }
   }
-  return lines;
-}
-
-bool isNumber(std::string_view word)
-{
-  double value = 0;
-  const auto result = std::from_chars(word.data(), word.data() + word.size(), value);
-  return result.ec == std::errc() && result.ptr == word.data() + word.size();
-}
-
-bool isCount(std::string_view word)
-{
-  return !word.empty() && std::all_of(word.begin(), word.end(), [](char c) { return c >= '0' && c <= '9'; });
-}
-
-bool isPcdHeader(const char* head, std::size_t size)
-{
-  const auto lines = firstLinesWords(head, size, 1, true);
-  return !lines.empty() && (lines[0][0] == "VERSION" || lines[0][0] == "FIELDS");
-}
-
-bool isPtxHeader(const char* head, std::size_t size)
-{
-  static constexpr std::size_t widths[10] = { 1, 1, 3, 3, 3, 3, 4, 4, 4, 4 };
-  const auto lines = firstLinesWords(head, size, 10, false);
-  if (lines.size() < 10 || !isCount(lines[0][0]) || !isCount(lines[1][0]))
-  {
-    return false;
-  }
-  for (std::size_t k = 0; k < 10; ++k)
-  {
-    if (lines[k].size() != widths[k] || !std::all_of(lines[k].begin(), lines[k].end(), isNumber))
-    {
-      return false;
-    }
-  }
-  return true;
+  return false;
 }
 
 } // namespace
@@ -82,7 +42,7 @@ TextCloudFormat textCloudFormat(const char* head, std::size_t size)
   {
     return TextCloudFormat::Pcd;
   }
-  return isPtxHeader(head, size) ? TextCloudFormat::Ptx : TextCloudFormat::PointText;
+  return pointtext::beginsWithPtxHeader(head, size) ? TextCloudFormat::Ptx : TextCloudFormat::PointText;
 }
 
 std::string pointCloudHeadError(const char* head, std::size_t size, bool wholeFile)
