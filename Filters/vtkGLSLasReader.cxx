@@ -57,9 +57,8 @@ namespace
 struct LasArrays
 {
   vtkSmartPointer<vtkDoubleArray> xyz;
-  std::vector<vtkSmartPointer<vtkDataArray>> always;   ///< every format's attributes, in output order
-  std::vector<vtkSmartPointer<vtkDataArray>> optional; ///< the format's and the extra bytes' (added when present)
-  gls::LasColumns columns;                             ///< where readLasPoints writes each
+  std::vector<vtkSmartPointer<vtkDataArray>> attributes; ///< the point arrays, in output order
+  gls::LasColumns columns;                               ///< where readLasPoints writes each
 
   LasArrays(const gls::LasHeader& h, vtkIdType n)
   {
@@ -71,7 +70,7 @@ struct LasArrays
     auto angle = newArray<vtkFloatArray>("ScanAngle", 1, n);
     auto user = newArray<vtkUnsignedCharArray>("UserData", 1, n);
     auto source = newArray<vtkUnsignedShortArray>("PointSourceId", 1, n);
-    always = { intensity, returnNumber, returns, classification, angle, user, source };
+    attributes = { intensity, returnNumber, returns, classification, angle, user, source };
     columns.xyz = xyz->GetPointer(0);
     columns.intensity = intensity->GetPointer(0);
     columns.returnNumber = returnNumber->GetPointer(0);
@@ -84,25 +83,25 @@ struct LasArrays
     {
       auto gps = newArray<vtkDoubleArray>("GpsTime", 1, n);
       columns.gpsTime = gps->GetPointer(0);
-      optional.push_back(gps);
+      attributes.push_back(gps);
     }
     if (h.hasRgb())
     {
       auto rgb = newArray<vtkUnsignedShortArray>("RGB", 3, n);
       columns.rgb = rgb->GetPointer(0);
-      optional.push_back(rgb);
+      attributes.push_back(rgb);
     }
     if (h.hasNir())
     {
       auto nir = newArray<vtkUnsignedShortArray>("NIR", 1, n);
       columns.nir = nir->GetPointer(0);
-      optional.push_back(nir);
+      attributes.push_back(nir);
     }
     for (const gls::LasExtraBytes& x : h.extra)
     {
       auto extra = newArray<vtkDoubleArray>(x.name.c_str(), 1, n);
       columns.extra.push_back(extra->GetPointer(0));
-      optional.push_back(extra);
+      attributes.push_back(extra);
     }
   }
 
@@ -113,12 +112,9 @@ struct LasArrays
     points->SetData(xyz);
     output->SetPoints(points);
     output->SetVerts(vtkGLSVertexCells(n));
-    for (const auto& list : { always, optional })
+    for (const auto& a : attributes)
     {
-      for (const auto& a : list)
-      {
-        output->GetPointData()->AddArray(a);
-      }
+      output->GetPointData()->AddArray(a);
     }
   }
 };
