@@ -49,6 +49,21 @@ int vtkGLSLasReader::CanReadFile(const char* name)
   return ext == "las" || ext == "laz";
 }
 
+vtkIdType vtkGLSLasReader::ReadAnnouncedPointCount()
+{
+  std::ifstream in(this->FileName, std::ios::binary);
+  if (this->FileName.empty() || !in)
+  {
+    return -1;
+  }
+  in.seekg(0, std::ios::end);
+  gls::LasHeader h;
+  std::string error;
+  return gls::readLasHeader(in, static_cast<std::uint64_t>(in.tellg()), h, error)
+    ? static_cast<vtkIdType>(h.pointCount)
+    : -1;
+}
+
 namespace
 {
 

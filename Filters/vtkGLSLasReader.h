@@ -40,6 +40,11 @@ public:
   /// then refused with how to decompress it).
   int CanReadFile(const char* name);
 
+  /// The number of points the file's header announces, read from the header alone (the main job checks it against
+  /// the memory before anything is read); -1 when the file cannot be opened or its header is refused (the error is
+  /// then RequestData's).
+  vtkIdType ReadAnnouncedPointCount();
+
   /// The last file's LAS version and point format, e.g. "LAS 1.2, point format 3, 110000 points"; empty before a read
   /// and after a failed one.
   vtkGetCharFromStdStringMacro(Description);

@@ -20,6 +20,7 @@
 #include "gls/PointTextParser.h"
 
 #include <algorithm>
+#include <fstream>
 #include <numeric>
 #include <set>
 
@@ -57,6 +58,18 @@ int vtkGLSPointCloudReader::CanReadFile(const char* name)
     return gls::pointCloudFileHeadError(name).empty();
   }
   return ext == "xyz" || ext == "pts" || ext == "ptx" || ext == "pcd";
+}
+
+vtkIdType vtkGLSPointCloudReader::ReadAnnouncedPointCount()
+{
+  std::ifstream in(this->FileName, std::ios::binary);
+  if (vtkGLSFileExtension(this->FileName.c_str()) != "pcd" || !in)
+  {
+    return -1;
+  }
+  std::string head(gls::pointCloudHeadBytes, '\0');
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  return static_cast<vtkIdType>(gls::pcdAnnouncedPoints(head.data(), static_cast<std::size_t>(in.gcount())));
 }
 
 int vtkGLSPointCloudReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)

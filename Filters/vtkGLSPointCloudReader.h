@@ -54,6 +54,11 @@ public:
   /// no point cloud is left to ParaView's CSV reader.
   int CanReadFile(const char* name);
 
+  /// The number of points a .pcd file's header announces, read from its first 64 KiB alone (the main job checks it
+  /// against the memory before anything is read); -1 for the other formats (their text holds no count) and for a
+  /// header that cannot be read (the error is then RequestData's).
+  vtkIdType ReadAnnouncedPointCount();
+
   /// How the last file read was understood, e.g. "x y z r g b (6 columns, no header: 0-255 integers, so
   /// colours)"; empty before a read and after a failed one.
   vtkGetCharFromStdStringMacro(ColumnLayout);

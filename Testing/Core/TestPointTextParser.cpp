@@ -421,6 +421,12 @@ TEST(TextCloudFormat, TheContentTellsPcdAndPtxFilesWhateverTheirExtension)
     EXPECT_EQ(formatOf(pcdFile(encoding)), gls::TextCloudFormat::Pcd) << encoding;
   }
   EXPECT_EQ(formatOf("FIELDS x y z\nDATA ascii\n"), gls::TextCloudFormat::Pcd);
+  // The count a PCD header announces (the main job's memory check reads it before the file).
+  const std::string announced = pcdFile("binary_compressed");
+  EXPECT_EQ(gls::pcdAnnouncedPoints(announced.data(), announced.size()), 3);
+  const std::string noPoints = "FIELDS x y z\nWIDTH 4\nHEIGHT 2\nDATA ascii\n";
+  EXPECT_EQ(gls::pcdAnnouncedPoints(noPoints.data(), noPoints.size()), 8);
+  EXPECT_EQ(gls::pcdAnnouncedPoints("x y z\n1 2 3\n", 12), -1);
   EXPECT_EQ(formatOf(twoScanPtx()), gls::TextCloudFormat::Ptx);
   EXPECT_EQ(formatOf("2\n0 0 0 1\n1 0 0 2\n"), gls::TextCloudFormat::PointText);      // Leica PTS
   EXPECT_EQ(formatOf("2\n2\n0 0 0\n1 0 0\n0 1 0\n"), gls::TextCloudFormat::PointText); // short of a PTX header

@@ -40,38 +40,24 @@ def check_file(path):
 
 
 def announced_point_count(path):
-    """The number of points a file's header announces (PLY: its vertex element; LAS/LAZ: its point count, the 64-bit
-    one of LAS 1.4; PCD: POINTS), read from its first bytes before anything else; None for the formats without one
-    (text, PTX, OBJ, STL, VTP) or a header that cannot be read (the reader then reports what is wrong)."""
-    import struct
+    """The number of points a file's header announces, read from its header alone before anything else: PLY (its
+    vertex element, gls_ply), LAS and LAZ, PCD (the plugin's readers' own header readers); None for the formats
+    without one (text, PTX, OBJ, STL, VTP) or a header that cannot be read (the reader then reports what is wrong)."""
     ext = os.path.splitext(path)[1].lower()
-    try:
-        with open(path, 'rb') as f:
-            head = f.read(65536)
-    except OSError:
-        return None
     if ext == '.ply':
         try:
-            header = gls_ply.parse_header(head)
-        except ValueError:
+            with open(path, 'rb') as f:
+                header = gls_ply.parse_header(f.read(65536))
+        except (OSError, ValueError):
             return None  # a malformed header: the PLY check before the reader says what is wrong
         counts = [count for name, count, _ in header[1] if name == 'vertex'] if header else []
         return counts[0] if counts else None
-    if ext in ('.las', '.laz'):
-        if len(head) < 227 or not head.startswith(b'LASF'):
-            return None
-        minor, header_size = head[25], struct.unpack_from('<H', head, 94)[0]
-        legacy = struct.unpack_from('<I', head, 107)[0]
-        if minor >= 4 and header_size >= 255 and len(head) >= 255:
-            return struct.unpack_from('<Q', head, 247)[0] or legacy
-        return legacy
-    if ext == '.pcd':
-        for line in head.split(b'\n'):
-            words = line.split()
-            if len(words) == 2 and words[0] == b'POINTS' and words[1].isdigit():
-                return int(words[1])
-            if words[:1] == [b'DATA']:
-                break
+    if ext in ('.las', '.laz', '.pcd'):
+        from glsvtk.vtkGLSFilters import vtkGLSLasReader, vtkGLSPointCloudReader
+        reader = vtkGLSPointCloudReader() if ext == '.pcd' else vtkGLSLasReader()
+        reader.SetFileName(path)
+        count = reader.ReadAnnouncedPointCount()
+        return count if count >= 0 else None
     return None
 
 

@@ -117,4 +117,8 @@ PointText parsePcd(const char* data, std::size_t size);
 /// parsePcd of a file (errors prefixed with its path).
 PointText readPcdFile(const std::string& path);
 
+/// The number of points a PCD header announces (POINTS, or WIDTH x HEIGHT without it), from a file's first bytes
+/// (the header and the DATA line among them); -1 when they hold no readable PCD header.
+long long pcdAnnouncedPoints(const char* head, std::size_t size);
+
 } // namespace gls

@@ -476,6 +476,12 @@ PointText cloudOfValues(const PcdHeader& h, const PcdRoles& r, const std::vector
 
 } // namespace
 
+long long pcdAnnouncedPoints(const char* head, std::size_t size)
+{
+  PcdHeader h;
+  return readPcdHeader(head, size, h).empty() ? static_cast<long long>(h.points) : -1;
+}
+
 PointText parsePcd(const char* data, std::size_t size)
 {
   const auto fail = [](const std::string& what) {
