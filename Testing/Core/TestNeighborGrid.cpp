@@ -401,3 +401,92 @@ TEST(NeighborGrid, AdmitRuleIsTheSameWithAndWithoutTheNormalizedCopy)
     }
   }
 }
+
+TEST(NeighborGrid, ASparseCellIndexAnswersAsADenseOne)
+{
+  // A sphere and a plane across it, in cells far smaller than the cloud: 8 cells a point (the most a grid takes), so
+  // the grid keeps only its occupied cells (the sparse index). A NaN point and a masked point stay out.
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const std::size_t n = 20000;
+  std::vector<double> xyz;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (i % 2 == 0)
+    {
+      const double x = gauss(rng), y = gauss(rng), z = gauss(rng);
+      const double r = std::sqrt(x * x + y * y + z * z);
+      xyz.insert(xyz.end(), { x / r, y / r, z / r });
+    }
+    else
+    {
+      xyz.insert(xyz.end(), { u(rng), u(rng), 0.3 }); // whole rows of occupied cells
+    }
+  }
+  xyz[3 * 5] = std::nan("");
+  std::vector<unsigned char> include(n, 1);
+  include[7] = 0;
+  gls::NeighborGrid grid;
+  grid.build(xyz.data(), nullptr, n, 0.02, include.data());
+  const gls::GridView& g = grid.view();
+  ASSERT_EQ(g.cellStart, nullptr);
+  ASSERT_NE(g.rowEntry, nullptr);
+  ASSERT_EQ(g.count, n - 2);
+  // The index: the first point of every cell (and of every row's end) is the number of points in the cells before.
+  std::vector<std::int64_t> keys(g.count);
+  for (std::size_t s = 0; s < g.count; ++s)
+  {
+    const gls::Vec3& p = g.points[s];
+    keys[s] = (gls::gridCellOf(g, p.z, 2) * g.dims[1] + gls::gridCellOf(g, p.y, 1)) * g.dims[0] +
+      gls::gridCellOf(g, p.x, 0);
+  }
+  ASSERT_TRUE(std::is_sorted(keys.begin(), keys.end()));
+  std::size_t checked = 0;
+  for (std::int64_t row = 0; row < g.dims[1] * g.dims[2]; ++row)
+  {
+    for (std::int64_t x = 0; x <= g.dims[0]; ++x)
+    {
+      const auto before = std::lower_bound(keys.begin(), keys.end(), row * g.dims[0] + x) - keys.begin();
+      ASSERT_EQ(gls::gridCellStart(g, row, x), static_cast<std::uint64_t>(before)) << "row " << row << " x " << x;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 2 * n + 65536); // more cells than a dense index is kept for
+  // Ball and k-nearest queries against brute force.
+  std::vector<std::pair<double, std::uint64_t>> out;
+  for (std::size_t q = 0; q < n; q += 331)
+  {
+    const gls::Vec3 c{ std::isfinite(xyz[3 * q]) ? xyz[3 * q] : 0.1, xyz[3 * q + 1], xyz[3 * q + 2] };
+    std::vector<std::pair<double, std::uint64_t>> all;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (include[i] && std::isfinite(xyz[3 * i]))
+      {
+        all.emplace_back(dist2(xyz, i, c), i);
+      }
+    }
+    std::sort(all.begin(), all.end());
+    for (double r : { 0.03, 0.15 })
+    {
+      std::vector<std::uint64_t> inBall, expected;
+      gls::forEachInBall(g, c, r, [&](std::uint64_t s, const gls::Vec3&, double) { inBall.push_back(g.ids[s]); });
+      for (const auto& a : all)
+      {
+        if (a.first < r * r)
+        {
+          expected.push_back(a.second);
+        }
+      }
+      std::sort(inBall.begin(), inBall.end());
+      std::sort(expected.begin(), expected.end());
+      EXPECT_EQ(inBall, expected);
+    }
+    grid.kNearest(c, 16, out);
+    ASSERT_EQ(out.size(), 16u);
+    for (int j = 0; j < 16; ++j)
+    {
+      EXPECT_EQ(g.ids[out[j].second], all[j].second);
+    }
+  }
+}

@@ -156,9 +156,13 @@ void NeighborGrid::sortIntoCells(const double* xyz, const double* normals, std::
   this->Points.resize(admittedCount);
   this->Ids.resize(admittedCount);
   this->Normals.resize(normals ? admittedCount : 0);
-  this->CellStart.resize(cellCount + 1);
-  // Each slot's point, and the starts of the cells from the one after the previous slot's up to its own (each start
-  // written once, by the first slot at or after it).
+  const bool sparse = this->indexOccupiedCells(keyed, admittedCount, cellCount, dims);
+  if (!sparse)
+  {
+    this->CellStart.resize(cellCount + 1);
+  }
+  // Each slot's point, and (dense index) the starts of the cells from the one after the previous slot's up to its
+  // own (each start written once, by the first slot at or after it).
   parallelFor(admittedCount, options, [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t slot = begin; slot < end; ++slot)
     {
@@ -170,22 +174,78 @@ void NeighborGrid::sortIntoCells(const double* xyz, const double* normals, std::
         this->Normals[slot] = { normals[3 * i], normals[3 * i + 1], normals[3 * i + 2] };
       }
       const std::uint64_t from = slot == 0 ? 0 : keyed[slot - 1].key + 1;
-      for (std::uint64_t c = from; c <= keyed[slot].key; ++c)
+      for (std::uint64_t c = from; !sparse && c <= keyed[slot].key; ++c)
       {
         this->CellStart[c] = slot;
       }
     }
   });
-  const std::uint64_t after = admittedCount == 0 ? 0 : keyed[admittedCount - 1].key + 1;
-  parallelFor(cellCount + 1 - after, options, [&](std::size_t begin, std::size_t end, int) {
-    std::fill(this->CellStart.begin() + static_cast<std::ptrdiff_t>(after + begin),
-      this->CellStart.begin() + static_cast<std::ptrdiff_t>(after + end), admittedCount);
-  });
-  v.cellStart = this->CellStart.data();
+  if (!sparse)
+  {
+    const std::uint64_t after = admittedCount == 0 ? 0 : keyed[admittedCount - 1].key + 1;
+    parallelFor(cellCount + 1 - after, options, [&](std::size_t begin, std::size_t end, int) {
+      std::fill(this->CellStart.begin() + static_cast<std::ptrdiff_t>(after + begin),
+        this->CellStart.begin() + static_cast<std::ptrdiff_t>(after + end), admittedCount);
+    });
+  }
+  v.cellStart = sparse ? nullptr : this->CellStart.data();
+  v.rowEntry = sparse ? this->RowEntry.data() : nullptr;
+  v.entryX = sparse ? this->EntryX.data() : nullptr;
+  v.entryStart = sparse ? this->EntryStart.data() : nullptr;
   v.points = this->Points.data();
   v.normals = normals ? this->Normals.data() : nullptr;
   v.ids = this->Ids.data();
   v.count = admittedCount;
+}
+
+bool NeighborGrid::indexOccupiedCells(
+  const KeyedIndices& keyed, std::size_t admittedCount, std::size_t cellCount, const std::int64_t dims[3])
+{
+  this->RowEntry.clear();
+  this->EntryX.clear();
+  this->EntryStart.clear();
+  // A dense index of at most about two entries a point is kept: it is the fastest to read.
+  if (static_cast<double>(cellCount) <= 2.0 * static_cast<double>(admittedCount) + 65536.0)
+  {
+    return false;
+  }
+  std::size_t occupied = 0;
+  for (std::size_t slot = 0; slot < admittedCount; ++slot)
+  {
+    occupied += slot == 0 || keyed[slot].key != keyed[slot - 1].key ? 1 : 0;
+  }
+  const std::size_t rows = static_cast<std::size_t>(dims[1] * dims[2]);
+  // The sparse index only where it is clearly smaller (a cloud of few points per row of cells keeps the dense one).
+  if (2.0 * (8.0 * static_cast<double>(rows) + 16.0 * static_cast<double>(occupied)) > 8.0 * static_cast<double>(cellCount))
+  {
+    return false;
+  }
+  this->RowEntry.resize(rows + 1);
+  this->EntryX.resize(occupied);
+  this->EntryStart.resize(occupied + 1);
+  const std::uint64_t width = static_cast<std::uint64_t>(dims[0]);
+  std::size_t e = 0, nextRow = 0;
+  for (std::size_t slot = 0; slot < admittedCount; ++slot)
+  {
+    const std::uint64_t key = keyed[slot].key;
+    if (slot > 0 && key == keyed[slot - 1].key)
+    {
+      continue;
+    }
+    for (const std::size_t row = static_cast<std::size_t>(key / width); nextRow <= row; ++nextRow)
+    {
+      this->RowEntry[nextRow] = e; // rows up to this cell's start at it
+    }
+    this->EntryX[e] = static_cast<std::int64_t>(key % width);
+    this->EntryStart[e] = slot;
+    ++e;
+  }
+  for (; nextRow <= rows; ++nextRow)
+  {
+    this->RowEntry[nextRow] = e;
+  }
+  this->EntryStart[e] = admittedCount;
+  return true;
 }
 
 double NeighborGrid::suggestCellSizeForKNearest(const double* xyz, std::size_t n, int k)
@@ -208,7 +268,13 @@ double surfaceSpacingOfBox(const double low[3], const double high[3], std::size_
 void NeighborGrid::releaseCells()
 {
   UninitializedArray<std::uint64_t>().swap(this->CellStart);
+  UninitializedArray<std::uint64_t>().swap(this->RowEntry);
+  UninitializedArray<std::int64_t>().swap(this->EntryX);
+  UninitializedArray<std::uint64_t>().swap(this->EntryStart);
   this->View.cellStart = nullptr;
+  this->View.rowEntry = nullptr;
+  this->View.entryX = nullptr;
+  this->View.entryStart = nullptr;
 }
 
 void normalizeAndAdmit(const double* points, const double* normals, std::size_t n, std::vector<double>& unitNormals,

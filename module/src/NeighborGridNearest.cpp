@@ -158,7 +158,7 @@ private:
   void visitRun(std::int64_t row, std::int64_t xa, std::int64_t xb)
   {
     const GridView& g = this->G;
-    for (std::uint64_t i = g.cellStart[row + xa]; i < g.cellStart[row + xb + 1]; ++i)
+    for (std::uint64_t i = gridCellStart(g, row, xa), end = gridCellStart(g, row, xb + 1); i < end; ++i)
     {
       if (this->AdmitSorted == nullptr || this->AdmitSorted[i] != 0)
       {
@@ -175,7 +175,7 @@ private:
     {
       return; // the whole row is farther than the k-th kept point
     }
-    const std::int64_t row = (z * g.dims[1] + y) * g.dims[0];
+    const std::int64_t row = z * g.dims[1] + y;
     if (shell)
     {
       // One run of the row's cells, less those at its ends that are too far.
@@ -269,8 +269,8 @@ void forEachBlockRow(const GridView& g, const RunBlock& b, F&& f)
   {
     for (std::int64_t y = b.lo[1]; y <= b.hi[1]; ++y)
     {
-      const std::int64_t row = (z * g.dims[1] + y) * g.dims[0];
-      f(g.cellStart[row + b.lo[0]], g.cellStart[row + b.hi[0] + 1]);
+      const std::int64_t row = z * g.dims[1] + y;
+      f(gridCellStart(g, row, b.lo[0]), gridCellStart(g, row, b.hi[0] + 1));
     }
   }
 }
@@ -392,9 +392,7 @@ std::uint64_t NeighborGrid::cellRunEnd(std::uint64_t first) const
 {
   const GridView& g = this->View;
   const Vec3& p = g.points[first];
-  const std::int64_t cell =
-    (gridCellOf(g, p.z, 2) * g.dims[1] + gridCellOf(g, p.y, 1)) * g.dims[0] + gridCellOf(g, p.x, 0);
-  return g.cellStart[cell + 1];
+  return gridCellStart(g, gridCellOf(g, p.z, 2) * g.dims[1] + gridCellOf(g, p.y, 1), gridCellOf(g, p.x, 0) + 1);
 }
 
 void NeighborGrid::kNearestOfCellRun(std::uint64_t first, std::uint64_t last, int k, CellRunScratch& scratch,

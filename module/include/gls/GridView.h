@@ -21,7 +21,16 @@ struct GridView
   /// cloud's lattice starts where its points do (NeighborGrid::buildOnLattice), so that both sort every point into
   /// the same lattice cell.
   std::int64_t low[3] = { 0, 0, 0 };
-  const std::uint64_t* cellStart = nullptr; ///< points of cell c are [cellStart[c], cellStart[c + 1])
+  /// The dense cell index: the points of cell c (= (z dims[1] + y) dims[0] + x) are [cellStart[c], cellStart[c + 1]).
+  /// Null when the grid keeps the sparse index below instead (gridCellStart reads either).
+  const std::uint64_t* cellStart = nullptr;
+  /// The sparse cell index, for a grid with many more cells than points (a surface in a k-nearest grid): only the
+  /// occupied cells, in cell order. Those of row r (= z dims[1] + y) are entries [rowEntry[r], rowEntry[r + 1]);
+  /// entry e is the cell at x = entryX[e] of its row, whose points start at entryStart[e] (entryStart has one entry
+  /// more, the point count).
+  const std::uint64_t* rowEntry = nullptr;
+  const std::int64_t* entryX = nullptr;
+  const std::uint64_t* entryStart = nullptr;
   const Vec3* points = nullptr;      ///< positions sorted by cell
   const Vec3* normals = nullptr;     ///< normals in the same order (may be null)
   const std::uint64_t* ids = nullptr; ///< original index of each sorted point
@@ -55,6 +64,34 @@ GLS_INLINE double gridCellLowerBound(const GridView& g, int a, std::int64_t cell
 {
   const double origin = a == 0 ? g.origin.x : (a == 1 ? g.origin.y : g.origin.z);
   return origin + static_cast<double>(cell + g.low[a]) * g.cellSize;
+}
+
+/// The sparse index's first sorted point of the cell at x of row `row` (= z dims[1] + y): that of the first occupied
+/// cell of the row at or after x, or where the next row's points start.
+GLS_INLINE std::uint64_t gridSparseCellStart(const GridView& g, std::int64_t row, std::int64_t x)
+{
+  std::uint64_t lo = g.rowEntry[row], hi = g.rowEntry[row + 1];
+  while (lo < hi)
+  {
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    if (g.entryX[mid] < x)
+    {
+      lo = mid + 1;
+    }
+    else
+    {
+      hi = mid;
+    }
+  }
+  return g.entryStart[lo];
+}
+
+/// The first sorted point of the cell at x of row `row` (= z dims[1] + y), 0 <= x <= dims[0]: for an empty cell, and
+/// for x = dims[0], where the points of the next occupied cell start. The points of cells x0 to x1 of a row are then
+/// [gridCellStart(g, row, x0), gridCellStart(g, row, x1 + 1)), whichever index the grid keeps.
+GLS_INLINE std::uint64_t gridCellStart(const GridView& g, std::int64_t row, std::int64_t x)
+{
+  return g.cellStart != nullptr ? g.cellStart[row * g.dims[0] + x] : gridSparseCellStart(g, row, x);
 }
 
 /// The block of cells [x0, x1] x [y0, y1] x [z0, z1] that a ball of radius r around c overlaps (clamped to the
@@ -122,9 +159,18 @@ GLS_INLINE bool blockRow(
     x0 = lo > x0 ? lo : x0;
     x1 = hi < x1 ? hi : x1;
   }
-  const std::int64_t row = (z * g.dims[1] + y) * g.dims[0];
-  *begin = g.cellStart[row + x0];
-  *end = g.cellStart[row + x1 + 1];
+  const std::int64_t row = z * g.dims[1] + y;
+  if (g.cellStart != nullptr) // the dense index: the hot path of every ball query
+  {
+    const std::uint64_t* starts = g.cellStart + row * g.dims[0];
+    *begin = starts[x0];
+    *end = starts[x1 + 1];
+  }
+  else
+  {
+    *begin = gridSparseCellStart(g, row, x0);
+    *end = gridSparseCellStart(g, row, x1 + 1);
+  }
   return *begin < *end;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "gls/GridView.h"
+#include "gls/KeySort.h"
 #include "gls/UninitializedArray.h"
 
 #include <cstddef>
@@ -89,7 +90,15 @@ private:
   void sortIntoCells(const double* xyz, const double* normals, std::size_t n, const unsigned char* include,
     const GridLattice& lattice, const std::int64_t low[3], const std::int64_t dims[3]);
 
-  UninitializedArray<std::uint64_t> CellStart;
+  /// Keeps the sparse cell index (GridView::rowEntry) of the sorted keys instead of the dense one when it is clearly
+  /// smaller: a grid of more than about two cells a point. Returns whether it did.
+  bool indexOccupiedCells(
+    const KeyedIndices& keyed, std::size_t admittedCount, std::size_t cellCount, const std::int64_t dims[3]);
+
+  UninitializedArray<std::uint64_t> CellStart; ///< the dense index (GridView::cellStart), or empty
+  UninitializedArray<std::uint64_t> RowEntry;  ///< the sparse index (GridView::rowEntry), or empty
+  UninitializedArray<std::int64_t> EntryX;
+  UninitializedArray<std::uint64_t> EntryStart;
   UninitializedArray<Vec3> Points;
   UninitializedArray<Vec3> Normals;
   UninitializedArray<std::uint64_t> Ids;

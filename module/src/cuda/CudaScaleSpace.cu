@@ -310,7 +310,10 @@ bool CudaScaleSpace::prepare(
   d.Grid.points = d.Points.get();
   d.Grid.normals = d.Normals.get();
   d.Grid.ids = d.Ids.get();
-  d.Grid.cellStart = d.CellStart.get();
+  d.Grid.cellStart = d.CellStart.get(); // the dense index, built on the device whichever the host grid keeps
+  d.Grid.rowEntry = nullptr;
+  d.Grid.entryX = nullptr;
+  d.Grid.entryStart = nullptr;
   return this->prepareBinning(binning, minNeighbors, error);
 }
 
