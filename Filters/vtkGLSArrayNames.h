@@ -32,6 +32,7 @@ constexpr const char* QueryPointId = "GLSQueryPointId";   // field data of the d
 constexpr const char* GhostPoints = "GLSGhostPoints";     // field data of a distributed run: ghosts this rank used
 constexpr const char* StrayPoints = "GLSStrayPoints";     // field data: stray points left out (NaN results)
 constexpr const char* Stray = "GLSStray";                 // point data, when some were: 1 at the stray points
+constexpr const char* MinimumNeighbors = "GLSMinimumNeighbors"; // field data: the MinimumNeighbors a fit applied
 constexpr const char* Tiles = "GLSTiles";                 // field data: spatial tiles of a fit cut to its MemoryBudget
 constexpr const char* CoincidentPoints = "GLSCoincidentPoints"; // field data: input points merged into another
 constexpr const char* AutomaticArray = "(automatic)"; // an array selection that lets the filter choose

@@ -667,6 +667,13 @@ void vtkGLSFilterBase::WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd)
     stray->InsertNextValue(static_cast<vtkIdType>(run.StrayIds.size()));
     fd->AddArray(stray);
   }
+  if (run.MinimumNeighbors > 0.0)
+  {
+    vtkNew<vtkDoubleArray> minimum;
+    minimum->SetName(vtkGLSArrayNames::MinimumNeighbors);
+    minimum->InsertNextValue(run.MinimumNeighbors);
+    fd->AddArray(minimum);
+  }
   if (run.TilesUsed > 1)
   {
     vtkNew<vtkIdTypeArray> tiles;

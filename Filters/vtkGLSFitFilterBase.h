@@ -44,7 +44,8 @@ public:
   ///@{
   /// Fits with fewer neighbours strictly inside the ball are NaN. 0 (default) = automatic: 6 for 3D input, 3 for a
   /// 2D curve (every point that takes part in the fits lies in one plane z = const and has its normal in it).
-  /// Otherwise at least 3, the floor that keeps a fit determined (1, 2 or a negative value is an error).
+  /// Otherwise at least 3, the floor that keeps a fit determined (1, 2 or a negative value is an error). The output's
+  /// field data GLSMinimumNeighbors holds the minimum applied.
   vtkSetMacro(MinimumNeighbors, int);
   vtkGetMacro(MinimumNeighbors, int);
   ///@}

@@ -286,6 +286,45 @@ class PluginProxies(unittest.TestCase):
         simple.Delete(p)
         simple.Delete(src)
 
+    def test_scale_profiles_of_the_main_jobs_crop_equal_the_whole_clouds(self):
+        # The main job computes its profiles on the picked points' neighbourhoods only (gls_profiles.around), at the
+        # analysis' scales as lengths, exactly, with the minimum neighbour count the analysis applied (field data
+        # GLSMinimumNeighbors): the same table as on the whole cloud, to rounding (the sums run in the order of the
+        # grid's cells, laid on the crop's box: 5e-15 relative seen).
+        sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'paraview-plugin',
+                                        'python'))
+        import gls_profiles
+        normals = NS['GLSNormalEstimation'](Input=producer(bunny_points()))
+        features = NS['GLSContinuousFeatures'](Input=normals, Normals=['POINTS', 'Normals'], NumberOfScales=5)
+        whole = fetch(normals)
+        fd = fetch(features).GetFieldData()
+        scales = vtk_to_numpy(fd.GetArray('GLSScales'))
+        minimum = int(fd.GetArray('GLSMinimumNeighbors').GetValue(0))
+        self.assertEqual(minimum, 6)  # the automatic minimum of 3D data
+        picks = [17, 9000, 30000]
+        crop, ids = gls_profiles.around(whole, picks, scales[-1] * 1.001)
+        self.assertLess(crop.GetNumberOfPoints(), whole.GetNumberOfPoints() // 2)
+        tables = []
+        for cloud, pids in ((whole, picks), (crop, ids)):
+            src = producer(cloud)
+            p = NS['GLSScaleProfiles'](Input=src, Normals=['POINTS', 'Normals'], PointIds=pids, NumberOfScales=60,
+                                       ScaleUnits='Absolute', MinScale=scales[0], MaxScale=scales[-1],
+                                       Evaluation='Exact', MinimumNeighbors=minimum)
+            tables.append(fetch(p))
+            simple.Delete(p)
+            simple.Delete(src)
+        self.assertEqual(tables[0].GetNumberOfColumns(), tables[1].GetNumberOfColumns())
+        for i in range(tables[0].GetNumberOfColumns()):
+            name = tables[0].GetColumnName(i)
+            renamed = name
+            for pid, cid in zip(picks, ids):
+                renamed = renamed.replace('(%d)' % pid, '(%d)' % cid)
+            self.assertTrue(name == 't' or renamed != name, name)
+            np.testing.assert_allclose(vtk_to_numpy(tables[1].GetColumnByName(renamed)),
+                                       vtk_to_numpy(tables[0].GetColumn(i)), rtol=1e-12, atol=1e-15, err_msg=name)
+        simple.Delete(features)
+        simple.Delete(normals)
+
     def test_denoising_pipeline_on_a_noisy_sphere(self):
         # Noise on the radius of one hemisphere (z > 0); the other stays clean.
         rng = np.random.default_rng(4)

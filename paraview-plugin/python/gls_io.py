@@ -70,6 +70,16 @@ def output_of(proxy, port=0):
     return shallow
 
 
+def release_output(proxy, port=0):
+    """Empties what a proxy produced: its algorithm's output and the shallow copy of it that ParaView's post filter
+    (the proxy's output port) holds, so that arrays no one else refers to are freed. The proxy must not be updated
+    again."""
+    from paraview import servermanager
+    si = servermanager.ActiveConnection.Session.GetSIObject(proxy.GetGlobalID())
+    si.GetOutputPort(port).GetProducer().GetOutputDataObject(0).Initialize()
+    proxy.GetClientSideObject().GetOutputDataObject(port).Initialize()
+
+
 def open_cloud(path, make_proxy, watch):
     """(source proxy, polydata, description of how it was read) for the file; raises InputError. make_proxy(name,
     **properties) creates a plugin proxy; watch (gls_watch.Watch) turns the reader's errors into the message."""

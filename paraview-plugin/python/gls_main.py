@@ -239,7 +239,8 @@ def analyze(args, outputs):
     feature = checked_features(result)
     elapsed = time.time() - start
     pd = result.GetPointData()
-    scales = vtk_to_numpy(result.GetFieldData().GetArray('GLSScales'))
+    scales = vtk_to_numpy(result.GetFieldData().GetArray('GLSScales')).copy()
+    minimum_neighbours = int(result.GetFieldData().GetArray('GLSMinimumNeighbors').GetValue(0))
     print('GLS pipeline: %.2f s; %d scales from %.4g to %.4g (length units of the data); feature in [%.3f, %.3f], '
           'median %.3f' % (elapsed, len(scales), scales[0], scales[-1], np.nanmin(feature), np.nanmax(feature),
                            np.nanmedian(feature)))
@@ -247,6 +248,7 @@ def analyze(args, outputs):
     if dissimilarity is not None:
         pd.AddArray(dissimilarity)
 
+    picks = gls_profiles.select_profile_points(feature, vtk_to_numpy(pd.GetArray('GLSPertinentScaleCount')))
     output = merged.scatter(result) if merged is not None else result
     if output.GetNumberOfCells() == 0:  # a cloud without cells: one poly-vertex, so that ParaView shows the .vtp
         output.SetVerts(gls_cloud.poly_vertex_cell(output.GetNumberOfPoints()))
@@ -255,18 +257,27 @@ def analyze(args, outputs):
         print('output: per-point summaries; narrowed to float32 (uint8 for the count): %s%s'
               % (', '.join(narrowed), '' if args.full_precision else
                  '; rounded to a relative 1.2e-4 (the normals 7.6e-6): --full-precision keeps every bit'))
+        # The features' double-precision arrays are not needed any more (the output holds their float32 copies, or
+        # shares them): released before the writer's fork, whose copy of this process would keep them.
+        del feature, pd
+        result.Initialize()
+        gls_io.release_output(features)
     writing = outputs.write_in_background('-gls.vtp', output)  # compressed while the pictures are made
     gls_render.render_features(outputs.path('-features.png'), output,
                                'GLS continuous features: %s (%d points)' % (outputs.name, count))
 
-    picks = gls_profiles.select_profile_points(feature, vtk_to_numpy(pd.GetArray('GLSPertinentScaleCount')))
-    profiles = watch.watch(gls_filter('GLSScaleProfiles', registrationName='Profiles', Input=upstream,
-                                      Normals=NORMALS, PointIds=list(picks.values()), NumberOfScales=300,
-                                      **scale_range(args)),
+    # The profiles' fits read the picked points' neighbourhoods only (at the analysis' scales, as lengths, with its
+    # minimum neighbour count), summed exactly: a few points, whatever the cloud's size.
+    neighbourhoods, crop_ids = gls_profiles.around(gls_io.output_of(upstream), picks.values(), scales[-1] * 1.001)
+    profiles = watch.watch(gls_filter('GLSScaleProfiles', registrationName='Profiles',
+                                      Input=gls_cloud.producer(neighbourhoods), Normals=NORMALS, PointIds=crop_ids,
+                                      NumberOfScales=300, ScaleSampling='Quadratic', ScaleUnits='Absolute',
+                                      MinScale=float(scales[0]), MaxScale=float(scales[-1]), Evaluation='Exact',
+                                      MinimumNeighbors=minimum_neighbours),
                            'scale profiles', progress=False)
     watch.update(profiles)
     gls_profiles.plot_profiles(outputs.path('-profiles.png'), 'GLS scale profiles: %s' % outputs.name,
-                               gls_io.output_of(profiles), picks)
+                               gls_io.output_of(profiles), picks, dict(zip(picks.keys(), crop_ids)))
 
     cloud = analysed if upstream is source else gls_io.output_of(upstream)
     stage = gls_denoising.denoise(gls_filter, cloud, args.noise, watch)
