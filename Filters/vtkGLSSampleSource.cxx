@@ -200,9 +200,16 @@ bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std:
   });
 }
 
-double vtkGLSSampleSource::EngineBytes(std::size_t n, std::size_t S, int threads)
+double vtkGLSSampleSource::EngineBytes(const vtkGLSCloud& cloud, const gls::ScaleSpaceSettings& settings)
 {
-  const double perPoint = 2 * 3 * 8 + 3 * 8 + 8; // the grid's copies of the points and normals, positions, order
+  return gls::ScaleSpaceEngine::footprint(cloud.Points.data(), cloud.Normals.data(), cloud.Size(), settings);
+}
+
+double vtkGLSSampleSource::EngineShareBytes(
+  double wholeEngineBytes, std::size_t wholePoints, std::size_t points, std::size_t S, int threads)
+{
+  // A tile's engine: the whole cloud's per point (a tile is laid on the whole cloud's lattice, of its density).
+  const double share = wholePoints > 0 ? wholeEngineBytes * static_cast<double>(points) / wholePoints : 0.0;
   const double perThread = static_cast<double>(S) * (sizeof(gls::Moments) + sizeof(gls::ScaleSample) + 8);
-  return static_cast<double>(n) * perPoint + static_cast<double>(threads) * perThread;
+  return share + static_cast<double>(threads) * perThread;
 }

@@ -53,9 +53,12 @@ public:
   bool Feed(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const gls::ParallelOptions& parallel,
     gls::Backend backend, gls::RunReport& report) const;
 
-  /// Bytes of the engine's buffers for n points (ghosts included) and S scales on `threads` threads, besides the
-  /// points and normals it is given (vtkGLSCloud::BytesPerPoint each).
-  static double EngineBytes(std::size_t n, std::size_t S, int threads);
+  /// Bytes of the buffers of an engine over the cloud under these settings (gls::ScaleSpaceEngine::footprint, its
+  /// pyramid counted from the points), besides the points and normals it is given (vtkGLSCloud::BytesPerPoint each),
+  /// and of its threads' scratch: its share of `points` points (ghosts included) when it runs on a tile of that size.
+  static double EngineBytes(const vtkGLSCloud& cloud, const gls::ScaleSpaceSettings& settings);
+  static double EngineShareBytes(
+    double wholeEngineBytes, std::size_t wholePoints, std::size_t points, std::size_t S, int threads);
 
   /// Tiles of the fit (1 when it is not tiled or is no fit) and points of its largest tile, ghosts included.
   std::size_t TileCount() const { return this->Engine ? this->Engine->tileCount() : 1; }

@@ -253,7 +253,13 @@ bool vtkGLSScaleFilterBase::ChooseTiles(const vtkGLSRun& run, const gls::ScaleSp
   const double budget = this->MemoryBudgetBytes();
   const double cloud = static_cast<double>(run.Cloud.Size()) * vtkGLSCloud::BytesPerPoint; // kept while tiles run
   tiled.reset();
-  if (fixed + cloud + vtkGLSSampleSource::EngineBytes(run.Cloud.Size(), S, threads) <= budget || run.Cloud.Owned == 0)
+  if (run.Cloud.Owned == 0)
+  {
+    return true;
+  }
+  const double whole = vtkGLSSampleSource::EngineBytes(run.Cloud, settings);
+  if (fixed + cloud + vtkGLSSampleSource::EngineShareBytes(whole, run.Cloud.Size(), run.Cloud.Size(), S, threads) <=
+    budget)
   {
     return true;
   }
@@ -266,7 +272,7 @@ bool vtkGLSScaleFilterBase::ChooseTiles(const vtkGLSRun& run, const gls::ScaleSp
     planning.parallel.progress = nullptr;
     tiled = vtkGLSSampleSource::Fit(run.Cloud, planning, want);
     const std::size_t largest = tiled->LargestTile();
-    need = fixed + cloud + vtkGLSSampleSource::EngineBytes(largest, S, threads) +
+    need = fixed + cloud + vtkGLSSampleSource::EngineShareBytes(whole, run.Cloud.Size(), largest, S, threads) +
       static_cast<double>(largest) * gls::TiledScaleSpace::kBytesPerTilePoint;
     if (need <= budget)
     {

@@ -383,6 +383,16 @@ class Inputs(unittest.TestCase):
         line = self.assertFailsInOneLine(run(truncated, '--output-dir', out), 'reader: Cannot read the LAS file', out)
         self.assertIn('truncated, or a wrong point count', line)
 
+    def test_the_fused_pass_is_given_what_the_budget_leaves(self):
+        # gls_memory.filter_budget_mib: FILTER_SHARE of the budget less this process's resident memory (VmRSS, read
+        # here the same way), at least 1 MiB; 0 (the filters' default) without a budget.
+        self.assertEqual(gls_memory.filter_budget_mib(None), 0.0)
+        with open('/proc/self/status') as f:
+            rss = next(float(line.split()[1]) * 1024.0 for line in f if line.startswith('VmRSS:'))
+        given = gls_memory.filter_budget_mib(rss + 1000.0 * gls_memory.MIB)
+        self.assertAlmostEqual(given, gls_memory.FILTER_SHARE * 1000.0, delta=20.0)  # the RSS moves a little
+        self.assertEqual(gls_memory.filter_budget_mib(rss / 2.0), 1.0)
+
     def test_a_file_whose_header_announces_too_many_points_is_refused_before_it_is_read(self):
         # PLY, LAS and PCD headers say how many points follow: the memory check takes that count before any reader
         # runs (no "input:" line), so a survey too large for the machine is refused in seconds, not after minutes of

@@ -126,16 +126,49 @@ ScaleSpaceEngine::ScaleSpaceEngine(
   }
 }
 
+PyramidLayout ScaleSpaceEngine::pyramidLayout(
+  const ScaleSpaceSettings& settings, const double* points, std::size_t count, const unsigned char* admit)
+{
+  MultiresolutionSettings m = settings.multiresolution;
+  resolvePyramidFrame(m, points, count, admit);
+  PyramidLayout layout =
+    choosePyramidLayout(m.low, m.high, m.spacing, settings.scales.front(), settings.scales.back(), m.accuracy);
+  layout.linearizedDistance = m.linearizedDistance;
+  return layout;
+}
+
 void ScaleSpaceEngine::buildPyramid(
   const double* points, const double* normals, std::size_t count, const unsigned char* admit)
 {
-  MultiresolutionSettings m = this->Settings.multiresolution;
-  resolvePyramidFrame(m, points, count, admit);
-  const double largest = this->Settings.scales.back();
-  const double smallest = this->Settings.scales.front();
-  PyramidLayout layout = choosePyramidLayout(m.low, m.high, m.spacing, smallest, largest, m.accuracy);
-  layout.linearizedDistance = m.linearizedDistance;
+  const PyramidLayout layout = pyramidLayout(this->Settings, points, count, admit);
   this->BuildAborted = !this->Pyramid.build(points, normals, count, admit, layout, this->Settings.parallel);
+}
+
+double ScaleSpaceEngine::footprint(
+  const double* points, const double* normals, std::size_t count, const ScaleSpaceSettings& settings)
+{
+  const double n = static_cast<double>(count);
+  // Positions, Order and the admit flags; then the sorted copies (points, normals, ids) and the sort's keys.
+  const double common = n * (sizeof(Vec3) + 8.0 + 1.0) + n * (2.0 * sizeof(Vec3) + 8.0 + sizeof(KeyedIndex));
+  if (settings.evaluation != Evaluation::Multiresolution || settings.scales.empty())
+  {
+    // The normalized normals the grid is built from, and its cell index: dense up to about 2 cells a point
+    // (NeighborGrid::indexOccupiedCells), else smaller.
+    return common + n * (sizeof(Vec3) + 2.0 * 8.0) + 65537.0 * 8.0;
+  }
+  UninitializedArray<unsigned char> admit(count);
+  admitOrientedPoints(points, normals, count, admit.data(), settings.parallel.threads);
+  const PyramidCounts counts = MultiresolutionCloud::count(points, admit.data(),  count,
+    pyramidLayout(settings, points, count, admit.data()), resolveThreadCount(settings.parallel.threads));
+  // Each level's keys and starts while the next is made, the nodes and the cells with their sums.
+  const double nodes = static_cast<double>(counts.nodes);
+  return common + nodes * (2.0 * 8.0 + sizeof(PyramidNode)) + static_cast<double>(counts.cells) * sizeof(PyramidCell);
+}
+
+double ScaleSpaceEngine::memoryBytes() const
+{
+  return this->Positions.capacity() * sizeof(Vec3) + this->Order.capacity() * 8.0 + this->Grid.memoryBytes() +
+    this->Pyramid.memoryBytes();
 }
 
 ScaleBinning ScaleSpaceEngine::binning() const

@@ -154,23 +154,24 @@ def scale_range(args, **more):
                 ScaleUnits='Absolute' if args.absolute_scales else 'Relative to bounding box diagonal', **more)
 
 
-def summary_pipeline(args, upstream, watch):
-    """The default path: one fused pass (GLS Continuous Features with ScaleSummary) that stores nothing per scale."""
+def summary_pipeline(args, upstream, watch, budget):
+    """The default path: one fused pass (GLS Continuous Features with ScaleSummary) that stores nothing per scale,
+    within what `budget` (bytes, or None) leaves (its fit cut into spatial tiles if need be)."""
     sigma = {} if args.sigma is None else {'SigmaMode': 'Absolute', 'Sigma': args.sigma}
     return watch.watch(gls_filter('GLSContinuousFeatures', registrationName='Features', Input=upstream,
                                   Normals=NORMALS, NumberOfScales=args.scales, ScaleSummary=1,
-                                  **scale_range(args, **sigma)),
+                                  MemoryBudget=gls_memory.filter_budget_mib(budget), **scale_range(args, **sigma)),
                        'features and summary')
 
 
-def per_scale_pipeline(args, upstream, watch):
+def per_scale_pipeline(args, upstream, watch, budget):
     """--per-scale: the scale space and nu stored at every scale, then the features and the summary from them."""
     scale_space = watch.watch(gls_filter('GLSScaleSpace', registrationName='ScaleSpace', Input=upstream,
                                          Normals=NORMALS, NumberOfScales=args.scales, **scale_range(args)),
                               'scale space')
     variation = watch.watch(gls_filter('GLSGeometricVariation', registrationName='Variation', Input=scale_space,
                                        Normals=NORMALS), 'geometric variation')
-    return summary_pipeline(args, variation, watch)
+    return summary_pipeline(args, variation, watch, budget)
 
 
 def query_dissimilarity(args, upstream, watch, count, merged):
@@ -233,9 +234,13 @@ def analyze(args, outputs):
         watch.update(upstream)
         print('normals: %.2f s%s' % (time.time() - start, ', each facing its scanner (ScannerPosition)'
                                      if scanners else ''))
-    features = (per_scale_pipeline if args.per_scale else summary_pipeline)(args, upstream, watch)
+    features = (per_scale_pipeline if args.per_scale else summary_pipeline)(args, upstream, watch, budget)
     watch.update(features)
     result = gls_io.output_of(features)
+    tiles = result.GetFieldData().GetArray('GLSTiles')
+    if tiles is not None:
+        print('features and summary: in %d spatial tiles, one after the other, to stay within the memory budget'
+              % tiles.GetValue(0))
     feature = checked_features(result)
     elapsed = time.time() - start
     pd = result.GetPointData()

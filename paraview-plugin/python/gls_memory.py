@@ -14,6 +14,10 @@ DEFAULT_BYTES_PER_POINT = 330.0
 # With --per-scale: bytes per point and scale on top (the scale space, nu, and their copy in the written file).
 PER_SCALE_BYTES_PER_POINT_SCALE = 240.0
 GIB = 1024.0 ** 3
+MIB = 1024.0 ** 2
+# The part of what is left of the budget that a filter is given: the rest covers its allocations besides the ones it
+# counts (its outputs, its copy of the cloud and its engine).
+FILTER_SHARE = 0.9
 
 
 class BudgetError(Exception):
@@ -30,6 +34,28 @@ def available_bytes():
     except OSError:
         pass
     return None
+
+
+def resident_bytes():
+    """VmRSS of /proc/self/status (bytes): what this process holds now; None where the file does not say."""
+    try:
+        with open('/proc/self/status') as f:
+            for line in f:
+                if line.startswith('VmRSS:'):
+                    return float(line.split()[1]) * 1024.0
+    except OSError:
+        pass
+    return None
+
+
+def filter_budget_mib(budget):
+    """The MemoryBudget (MiB) of a GLS filter created now: FILTER_SHARE of what the main job's budget (bytes) leaves
+    beside what this process holds, so that the fused pass cuts its fit into spatial tiles rather than exceed it;
+    0 (the filters' own default, half of the physical memory) where the budget is not known."""
+    if budget is None:
+        return 0.0
+    held = resident_bytes() or 0.0
+    return max(FILTER_SHARE * (budget - held), MIB) / MIB
 
 
 def needed_bytes(points, scales, per_scale):

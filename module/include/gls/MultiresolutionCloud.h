@@ -60,9 +60,22 @@ double nearCellEdge(double accuracy, double smallestScale);
 PyramidLayout choosePyramidLayout(const double low[3], const double high[3], double spacing, double smallestScale,
   double largestScale, double accuracy);
 
+/// How many nodes (PyramidNode) and cells with stored sums (PyramidCell, levels kFirstSummedLevel and above) a
+/// pyramid has: what its memory grows with.
+struct PyramidCounts
+{
+  std::size_t nodes = 0;
+  std::size_t cells = 0;
+};
+
 class MultiresolutionCloud
 {
 public:
+  /// The counts of the pyramid that build() would make of these points, from their sorted finest keys (the first
+  /// tenth of a build's work, and 17 bytes a point while it runs), for a memory budget checked before the build.
+  static PyramidCounts count(const double* xyz, const unsigned char* admit, std::size_t n, const PyramidLayout& layout,
+    int threads);
+
   /// Builds the pyramid of the points with admit[i] != 0 (finite coordinates and normals that can be normalized
   /// required: admitOrientedPoints), their normals normalized by unitNormal. parallel.progress receives the fraction
   /// done; returns false if it asked to abort (the cloud is then empty).
@@ -79,6 +92,14 @@ public:
   /// Nodes of every level (PyramidNode), and the cells with stored sums (levels kFirstSummedLevel and above).
   std::size_t nodeCount() const { return this->Nodes.size(); }
   std::size_t cellCount() const { return this->Cells.size(); }
+  /// The bytes the pyramid's arrays hold (their capacity).
+  double memoryBytes() const
+  {
+    return static_cast<double>(this->Points.capacity() + this->Normals.capacity()) * sizeof(Vec3) +
+      static_cast<double>(this->Ids.capacity() + this->TopKeys.capacity()) * 8.0 +
+      static_cast<double>(this->Nodes.capacity()) * sizeof(PyramidNode) +
+      static_cast<double>(this->Cells.capacity()) * sizeof(PyramidCell);
+  }
 
 private:
   /// Empties the cloud; returns false (a build's abort).
@@ -88,6 +109,9 @@ private:
     const KeyedIndices& keyed, const double* xyz, const double* normals, const ParallelOptions& stage);
   /// Allocates Nodes and Cells once, for every level above these distinct finest keys up to topLevel.
   void reserveLevels(const UninitializedArray<std::uint64_t>& finestKeys, int topLevel);
+  /// The counts of every level above `count` increasing finest keys key(c) (equal ones counted once) up to topLevel.
+  template <typename Key>
+  static PyramidCounts countLevels(std::size_t count, const Key& key, int topLevel);
   /// One level's nodes (cells with these keys, each the run [starts[c], starts[c + 1]) of the level below, whose
   /// first node is Nodes[below]) and, from kFirstSummedLevel up, their sums: from their points at that level, from
   /// their children above.

@@ -46,6 +46,13 @@ public:
     const unsigned char* include = nullptr);
 
   const GridView& view() const { return this->View; }
+  /// The bytes the grid's arrays hold (their capacity).
+  double memoryBytes() const
+  {
+    return static_cast<double>(this->Points.capacity() + this->Normals.capacity()) * sizeof(Vec3) +
+      static_cast<double>(this->Ids.capacity() + this->CellStart.capacity() + this->RowEntry.capacity() +
+        this->EntryX.capacity() + this->EntryStart.capacity()) * 8.0;
+  }
 
   /// The threads the next build sorts the points on (1 by default; 0: every hardware thread). The grid is the same
   /// whatever the count.

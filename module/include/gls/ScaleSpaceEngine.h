@@ -91,6 +91,15 @@ public:
   /// reporting settings.parallel.progress; when that asks to abort, the engine is left empty (buildAborted()).
   ScaleSpaceEngine(const double* points, const double* normals, std::size_t count, ScaleSpaceSettings settings);
 
+  /// The most memory (bytes) an engine over these points holds at once, its build's scratch included, for a budget
+  /// checked before it is built: its positions and order, and its grid (exact) or its pyramid (multi-resolution: the
+  /// pyramid's nodes counted from the points' sorted finest keys, about a tenth of a build's work). At least
+  /// memoryBytes() of the engine built (tested).
+  static double footprint(
+    const double* points, const double* normals, std::size_t count, const ScaleSpaceSettings& settings);
+  /// The bytes the built engine's arrays hold (their capacity).
+  double memoryBytes() const;
+
   std::size_t pointCount() const { return this->Positions.size(); }
   const std::vector<double>& scales() const { return this->Settings.scales; }
   Evaluation evaluation() const { return this->Settings.evaluation; }
@@ -118,6 +127,10 @@ public:
 
 private:
   ScaleBinning binning() const;
+  /// The pyramid's layout for these points under the settings (the box and spacing of the admitted points where the
+  /// settings leave them out).
+  static PyramidLayout pyramidLayout(
+    const ScaleSpaceSettings& settings, const double* points, std::size_t count, const unsigned char* admit);
   void buildPyramid(const double* points, const double* normals, std::size_t count, const unsigned char* admit);
   /// The ids in the order a run takes them: a multi-resolution run given a sample (under 1 / kSampleFraction of the
   /// points) takes it in pyramid order (kept in `storage`), any other run as given.

@@ -370,30 +370,55 @@ bool MultiresolutionCloud::copySortedPoints(
   });
 }
 
-void MultiresolutionCloud::reserveLevels(const UninitializedArray<std::uint64_t>& finestKeys, int topLevel)
+template <typename Key>
+PyramidCounts MultiresolutionCloud::countLevels(std::size_t count, const Key& key, int topLevel)
 {
   // Every level's node count from the finest keys (a cell of level l is a run of equal key >> 3 l; two neighbouring
-  // keys fall in different cells up to the level of their highest differing bit), so that the nodes and the cells
-  // are allocated once.
+  // distinct keys fall in different cells up to the level of their highest differing bit).
   std::vector<std::size_t> levelCount(static_cast<std::size_t>(topLevel) + 1, 0);
-  for (std::size_t c = 0; c < finestKeys.size(); ++c)
+  for (std::size_t c = 0; c < count; ++c)
   {
-    const std::uint64_t differ = c == 0 ? ~std::uint64_t(0) : finestKeys[c] ^ finestKeys[c - 1];
-    const int highest = 63 - __builtin_clzll(differ); // differ != 0: the keys are distinct
+    const std::uint64_t differ = c == 0 ? ~std::uint64_t(0) : key(c) ^ key(c - 1);
+    if (differ == 0)
+    {
+      continue; // the same finest cell
+    }
+    const int highest = 63 - __builtin_clzll(differ);
     ++levelCount[static_cast<std::size_t>(std::min(highest / 3, topLevel))];
   }
   for (int level = topLevel; level > 0; --level)
   {
     levelCount[static_cast<std::size_t>(level - 1)] += levelCount[static_cast<std::size_t>(level)];
   }
-  std::size_t nodeTotal = 0, cellTotal = 0;
+  PyramidCounts counts;
   for (int level = 0; level <= topLevel; ++level)
   {
-    nodeTotal += levelCount[static_cast<std::size_t>(level)];
-    cellTotal += level >= kFirstSummedLevel ? levelCount[static_cast<std::size_t>(level)] : 0;
+    counts.nodes += levelCount[static_cast<std::size_t>(level)];
+    counts.cells += level >= kFirstSummedLevel ? levelCount[static_cast<std::size_t>(level)] : 0;
   }
-  this->Nodes.reserve(nodeTotal);
-  this->Cells.reserve(cellTotal);
+  return counts;
+}
+
+void MultiresolutionCloud::reserveLevels(const UninitializedArray<std::uint64_t>& finestKeys, int topLevel)
+{
+  // So that the nodes and the cells are allocated once.
+  const PyramidCounts counts =
+    countLevels(finestKeys.size(), [&finestKeys](std::size_t c) { return finestKeys[c]; }, topLevel);
+  this->Nodes.reserve(counts.nodes);
+  this->Cells.reserve(counts.cells);
+}
+
+PyramidCounts MultiresolutionCloud::count(
+  const double* xyz, const unsigned char* admit, std::size_t n, const PyramidLayout& layout, int threads)
+{
+  const int topLevel = topLevelOf(layout);
+  const double h0 = layout.finestCellSize;
+  KeyedIndices keyed;
+  ParallelOptions stage;
+  stage.threads = threads;
+  finestKeys(xyz, n, admit, latticeOrigin(layout.low, std::ldexp(h0, topLevel)), h0, stage, keyed);
+  sortByKey(keyed, threads);
+  return countLevels(keyed.size(), [&keyed](std::size_t c) { return keyed[c].key; }, topLevel);
 }
 
 bool MultiresolutionCloud::buildLevel(int level, const UninitializedArray<std::uint64_t>& keys,

@@ -1,0 +1,63 @@
+// ScaleSpaceEngine::footprint, the memory a budget counts before an engine is built, against the memory of the engine
+// then built (its arrays' capacity): never below it, and close to it, for the exact and the multi-resolution engine
+// on a scan, a sparse random cloud and a plane.
+#include "TestClouds.h"
+#include "gls/ScaleSpaceEngine.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <random>
+
+using namespace glstest;
+
+namespace
+{
+
+void expectFootprintCovers(const Cloud& c, const std::vector<double>& scales, const char* what)
+{
+  for (gls::Evaluation e : { gls::Evaluation::Exact, gls::Evaluation::Multiresolution })
+  {
+    gls::ScaleSpaceSettings s;
+    s.scales = scales;
+    s.evaluation = e;
+    s.parallel.threads = 2;
+    const double estimate = gls::ScaleSpaceEngine::footprint(c.points.data(), c.normals.data(), c.size(), s);
+    const gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), s);
+    const double built = engine.memoryBytes();
+    std::printf("%s, %s: footprint %.1f bytes a point, built %.1f\n", what,
+      e == gls::Evaluation::Exact ? "exact" : "multi-resolution", estimate / c.size(), built / c.size());
+    EXPECT_GE(estimate, built) << what;
+    // The build's scratch (sort keys, normalized normals) on top of what stays, and no more.
+    EXPECT_LE(estimate, built + c.size() * 90.0 + 1e6) << what;
+  }
+}
+
+} // namespace
+
+TEST(EngineFootprint, CoversTheBuiltEngineOnAScanARandomCloudAndAPlane)
+{
+  const Cloud bunny = sampleObjSurface(dataFile("stanford-bunny.obj"), 60000, 5);
+  const double d = boxDiagonal(bunny.points);
+  expectFootprintCovers(bunny, { 0.008 * d, 0.03 * d, 0.08 * d }, "bunny");
+  // Scattered points, most alone in their finest cell at several levels: the pyramid's largest per point.
+  Cloud scattered;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 20000; ++i)
+  {
+    scattered.points.insert(scattered.points.end(), { u(rng), u(rng), u(rng) });
+    scattered.normals.insert(scattered.normals.end(), { 0.0, 0.0, 1.0 });
+  }
+  expectFootprintCovers(scattered, { 0.001, 0.01, 0.2 }, "scattered");
+  Cloud plane;
+  for (int i = 0; i < 200; ++i)
+  {
+    for (int j = 0; j < 200; ++j)
+    {
+      plane.points.insert(plane.points.end(), { i * 0.01, j * 0.01, 0.0 });
+      plane.normals.insert(plane.normals.end(), { 0.0, 0.0, 1.0 });
+    }
+  }
+  expectFootprintCovers(plane, { 0.02, 0.1, 0.5 }, "plane");
+}
