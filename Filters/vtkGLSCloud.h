@@ -20,8 +20,17 @@ struct vtkGLSCloud
   /// After MergeCoincident: which input points (owned, then ghosts) share a position. Empty when none was merged.
   gls::CoincidentPoints Copies;
   std::size_t InputOwned = 0; ///< this piece's input points (Owned before the merge)
+  std::size_t ReleasedSize = 0; ///< Size() once ReleaseCoordinates freed Points
 
-  std::size_t Size() const { return this->Points.size() / 3; }
+  std::size_t Size() const { return this->Points.empty() ? this->ReleasedSize : this->Points.size() / 3; }
+  /// Frees Points and Normals once a fitting engine holds its own copies of them and nothing reads them any more
+  /// (a fit that is not cut into tiles): Size() and Ghosts() still count the points.
+  void ReleaseCoordinates()
+  {
+    this->ReleasedSize = this->Size();
+    std::vector<double>().swap(this->Points);
+    std::vector<double>().swap(this->Normals);
+  }
   std::size_t Ghosts() const { return this->Size() - this->Owned; }
   bool IsMerged() const { return !this->Copies.representative.empty(); }
 
