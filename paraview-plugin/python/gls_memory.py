@@ -7,10 +7,12 @@ the fused features and summaries, the compact output) and, with --per-scale, eve
 import math
 
 # The default path's peak resident memory, whatever the number of scales: FIXED_BYTES plus DEFAULT_BYTES_PER_POINT a
-# point. Measured on the bunny sampled by area (2026-12-06): 1,006 MiB at 1M points, 3,454 MiB at 10M (the rocker arm
-# 3,600), 9,474 MiB at 30M; the estimate is 4-9% above each.
-FIXED_BYTES = 768.0 * 1024.0 ** 2
-DEFAULT_BYTES_PER_POINT = 330.0
+# point. Measured on the bunny sampled by area (2026-12-06, seventh session, VmHWM of each stage): 984 MiB at 1M points
+# (the pictures), 2,805 MiB at 10M and 8,038 MiB at 30M (the fused pass); the estimate is 8%, 24% and 10% above, and
+# extrapolated (274 bytes a point from 10M to 30M) 4% above at 100M. (Before, 330 bytes a point: the fused pass kept
+# its copy of the cloud and the profiles gathered the whole cloud; 3,454 MiB at 10M, 9,474 MiB at 30M.)
+FIXED_BYTES = 800.0 * 1024.0 ** 2
+DEFAULT_BYTES_PER_POINT = 280.0
 # With --per-scale: bytes per point and scale on top (the scale space, nu, and their copy in the written file).
 PER_SCALE_BYTES_PER_POINT_SCALE = 240.0
 GIB = 1024.0 ** 3
