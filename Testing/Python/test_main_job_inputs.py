@@ -385,10 +385,11 @@ class Inputs(unittest.TestCase):
 
     def test_the_fused_pass_is_given_what_the_budget_leaves(self):
         # gls_memory.filter_budget_mib: FILTER_SHARE of the budget less this process's resident memory (VmRSS, read
-        # here the same way), at least 1 MiB; 0 (the filters' default) without a budget.
+        # here on its own), at least 1 MiB; 0 (the filters' default) without a budget.
         self.assertEqual(gls_memory.filter_budget_mib(None), 0.0)
-        with open('/proc/self/status') as f:
-            rss = next(float(line.split()[1]) * 1024.0 for line in f if line.startswith('VmRSS:'))
+        import resource
+        with open('/proc/self/statm') as f:
+            rss = float(f.read().split()[1]) * resource.getpagesize()
         given = gls_memory.filter_budget_mib(rss + 1000.0 * gls_memory.MIB)
         self.assertAlmostEqual(given, gls_memory.FILTER_SHARE * 1000.0, delta=20.0)  # the RSS moves a little
         self.assertEqual(gls_memory.filter_budget_mib(rss / 2.0), 1.0)

@@ -26,28 +26,26 @@ class BudgetError(Exception):
     """The analysis would not fit (one line: the figure and what to change)."""
 
 
-def available_bytes():
-    """MemAvailable of /proc/meminfo (bytes); None where the file does not say."""
+def kib_line_bytes(path, key):
+    """The value of the line `key: N kB` of a /proc file, in bytes; None where the file does not say."""
     try:
-        with open('/proc/meminfo') as f:
+        with open(path) as f:
             for line in f:
-                if line.startswith('MemAvailable:'):
+                if line.startswith(key + ':'):
                     return float(line.split()[1]) * 1024.0
     except OSError:
         pass
     return None
+
+
+def available_bytes():
+    """MemAvailable of /proc/meminfo (bytes): what the machine can give; None where the file does not say."""
+    return kib_line_bytes('/proc/meminfo', 'MemAvailable')
 
 
 def resident_bytes():
     """VmRSS of /proc/self/status (bytes): what this process holds now; None where the file does not say."""
-    try:
-        with open('/proc/self/status') as f:
-            for line in f:
-                if line.startswith('VmRSS:'):
-                    return float(line.split()[1]) * 1024.0
-    except OSError:
-        pass
-    return None
+    return kib_line_bytes('/proc/self/status', 'VmRSS')
 
 
 def filter_budget_mib(budget):
