@@ -216,7 +216,8 @@ bool NeighborGrid::indexOccupiedCells(
   }
   const std::size_t rows = static_cast<std::size_t>(dims[1] * dims[2]);
   // The sparse index only where it is clearly smaller (a cloud of few points per row of cells keeps the dense one).
-  if (2.0 * (8.0 * static_cast<double>(rows) + 16.0 * static_cast<double>(occupied)) > 8.0 * static_cast<double>(cellCount))
+  const double sparseBytes = 8.0 * static_cast<double>(rows) + 16.0 * static_cast<double>(occupied);
+  if (2.0 * sparseBytes > 8.0 * static_cast<double>(cellCount))
   {
     return false;
   }
