@@ -210,15 +210,15 @@ class MainJob(unittest.TestCase):
 
     def test_per_scale_beyond_the_budget_is_refused_before_any_stage(self):
         out = os.path.join(WORK, 'refused')
-        result = run('--output-dir', out, '--per-scale', '--memory-budget', '0.8')
+        result = run('--output-dir', out, '--per-scale', '--memory-budget', '0.9')
         self.assertEqual(result.returncode, 2, failure_text(result))
-        # 0.8 GiB: the fixed part and the summaries fit, every scale's arrays do not, 4 scales of them would.
-        fitting = int(((0.8 * gls_memory.GIB - gls_memory.FIXED_BYTES) / 35947 - gls_memory.DEFAULT_BYTES_PER_POINT)
+        # 0.9 GiB: the fixed part and the summaries fit, every scale's arrays do not, 13 scales of them would.
+        fitting = int(((0.9 * gls_memory.GIB - gls_memory.FIXED_BYTES) / 35947 - gls_memory.DEFAULT_BYTES_PER_POINT)
                       // gls_memory.PER_SCALE_BYTES_PER_POINT_SCALE)
-        self.assertEqual(fitting, 4)
-        self.assertIn('gls-analyze: storing every scale (--per-scale) of 35947 points at 20 scales needs about 0.9 '
-                      'GiB, above the 0.8 GiB --memory-budget: drop --per-scale (the per-point summaries need about '
-                      '0.8 GiB), or keep it with --scales 4', result.stderr)
+        self.assertEqual(fitting, 13)
+        self.assertIn('gls-analyze: storing every scale (--per-scale) of 35947 points at 20 scales needs about 1.0 '
+                      'GiB, above the 0.9 GiB --memory-budget: drop --per-scale (the per-point summaries need about '
+                      '0.8 GiB), or keep it with --scales 13', result.stderr)
         self.assertNotIn('%', result.stderr)  # no stage reported progress
         self.assertEqual(os.listdir(out), [])
         # Below what the summaries need too: no advice to drop --per-scale.
