@@ -158,7 +158,7 @@ double ScaleSpaceEngine::footprint(
   }
   UninitializedArray<unsigned char> admit(count);
   admitOrientedPoints(points, normals, count, admit.data(), settings.parallel.threads);
-  const PyramidCounts counts = MultiresolutionCloud::count(points, admit.data(),  count,
+  const PyramidCounts counts = MultiresolutionCloud::count(points, admit.data(), count,
     pyramidLayout(settings, points, count, admit.data()), resolveThreadCount(settings.parallel.threads));
   // Each level's keys and starts while the next is made, the nodes and the cells with their sums.
   const double nodes = static_cast<double>(counts.nodes);

@@ -71,8 +71,9 @@ struct PyramidCounts
 class MultiresolutionCloud
 {
 public:
-  /// The counts of the pyramid that build() would make of these points, from their sorted finest keys (the first
-  /// tenth of a build's work, and 17 bytes a point while it runs), for a memory budget checked before the build.
+  /// The counts of the pyramid that build() would make of these points, from their sorted finest keys (the build's
+  /// first step: 0.65 s at 10M points where the whole build takes 2.2 s; 17 bytes a point while it runs), for a
+  /// memory budget checked before the build.
   static PyramidCounts count(const double* xyz, const unsigned char* admit, std::size_t n, const PyramidLayout& layout,
     int threads);
 
