@@ -291,8 +291,7 @@ class PluginProxies(unittest.TestCase):
         # analysis' scales as lengths, exactly, with the minimum neighbour count the analysis applied (field data
         # GLSMinimumNeighbors): the same table as on the whole cloud, to rounding (the sums run in the order of the
         # grid's cells, laid on the crop's box: 5e-15 relative seen).
-        sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'paraview-plugin',
-                                        'python'))
+        import main_job_helpers  # noqa: F401 (it makes the main job's own modules importable)
         import gls_profiles
         normals = NS['GLSNormalEstimation'](Input=producer(bunny_points()))
         features = NS['GLSContinuousFeatures'](Input=normals, Normals=['POINTS', 'Normals'], NumberOfScales=5)

@@ -2,6 +2,8 @@
 sampled scales for them (from a GLS Scale Profiles table), plotted with their pertinent scales."""
 import numpy as np
 
+import gls_cloud
+
 
 def select_profile_points(feature, pertinent_count):
     """A few telling points, each once: the flattest, the most featured, a median one, one with several pertinent
@@ -36,7 +38,6 @@ def around(polydata, ids, reach):
     points at scales up to `reach` read, so that their profiles need not gather the whole cloud (which, at 10^7
     points, took 1.1 GiB above what the job held)."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    import gls_cloud
     points = vtk_to_numpy(polydata.GetPoints().GetData())
     centres = points[list(ids)].astype(float)
     keep = np.zeros(len(points), dtype=bool)
