@@ -81,6 +81,19 @@ std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Fit(
   return source;
 }
 
+std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::FitWholeReleasing(
+  vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings)
+{
+  std::unique_ptr<vtkGLSSampleSource> source = OfCloud(cloud, settings.scales.size());
+  if (cloud.Owned == 0)
+  {
+    return source; // an empty piece of a distributed input: nothing to fit
+  }
+  source->Engine = std::make_unique<gls::TiledScaleSpace>(cloud.Points.data(), cloud.Normals.data(), cloud.Size(),
+    cloud.Owned, std::move(settings), 1, [&cloud] { cloud.ReleaseCoordinates(); });
+  return source;
+}
+
 std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::FitAround(
   const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings, const std::vector<std::uint64_t>& only)
 {

@@ -28,6 +28,11 @@ public:
   static std::unique_ptr<vtkGLSSampleSource> Fit(
     const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings, std::size_t tiles = 1);
 
+  /// Fit with one engine over the whole cloud, which frees the cloud's coordinates (vtkGLSCloud::ReleaseCoordinates)
+  /// as soon as the engine holds its sorted copies of them, before it builds its cells: the two copies are held
+  /// together only while one is made.
+  static std::unique_ptr<vtkGLSSampleSource> FitWholeReleasing(vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings);
+
   /// A fit that Feed will ask for the points `only` only (this piece's input ids, at most
   /// gls::TiledScaleSpace::kMaxSelected of them): built over their neighbourhoods instead of the whole cloud, with
   /// the same samples.

@@ -238,12 +238,8 @@ bool vtkGLSScaleFilterBase::PrepareFit(vtkGLSRun& run, const SampleRequest& requ
   {
     return false;
   }
-  const bool whole = !tiled;
-  run.Samples = tiled ? std::move(tiled) : vtkGLSSampleSource::Fit(run.Cloud, settings);
-  if (whole)
-  {
-    run.Cloud.ReleaseCoordinates(); // the engine holds its own copies (tiles read the cloud's as they are built)
-  }
+  // One engine frees the cloud's coordinates once it holds its own copies; tiles read them as they are built.
+  run.Samples = tiled ? std::move(tiled) : vtkGLSSampleSource::FitWholeReleasing(run.Cloud, settings);
   run.TilesUsed = static_cast<long long>(run.Samples->TileCount());
   this->LastTileCount = static_cast<int>(run.TilesUsed);
   this->Heartbeat();

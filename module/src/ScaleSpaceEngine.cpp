@@ -58,9 +58,10 @@ void resolvePyramidFrame(
   }
 }
 
-ScaleSpaceEngine::ScaleSpaceEngine(
-  const double* points, const double* normals, std::size_t count, ScaleSpaceSettings settings)
+ScaleSpaceEngine::ScaleSpaceEngine(const double* points, const double* normals, std::size_t count,
+  ScaleSpaceSettings settings, const std::function<void()>& inputsCopied)
   : Settings(std::move(settings))
+  , Count(count)
 {
   for (double t : this->Settings.scales)
   {
@@ -83,19 +84,19 @@ ScaleSpaceEngine::ScaleSpaceEngine(
     unitNormals.resize(3 * count);
     normalizeAndAdmit(points, normals, count, unitNormals.data(), admit.data(), threads);
   }
-  this->Positions.resize(count);
-  ParallelOptions copying;
-  copying.threads = threads;
-  copying.chunk = 65536;
-  parallelFor(count, copying, [&](std::size_t begin, std::size_t end, int) {
-    for (std::size_t i = begin; i < end; ++i)
+  // The points left out of the grid or pyramid are evaluated after the others, from their own copy.
+  std::vector<std::uint64_t> rest;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    if (!admit[i])
     {
-      this->Positions[i] = { points[3 * i], points[3 * i + 1], points[3 * i + 2] };
+      rest.push_back(i);
+      this->RestPositions.push_back({ points[3 * i], points[3 * i + 1], points[3 * i + 2] });
     }
-  });
+  }
   if (multiresolution)
   {
-    this->buildPyramid(points, normals, count, admit.data());
+    this->buildPyramid(points, normals, count, admit.data(), inputsCopied);
     if (this->BuildAborted)
     {
       return;
@@ -114,16 +115,15 @@ ScaleSpaceEngine::ScaleSpaceEngine(
     {
       this->Grid.build(points, unitNormals.data(), count, exactGridCellSize(this->Settings.scales), admit.data());
     }
+    UninitializedArray<double>().swap(unitNormals);
+    if (inputsCopied)
+    {
+      inputsCopied();
+    }
     const GridView& g = this->Grid.view();
     this->Order.assign(g.ids, g.ids + g.count);
   }
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    if (!admit[i])
-    {
-      this->Order.push_back(i);
-    }
-  }
+  this->Order.insert(this->Order.end(), rest.begin(), rest.end());
 }
 
 PyramidLayout ScaleSpaceEngine::pyramidLayout(
@@ -137,27 +137,35 @@ PyramidLayout ScaleSpaceEngine::pyramidLayout(
   return layout;
 }
 
-void ScaleSpaceEngine::buildPyramid(
-  const double* points, const double* normals, std::size_t count, const unsigned char* admit)
+void ScaleSpaceEngine::buildPyramid(const double* points, const double* normals, std::size_t count,
+  const unsigned char* admit, const std::function<void()>& inputsCopied)
 {
   const PyramidLayout layout = pyramidLayout(this->Settings, points, count, admit);
-  this->BuildAborted = !this->Pyramid.build(points, normals, count, admit, layout, this->Settings.parallel);
+  this->BuildAborted =
+    !this->Pyramid.build(points, normals, count, admit, layout, this->Settings.parallel, inputsCopied);
 }
 
 double ScaleSpaceEngine::footprint(
   const double* points, const double* normals, std::size_t count, const ScaleSpaceSettings& settings)
 {
   const double n = static_cast<double>(count);
-  // Positions, Order and the admit flags; then the sorted copies (points, normals, ids) and the sort's keys.
-  const double common = n * (sizeof(Vec3) + 8.0 + 1.0) + n * (2.0 * sizeof(Vec3) + 8.0 + sizeof(KeyedIndex));
+  UninitializedArray<unsigned char> admit(count);
+  admitOrientedPoints(points, normals, count, admit.data(), settings.parallel.threads);
+  std::size_t left = 0; // the points left out of the grid or pyramid, whose positions are kept apart
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    left += admit[i] ? 0 : 1;
+  }
+  // Order and the admit flags, the positions left out; then the sorted copies (points, normals, ids) and the sort's
+  // keys.
+  const double common = n * (8.0 + 1.0) + static_cast<double>(left) * (sizeof(Vec3) + 8.0) +
+    n * (2.0 * sizeof(Vec3) + 8.0 + sizeof(KeyedIndex));
   if (settings.evaluation != Evaluation::Multiresolution || settings.scales.empty())
   {
     // The normalized normals the grid is built from, and its cell index: dense up to about 2 cells a point
     // (NeighborGrid::indexOccupiedCells), else smaller.
     return common + n * (sizeof(Vec3) + 2.0 * 8.0) + 65537.0 * 8.0;
   }
-  UninitializedArray<unsigned char> admit(count);
-  admitOrientedPoints(points, normals, count, admit.data(), settings.parallel.threads);
   const PyramidCounts counts = MultiresolutionCloud::count(points, admit.data(), count,
     pyramidLayout(settings, points, count, admit.data()), resolveThreadCount(settings.parallel.threads));
   // Each level's keys and starts while the next is made, the nodes and the cells with their sums.
@@ -167,7 +175,7 @@ double ScaleSpaceEngine::footprint(
 
 double ScaleSpaceEngine::memoryBytes() const
 {
-  return this->Positions.capacity() * sizeof(Vec3) + this->Order.capacity() * 8.0 + this->Grid.memoryBytes() +
+  return this->RestPositions.capacity() * sizeof(Vec3) + this->Order.capacity() * 8.0 + this->Grid.memoryBytes() +
     this->Pyramid.memoryBytes();
 }
 
@@ -184,7 +192,7 @@ ScaleBinning ScaleSpaceEngine::binning() const
 }
 
 bool ScaleSpaceEngine::runOnDevice(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-  const ParallelOptions& options, std::string& reason, bool& aborted) const
+  const std::uint64_t* slots, const ParallelOptions& options, std::string& reason, bool& aborted) const
 {
   aborted = false;
   const int S = static_cast<int>(this->Settings.scales.size());
@@ -204,6 +212,8 @@ bool ScaleSpaceEngine::runOnDevice(ScaleSampleSink& sink, const std::uint64_t* o
   }
   std::vector<Vec3> positions;
   std::vector<ScaleSample> samples;
+  const Vec3* sorted = this->sortedPositions();
+  const std::size_t sortedCount = this->sortedCount();
   ParallelOptions feed;
   feed.threads = options.threads;
   for (std::size_t begin = 0; begin < orderSize; begin += chunk)
@@ -213,7 +223,7 @@ bool ScaleSpaceEngine::runOnDevice(ScaleSampleSink& sink, const std::uint64_t* o
     samples.resize(count * static_cast<std::size_t>(S));
     for (std::size_t i = 0; i < count; ++i)
     {
-      positions[i] = this->Positions[order[begin + i]];
+      positions[i] = this->positionInSlot(slots ? slots[begin + i] : begin + i, sorted, sortedCount);
     }
     if (!device.evaluate(positions.data(), count, samples.data(), reason))
     {
@@ -242,47 +252,117 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
     return false;
   }
   const ParallelOptions& options = parallel ? *parallel : this->Settings.parallel;
-  UninitializedArray<std::uint64_t> idsInPyramidOrder;
-  const std::uint64_t* order = ids ? this->orderOfIds(*ids, options.threads, idsInPyramidOrder) : this->Order.data();
+  UninitializedArray<std::uint64_t> givenOrder, givenSlots;
+  if (ids)
+  {
+    this->orderGivenIds(*ids, options.threads, givenOrder, givenSlots);
+  }
+  const std::uint64_t* order = ids ? givenOrder.data() : this->Order.data();
+  const std::uint64_t* slots = ids ? givenSlots.data() : nullptr;
   const std::size_t orderSize = ids ? ids->size() : this->Order.size();
   RunReport local;
   RunReport& r = report ? *report : local;
   r = RunReport();
   bool aborted = false;
-  if (this->runOnDeviceIfAsked(sink, order, orderSize, method, options, backend, r, aborted))
+  if (this->runOnDeviceIfAsked(sink, order, orderSize, slots, method, options, backend, r, aborted))
   {
     return true;
   }
-  return !aborted && this->runOnCpu(sink, order, orderSize, ids != nullptr, method, options);
+  return !aborted && this->runOnCpu(sink, order, orderSize, slots, method, options);
 }
 
-const std::uint64_t* ScaleSpaceEngine::orderOfIds(
-  const std::vector<std::uint64_t>& ids, int threads, UninitializedArray<std::uint64_t>& storage) const
+const Vec3* ScaleSpaceEngine::sortedPositions() const
 {
-  const bool multiresolution = this->Settings.evaluation == Evaluation::Multiresolution;
-  if (!multiresolution || ids.size() * kSampleFraction >= this->Positions.size())
+  return this->Settings.evaluation == Evaluation::Multiresolution ? this->Pyramid.view().points
+                                                                   : this->Grid.view().points;
+}
+
+std::size_t ScaleSpaceEngine::sortedCount() const
+{
+  return this->Settings.evaluation == Evaluation::Multiresolution ? this->Pyramid.view().count
+                                                                   : this->Grid.view().count;
+}
+
+UninitializedArray<std::uint64_t> ScaleSpaceEngine::slotsOf(const std::vector<std::uint64_t>& ids, int threads) const
+{
+  UninitializedArray<std::uint64_t> slots(ids.size());
+  ParallelOptions loop;
+  loop.threads = threads;
+  loop.chunk = 65536;
+  if (ids.size() * kSampleFraction >= this->Count)
   {
-    return ids.data();
+    UninitializedArray<std::uint64_t> inverse(this->Count); // Order is a permutation of the ids below Count
+    parallelFor(this->Order.size(), loop, [&](std::size_t b, std::size_t e, int) {
+      for (std::size_t k = b; k < e; ++k)
+      {
+        inverse[this->Order[k]] = k;
+      }
+    });
+    parallelFor(ids.size(), loop, [&](std::size_t b, std::size_t e, int) {
+      for (std::size_t k = b; k < e; ++k)
+      {
+        slots[k] = inverse[ids[k]];
+      }
+    });
+    return slots;
+  }
+  // A few ids: marked in a bitmap (Count bits), found in one pass over Order, then looked up by id.
+  std::vector<std::uint64_t> marked((this->Count + 63) / 64, 0);
+  for (std::uint64_t id : ids)
+  {
+    marked[id >> 6] |= std::uint64_t(1) << (id & 63);
+  }
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> found; // (id, slot), each given id once
+  for (std::size_t k = 0; k < this->Order.size(); ++k)
+  {
+    const std::uint64_t id = this->Order[k];
+    if ((marked[id >> 6] >> (id & 63)) & 1)
+    {
+      found.emplace_back(id, k);
+    }
+  }
+  std::sort(found.begin(), found.end());
+  for (std::size_t k = 0; k < ids.size(); ++k)
+  {
+    slots[k] = std::lower_bound(found.begin(), found.end(), std::make_pair(ids[k], std::uint64_t(0)))->second;
+  }
+  return slots;
+}
+
+void ScaleSpaceEngine::orderGivenIds(const std::vector<std::uint64_t>& ids, int threads,
+  UninitializedArray<std::uint64_t>& order, UninitializedArray<std::uint64_t>& slots) const
+{
+  UninitializedArray<std::uint64_t> given = this->slotsOf(ids, threads);
+  const bool multiresolution = this->Settings.evaluation == Evaluation::Multiresolution;
+  if (!multiresolution || ids.size() * kSampleFraction >= this->Count)
+  {
+    order.assign(ids.begin(), ids.end());
+    slots = std::move(given);
+    return;
   }
   // A sample of the points in pyramid order, so that consecutive walks find their cells in cache: the relative
   // sigma's 20,000 scattered points of a 10M-point cloud (2 threads) took 1.09 s in input order, 0.85 s in this
   // one. (Longer lists come in that order already: the owned points of a distributed piece.)
+  const Vec3* sorted = this->sortedPositions();
+  const std::size_t sortedCount = this->sortedCount();
   KeyedIndices byKey(ids.size());
   for (std::size_t k = 0; k < ids.size(); ++k)
   {
-    byKey[k] = { this->Pyramid.finestKey(this->Positions[ids[k]]), ids[k] };
+    byKey[k] = { this->Pyramid.finestKey(this->positionInSlot(given[k], sorted, sortedCount)), k };
   }
   sortByKey(byKey, threads);
-  storage.resize(ids.size());
+  order.resize(ids.size());
+  slots.resize(ids.size());
   for (std::size_t k = 0; k < ids.size(); ++k)
   {
-    storage[k] = byKey[k].index;
+    order[k] = ids[byKey[k].index];
+    slots[k] = given[byKey[k].index];
   }
-  return storage.data();
 }
 
 bool ScaleSpaceEngine::runOnDeviceIfAsked(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-  EvaluationMethod method, const ParallelOptions& options, Backend backend, RunReport& r, bool& aborted) const
+  const std::uint64_t* slots, EvaluationMethod method, const ParallelOptions& options, Backend backend, RunReport& r,
+  bool& aborted) const
 {
   // The one place that falls back to the CPU: r.fallbackReason says why (empty when the CPU was asked for).
   r.used = Backend::CPU;
@@ -301,7 +381,7 @@ bool ScaleSpaceEngine::runOnDeviceIfAsked(ScaleSampleSink& sink, const std::uint
     r.fallbackReason = cudaAvailability().reason;
     return false;
   }
-  if (this->runOnDevice(sink, order, orderSize, options, r.fallbackReason, aborted))
+  if (this->runOnDevice(sink, order, orderSize, slots, options, r.fallbackReason, aborted))
   {
     r.used = Backend::CUDA;
     return true;
@@ -315,14 +395,13 @@ bool ScaleSpaceEngine::runOnDeviceIfAsked(ScaleSampleSink& sink, const std::uint
 
 template <typename EvaluateAt>
 bool ScaleSpaceEngine::forEachPoint(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-  bool givenIds, const ParallelOptions& cpu, const EvaluateAt& evaluateAt) const
+  const std::uint64_t* slots, const ParallelOptions& cpu, const EvaluateAt& evaluateAt) const
 {
   const std::size_t S = this->Settings.scales.size();
-  const bool multiresolution = this->Settings.evaluation == Evaluation::Multiresolution;
-  // A run in the engine's own order reads its first points' positions from the grid's or the pyramid's sorted copy
-  // (the same values, in that order): through Positions, each point cost a cache miss (2% of a 10M-point run).
-  const Vec3* sorted = multiresolution ? this->Pyramid.view().points : this->Grid.view().points;
-  const std::size_t sortedCount = givenIds ? 0 : multiresolution ? this->Pyramid.view().count : this->Grid.view().count;
+  // A run in the engine's own order reads its positions from the grid's or the pyramid's sorted copy in that order
+  // (through a copy in input order, each point cost a cache miss: 2% of a 10M-point run).
+  const Vec3* sorted = this->sortedPositions();
+  const std::size_t sortedCount = this->sortedCount();
   std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(resolveThreadCount(cpu.threads)));
   return parallelFor(orderSize, cpu, [&](std::size_t begin, std::size_t end, int thread) {
     std::vector<ScaleSample>& out = samples[static_cast<std::size_t>(thread)];
@@ -330,7 +409,7 @@ bool ScaleSpaceEngine::forEachPoint(ScaleSampleSink& sink, const std::uint64_t* 
     for (std::size_t o = begin; o < end; ++o)
     {
       const std::uint64_t id = order[o];
-      const Vec3& p = o < sortedCount ? sorted[o] : this->Positions[id];
+      const Vec3& p = this->positionInSlot(slots ? slots[o] : o, sorted, sortedCount);
       if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
       {
         for (std::size_t k = 0; k < S; ++k)
@@ -348,7 +427,7 @@ bool ScaleSpaceEngine::forEachPoint(ScaleSampleSink& sink, const std::uint64_t* 
 }
 
 bool ScaleSpaceEngine::runOnCpu(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-  bool givenIds, EvaluationMethod method, const ParallelOptions& options) const
+  const std::uint64_t* slots, EvaluationMethod method, const ParallelOptions& options) const
 {
   const std::size_t threads = static_cast<std::size_t>(resolveThreadCount(options.threads));
   const double minNeighbors = this->Settings.minNeighbors;
@@ -363,7 +442,7 @@ bool ScaleSpaceEngine::runOnCpu(ScaleSampleSink& sink, const std::uint64_t* orde
     cpu.chunk = std::max(cpu.chunk, std::min(kMultiresolutionChunk, balanced));
     std::vector<MultiresolutionScratch> scratch(threads);
     const MultiresolutionView& v = this->Pyramid.view();
-    return this->forEachPoint(sink, order, orderSize, givenIds, cpu, [&](const Vec3& p, int t, ScaleSample* out) {
+    return this->forEachPoint(sink, order, orderSize, slots, cpu, [&](const Vec3& p, int t, ScaleSample* out) {
       evaluateAllScalesMultiresolutionOnCpu(v, p, binning, minNeighbors, scratch[static_cast<std::size_t>(t)], out);
     });
   }
@@ -374,7 +453,7 @@ bool ScaleSpaceEngine::runOnCpu(ScaleSampleSink& sink, const std::uint64_t* orde
     // pass on the bunny at 1M points (2 threads, 10 scales) took 19.9-20.0 s, against 18.2-18.6 s.
     std::vector<std::vector<Moments>> bins(threads);
     const std::size_t S = this->Settings.scales.size();
-    return this->forEachPoint(sink, order, orderSize, givenIds, cpu, [&](const Vec3& p, int t, ScaleSample* out) {
+    return this->forEachPoint(sink, order, orderSize, slots, cpu, [&](const Vec3& p, int t, ScaleSample* out) {
       std::vector<Moments>& b = bins[static_cast<std::size_t>(t)];
       if (b.size() != S)
       {
@@ -384,7 +463,7 @@ bool ScaleSpaceEngine::runOnCpu(ScaleSampleSink& sink, const std::uint64_t* orde
     });
   }
   const std::vector<double>& scales = this->Settings.scales;
-  return this->forEachPoint(sink, order, orderSize, givenIds, cpu, [&](const Vec3& p, int, ScaleSample* out) {
+  return this->forEachPoint(sink, order, orderSize, slots, cpu, [&](const Vec3& p, int, ScaleSample* out) {
     for (std::size_t k = 0; k < scales.size(); ++k)
     {
       out[k] = evaluateOneScale(g, p, scales[k], minNeighbors);

@@ -72,13 +72,14 @@ TiledScaleSpace::TiledScaleSpace(
 }
 
 TiledScaleSpace::TiledScaleSpace(const double* points, const double* normals, std::size_t count,
-  std::size_t evaluated, ScaleSpaceSettings settings, std::size_t tiles)
+  std::size_t evaluated, ScaleSpaceSettings settings, std::size_t tiles, const std::function<void()>& inputsCopied)
   : TiledScaleSpace(points, normals, count, evaluated, std::move(settings))
 {
   this->Largest = count;
   if (tiles <= 1 || this->Settings.scales.empty())
   {
-    this->Whole = std::make_unique<ScaleSpaceEngine>(points, normals, count, this->Settings);
+    this->Whole = std::make_unique<ScaleSpaceEngine>(points, normals, count, this->Settings, inputsCopied);
+    this->Points = this->Normals = nullptr; // read by tiles only (and perhaps freed by now)
     if (this->Evaluated < count)
     {
       for (std::uint64_t id : this->Whole->evaluationOrder())
@@ -344,7 +345,11 @@ bool TiledScaleSpace::runMembers(const std::vector<std::uint64_t>& members, cons
     }
     ScaleSpaceSettings settings = this->Settings;
     settings.parallel = progressStage(parallel, 0.0, kBuildShare);
-    engine = std::make_unique<ScaleSpaceEngine>(points.data(), normals.data(), members.size(), std::move(settings));
+    engine = std::make_unique<ScaleSpaceEngine>(
+      points.data(), normals.data(), members.size(), std::move(settings), [&points, &normals] {
+        UninitializedArray<double>().swap(points); // the engine holds its sorted copies: freed before its cells
+        UninitializedArray<double>().swap(normals);
+      });
   }
   if (engine->buildAborted())
   {

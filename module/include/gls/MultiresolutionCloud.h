@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -79,9 +80,10 @@ public:
 
   /// Builds the pyramid of the points with admit[i] != 0 (finite coordinates and normals that can be normalized
   /// required: admitOrientedPoints), their normals normalized by unitNormal. parallel.progress receives the fraction
-  /// done; returns false if it asked to abort (the cloud is then empty).
+  /// done; returns false if it asked to abort (the cloud is then empty). `inputsCopied`, when given, is called once
+  /// xyz and normals are read for the last time (their sorted copies made, the levels not yet built).
   bool build(const double* xyz, const double* normals, std::size_t n, const unsigned char* admit,
-    const PyramidLayout& layout, const ParallelOptions& parallel);
+    const PyramidLayout& layout, const ParallelOptions& parallel, const std::function<void()>& inputsCopied = nullptr);
 
   const MultiresolutionView& view() const { return this->View; }
   /// Moves out the original indices of the points in pyramid order (a locality-preserving evaluation order); the

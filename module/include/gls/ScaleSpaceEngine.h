@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -86,10 +87,14 @@ enum class EvaluationMethod
 class ScaleSpaceEngine
 {
 public:
-  /// points, normals: count interleaved xyz triples (copied into the grid or pyramid; the caller's buffers need not
-  /// outlive the constructor). A multi-resolution engine builds its pyramid here on settings.parallel's threads,
-  /// reporting settings.parallel.progress; when that asks to abort, the engine is left empty (buildAborted()).
-  ScaleSpaceEngine(const double* points, const double* normals, std::size_t count, ScaleSpaceSettings settings);
+  /// points, normals: count interleaved xyz triples (copied into the grid or pyramid, sorted; the caller's buffers
+  /// need not outlive the constructor). `inputsCopied`, when given, is called once the engine has read them for the
+  /// last time, before its build ends (its sorted copies are made; the cells and their sums not yet), so that a caller
+  /// can free them while the rest is built (at 10M points: 458 MiB of doubles). A multi-resolution engine builds its
+  /// pyramid here on settings.parallel's threads, reporting settings.parallel.progress; when that asks to abort, the
+  /// engine is left empty (buildAborted()).
+  ScaleSpaceEngine(const double* points, const double* normals, std::size_t count, ScaleSpaceSettings settings,
+    const std::function<void()>& inputsCopied = nullptr);
 
   /// The most memory (bytes) an engine over these points holds at once, its build's scratch included, for a budget
   /// checked before it is built: its positions and order, and its grid (exact) or its pyramid (multi-resolution: the
@@ -100,7 +105,7 @@ public:
   /// The bytes the built engine's arrays hold (their capacity).
   double memoryBytes() const;
 
-  std::size_t pointCount() const { return this->Positions.size(); }
+  std::size_t pointCount() const { return this->Count; }
   const std::vector<double>& scales() const { return this->Settings.scales; }
   Evaluation evaluation() const { return this->Settings.evaluation; }
   /// True when the progress callback stopped the pyramid's build (run() then returns false at once).
@@ -131,35 +136,51 @@ private:
   /// settings leave them out).
   static PyramidLayout pyramidLayout(
     const ScaleSpaceSettings& settings, const double* points, std::size_t count, const unsigned char* admit);
-  void buildPyramid(const double* points, const double* normals, std::size_t count, const unsigned char* admit);
-  /// The ids in the order a run takes them: a multi-resolution run given a sample (under 1 / kSampleFraction of the
-  /// points) takes it in pyramid order (kept in `storage`), any other run as given.
-  const std::uint64_t* orderOfIds(
-    const std::vector<std::uint64_t>& ids, int threads, UninitializedArray<std::uint64_t>& storage) const;
+  void buildPyramid(const double* points, const double* normals, std::size_t count, const unsigned char* admit,
+    const std::function<void()>& inputsCopied);
+  /// The slot (index in Order) of every given id, in their order: through a bitmap of the ids for a short list, the
+  /// inverse of Order for a long one (no array of Count values for a few ids).
+  UninitializedArray<std::uint64_t> slotsOf(const std::vector<std::uint64_t>& ids, int threads) const;
+  /// The given ids (and their slots) in the order a run takes them: a multi-resolution run given a sample (under
+  /// 1 / kSampleFraction of the points) takes it in pyramid order, any other run as given.
+  void orderGivenIds(const std::vector<std::uint64_t>& ids, int threads, UninitializedArray<std::uint64_t>& order,
+    UninitializedArray<std::uint64_t>& slots) const;
+  /// The points of the grid or pyramid, in their sorted order: Order's first sortedCount() ids.
+  const Vec3* sortedPositions() const;
+  std::size_t sortedCount() const;
+  /// The position of the point at index `slot` of Order: the sorted copy's, or else RestPositions'.
+  const Vec3& positionInSlot(std::uint64_t slot, const Vec3* sorted, std::size_t sortedCount) const
+  {
+    return slot < sortedCount ? sorted[slot] : this->RestPositions[slot - sortedCount];
+  }
   /// The run on the CUDA device when `backend` asks for it and it can run there: true when it ran there (r.used
   /// CUDA); false to run on the CPU, with r.fallbackReason saying why unless the CPU was asked for, or with `aborted`
   /// set when the progress callback asked to stop.
   bool runOnDeviceIfAsked(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-    EvaluationMethod method, const ParallelOptions& options, Backend backend, RunReport& r, bool& aborted) const;
+    const std::uint64_t* slots, EvaluationMethod method, const ParallelOptions& options, Backend backend, RunReport& r,
+    bool& aborted) const;
   /// The run on the CPU, with the evaluation chosen once for every point (multi-resolution, one pass, or per scale).
-  bool runOnCpu(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize, bool givenIds,
-    EvaluationMethod method, const ParallelOptions& options) const;
+  bool runOnCpu(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
+    const std::uint64_t* slots, EvaluationMethod method, const ParallelOptions& options) const;
   /// Feeds the sink with every point of `order` in parallel: evaluateAt(p, thread, samples) for a finite position,
-  /// invalid samples for another. `givenIds`: the order is the caller's, not the engine's own (then the positions are
-  /// read from Positions, not from the grid's or pyramid's sorted copy).
+  /// invalid samples for another. `slots`: the slot of each point of a caller's order (orderGivenIds); null for the
+  /// engine's own order (the k-th point's slot is k).
   template <typename EvaluateAt>
-  bool forEachPoint(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize, bool givenIds,
-    const ParallelOptions& cpu, const EvaluateAt& evaluateAt) const;
+  bool forEachPoint(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
+    const std::uint64_t* slots, const ParallelOptions& cpu, const EvaluateAt& evaluateAt) const;
   /// The CUDA run: false with `reason` on a CUDA failure (nothing was fed to the sink), false with `aborted` set
   /// when the progress callback asked to stop.
   bool runOnDevice(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-    const ParallelOptions& options, std::string& reason, bool& aborted) const;
+    const std::uint64_t* slots, const ParallelOptions& options, std::string& reason, bool& aborted) const;
 
   ScaleSpaceSettings Settings;
   std::vector<double> SquaredScales;
   BinningTable BinTable;
-  UninitializedArray<Vec3> Positions;   ///< all input positions (NaN allowed)
+  std::size_t Count = 0;                ///< the points given (evaluated ids are below it)
   UninitializedArray<std::uint64_t> Order; ///< evaluation order: grid order first (locality), then the rest
+  /// The positions of the rest (Order's ids from sortedCount() on: the points left out of the grid or pyramid, NaN
+  /// allowed); the others' positions are the sorted copy's (no copy of every position is kept: 24 bytes a point).
+  UninitializedArray<Vec3> RestPositions;
   NeighborGrid Grid;                    ///< exact evaluation
   MultiresolutionCloud Pyramid;         ///< multi-resolution evaluation
   bool BuildAborted = false;

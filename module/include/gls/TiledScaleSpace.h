@@ -33,11 +33,12 @@ public:
 
   /// points, normals: count interleaved triples. Only the first `evaluated` points are evaluated; the rest (a
   /// distributed piece's ghosts) are neighbours only. tiles <= 1: one engine over the whole cloud, built here on
-  /// settings.parallel (its progress and abort, as ScaleSpaceEngine). More: at most that many tiles (fewer where the
-  /// points cannot be cut), whose engines are built one after the other inside run(); the points and normals must
-  /// then outlive this object.
+  /// settings.parallel (its progress and abort, as ScaleSpaceEngine), which calls `inputsCopied` (when given) once it
+  /// has read the points and normals for the last time. More: at most that many tiles (fewer where the points cannot
+  /// be cut), whose engines are built one after the other inside run(); the points and normals must then outlive this
+  /// object (and `inputsCopied` is not called).
   TiledScaleSpace(const double* points, const double* normals, std::size_t count, std::size_t evaluated,
-    ScaleSpaceSettings settings, std::size_t tiles);
+    ScaleSpaceSettings settings, std::size_t tiles, const std::function<void()>& inputsCopied = nullptr);
   /// The most points the filters hand the constructor below: it tests every point of the cloud against each of them.
   static constexpr std::size_t kMaxSelected = 64;
   /// Only the `selected` points (cloud indices below `evaluated`; a few, see kMaxSelected) will be evaluated, as a

@@ -290,7 +290,8 @@ std::uint64_t MultiresolutionCloud::finestKey(const Vec3& p) const
 }
 
 bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::size_t n,
-  const unsigned char* admit, const PyramidLayout& layout, const ParallelOptions& parallel)
+  const unsigned char* admit, const PyramidLayout& layout, const ParallelOptions& parallel,
+  const std::function<void()>& inputsCopied)
 {
   *this = MultiresolutionCloud();
   const int threads = resolveThreadCount(parallel.threads);
@@ -307,6 +308,10 @@ bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::
   if (aborted(parallel, 0.5) || !this->copySortedPoints(keyed, xyz, normals, buildStage(parallel, 0.5, 0.55)))
   {
     return this->fail();
+  }
+  if (inputsCopied)
+  {
+    inputsCopied();
   }
   UninitializedArray<std::uint64_t> keys;   // the current level's cell keys
   UninitializedArray<std::uint64_t> starts; // the current level's cells: [starts[c], starts[c + 1]) of the level below
