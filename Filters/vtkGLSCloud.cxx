@@ -27,17 +27,3 @@ std::size_t vtkGLSCloud::MergeCoincident(int threads)
   return mergedOwned;
 }
 
-void vtkGLSCloud::ScatterToInput(const double* values, int width, double* out) const
-{
-  const std::size_t w = static_cast<std::size_t>(width);
-  if (!this->IsMerged())
-  {
-    std::copy(values, values + w * this->Owned, out);
-    return;
-  }
-  for (std::size_t i = 0; i < this->InputOwned; ++i)
-  {
-    const std::size_t u = this->Copies.representative[i];
-    std::copy(values + w * u, values + w * u + w, out + w * i);
-  }
-}

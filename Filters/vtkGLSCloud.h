@@ -6,6 +6,7 @@
 
 #include "gls/CoincidentPoints.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -40,8 +41,23 @@ struct vtkGLSCloud
   /// Uses up to `threads` threads (0: every hardware thread); the result is the same for any count.
   std::size_t MergeCoincident(int threads = 1);
 
-  /// Writes per-position values (width each, `Owned` positions) back to every copy of this piece's input points.
-  void ScatterToInput(const double* values, int width, double* out) const;
+  /// Writes per-position values (width each, `Owned` positions) back to every copy of this piece's input points,
+  /// converted to Out (a narrower type rounds them to nearest).
+  template <typename In, typename Out>
+  void ScatterToInput(const In* values, int width, Out* out) const
+  {
+    const std::size_t w = static_cast<std::size_t>(width);
+    if (!this->IsMerged())
+    {
+      std::copy(values, values + w * this->Owned, out);
+      return;
+    }
+    for (std::size_t i = 0; i < this->InputOwned; ++i)
+    {
+      const std::size_t u = this->Copies.representative[i];
+      std::copy(values + w * u, values + w * u + w, out + w * i);
+    }
+  }
 };
 
 #endif

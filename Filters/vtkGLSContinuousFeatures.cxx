@@ -57,15 +57,25 @@ public:
 
 constexpr double kSigmaSampleSize = 20000;
 
-/// The summary's double arrays (GLSStableScale, tau, kappa, phi, GLSMaxVariation and its scale) and its int count.
-constexpr double kSummaryArrays = 6.5;
+/// The summary's arrays of values (GLSStableScale, tau, kappa, phi, GLSMaxVariation and its scale), besides its int
+/// count.
+constexpr double kSummaryValueArrays = 6.0;
 
-vtkSmartPointer<vtkDoubleArray> NewPointArray(const char* name, vtkIdType n)
+/// A point array of n values, of doubles or (single) of floats.
+vtkSmartPointer<vtkDataArray> NewPointArray(const char* name, vtkIdType n, bool single)
 {
-  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  vtkSmartPointer<vtkDataArray> array;
+  array.TakeReference(vtkDataArray::CreateDataArray(single ? VTK_FLOAT : VTK_DOUBLE));
   array->SetName(name);
   array->SetNumberOfTuples(n);
   return array;
+}
+
+/// The values of an array made by NewPointArray, as the type it holds.
+template <typename Real>
+Real* ValuesOf(vtkDataArray* array)
+{
+  return static_cast<Real*>(array->GetVoidPointer(0));
 }
 
 }
@@ -78,6 +88,7 @@ vtkGLSContinuousFeatures::vtkGLSContinuousFeatures()
   , TargetMedianFeature(0.28)
   , LastSigma(std::numeric_limits<double>::quiet_NaN())
   , FeatureMeasure(SCALE)
+  , OutputPrecision(vtkAlgorithm::DOUBLE_PRECISION)
 {
 }
 
@@ -107,13 +118,15 @@ bool vtkGLSContinuousFeatures::CheckParameters(vtkGLSRun& run)
 vtkGLSScaleFilterBase::SampleRequest vtkGLSContinuousFeatures::GetSampleRequest(const vtkGLSRun& run) const
 {
   SampleRequest request = VariationRequest(this->ReuseInputScaleSpace);
+  const double value = this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION ? sizeof(float) : sizeof(double);
   if (this->ScaleSummary)
   {
     request.Descriptors = true; // tau, kappa and phi at the stable scale
     request.VariationWillDo = false;
-    request.BytesPerPoint = kSummaryArrays * sizeof(double);
+    request.BytesPerPoint = kSummaryValueArrays * value + sizeof(int);
   }
-  request.BytesPerPoint += sizeof(double); // GLSFeature
+  // GLSFeature (as doubles until it is narrowed, without the summary)
+  request.BytesPerPoint += this->ScaleSummary ? value : sizeof(double) + value;
   if (this->SigmaMode == SIGMA_RELATIVE)
   {
     // nu of the sigma's sample, in the sink and gathered for the median.
@@ -141,7 +154,8 @@ int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)
   {
     return ABORTED;
   }
-  const auto feature = NewPointArray(vtkGLSArrayNames::Feature, run.Input->GetNumberOfPoints());
+  const auto feature = NewPointArray(vtkGLSArrayNames::Feature, run.Input->GetNumberOfPoints(),
+    this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION);
   if (!this->ComputeFeatureAndSummary(run, sigma, feature))
   {
     return ABORTED; // no partial arrays
@@ -156,52 +170,61 @@ int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)
   return COMPLETED;
 }
 
-bool vtkGLSContinuousFeatures::ComputeFeatureAndSummary(vtkGLSRun& run, double sigma, vtkDoubleArray* featureArray)
+bool vtkGLSContinuousFeatures::ComputeFeatureAndSummary(vtkGLSRun& run, double sigma, vtkDataArray* featureArray)
 {
-  double* feature = featureArray->GetPointer(0);
+  const bool single = this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION;
   const gls::FeatureMeasure measure = static_cast<gls::FeatureMeasure>(this->FeatureMeasure);
   const std::vector<double>& t = run.Scales;
+  const vtkIdType n = run.Input->GetNumberOfPoints();
   if (!this->ScaleSummary)
   {
-    return this->ReduceVariation(
+    std::vector<double> narrowed(single ? static_cast<std::size_t>(n) : 0);
+    double* feature = single ? narrowed.data() : ValuesOf<double>(featureArray);
+    const bool completed = this->ReduceVariation(
       run,
       [sigma, measure, &t](const double* nu) {
         return gls::continuousFeature(nu, t.data(), static_cast<int>(t.size()), sigma, measure);
       },
       feature, 1.0);
+    std::copy(narrowed.begin(), narrowed.end(), ValuesOf<float>(featureArray));
+    return completed;
   }
-  const vtkIdType n = run.Input->GetNumberOfPoints();
-  vtkNew<vtkIntArray> count;
-  count->SetName(vtkGLSArrayNames::PertinentScaleCount);
-  count->SetNumberOfTuples(n);
-  const auto stableScale = NewPointArray(vtkGLSArrayNames::StableScale, n);
-  const auto tau = NewPointArray(vtkGLSArrayNames::StableTau, n);
-  const auto kappa = NewPointArray(vtkGLSArrayNames::StableKappa, n);
-  const auto phi = NewPointArray(vtkGLSArrayNames::StablePhi, n);
-  const auto maxNu = NewPointArray(vtkGLSArrayNames::MaxVariation, n);
-  const auto maxNuScale = NewPointArray(vtkGLSArrayNames::MaxVariationScale, n);
-  gls::ScaleSummarySink::Outputs out;
-  out.feature = feature;
-  out.pertinentCount = count->GetPointer(0);
-  out.stableScale = stableScale->GetPointer(0);
-  out.tau = tau->GetPointer(0);
-  out.kappa = kappa->GetPointer(0);
-  out.phi = phi->GetPointer(0);
-  out.maxVariation = maxNu->GetPointer(0);
-  out.maxVariationScale = maxNuScale->GetPointer(0);
-  gls::ScaleSummarySink sink(t, gls::resolveThreadCount(this->NumberOfThreads), this->Weights(), sigma, measure, out);
-  if (!this->FeedSamples(run, sink, nullptr, 0.05, 1.0))
-  {
-    return false;
-  }
-  vtkPointData* pd = run.Output->GetPointData();
-  pd->AddArray(count);
-  for (vtkDoubleArray* array : { stableScale.Get(), tau.Get(), kappa.Get(), phi.Get(), maxNu.Get(),
-         maxNuScale.Get() })
-  {
-    pd->AddArray(array);
-  }
-  return true;
+  // The summary's arrays, filled by the fused pass in the output type (Real).
+  const auto summarize = [&](auto zero) {
+    using Real = decltype(zero);
+    vtkNew<vtkIntArray> count;
+    count->SetName(vtkGLSArrayNames::PertinentScaleCount);
+    count->SetNumberOfTuples(n);
+    const auto stableScale = NewPointArray(vtkGLSArrayNames::StableScale, n, single);
+    const auto tau = NewPointArray(vtkGLSArrayNames::StableTau, n, single);
+    const auto kappa = NewPointArray(vtkGLSArrayNames::StableKappa, n, single);
+    const auto phi = NewPointArray(vtkGLSArrayNames::StablePhi, n, single);
+    const auto maxNu = NewPointArray(vtkGLSArrayNames::MaxVariation, n, single);
+    const auto maxNuScale = NewPointArray(vtkGLSArrayNames::MaxVariationScale, n, single);
+    typename gls::ScaleSummarySinkT<Real>::Outputs out;
+    out.feature = ValuesOf<Real>(featureArray);
+    out.pertinentCount = count->GetPointer(0);
+    out.stableScale = ValuesOf<Real>(stableScale);
+    out.tau = ValuesOf<Real>(tau);
+    out.kappa = ValuesOf<Real>(kappa);
+    out.phi = ValuesOf<Real>(phi);
+    out.maxVariation = ValuesOf<Real>(maxNu);
+    out.maxVariationScale = ValuesOf<Real>(maxNuScale);
+    gls::ScaleSummarySinkT<Real> sink(
+      t, gls::resolveThreadCount(this->NumberOfThreads), this->Weights(), sigma, measure, out);
+    if (!this->FeedSamples(run, sink, nullptr, 0.05, 1.0))
+    {
+      return false;
+    }
+    vtkPointData* pd = run.Output->GetPointData();
+    pd->AddArray(count);
+    for (vtkDataArray* array : { stableScale.Get(), tau.Get(), kappa.Get(), phi.Get(), maxNu.Get(), maxNuScale.Get() })
+    {
+      pd->AddArray(array);
+    }
+    return true;
+  };
+  return single ? summarize(0.0f) : summarize(0.0);
 }
 
 bool vtkGLSContinuousFeatures::RelativeSigma(vtkGLSRun& run, double& sigma)
@@ -277,6 +300,8 @@ void vtkGLSContinuousFeatures::DescribeSettings(std::vector<SettingRange>& setti
   this->Superclass::DescribeSettings(settings);
   settings.push_back({ "SigmaMode", static_cast<double>(this->SigmaMode), static_cast<double>(SIGMA_ABSOLUTE), static_cast<double>(SIGMA_RELATIVE) });
   settings.push_back({ "FeatureMeasure", static_cast<double>(this->FeatureMeasure), static_cast<double>(SCALE), static_cast<double>(LOG_SCALE) });
+  settings.push_back({ "OutputPrecision", static_cast<double>(this->OutputPrecision),
+    static_cast<double>(vtkAlgorithm::SINGLE_PRECISION), static_cast<double>(vtkAlgorithm::DOUBLE_PRECISION) });
 }
 
 void vtkGLSContinuousFeatures::PrintSelf(ostream& os, vtkIndent indent)
@@ -288,4 +313,6 @@ void vtkGLSContinuousFeatures::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Sigma: " << this->Sigma << "\n";
   os << indent << "TargetMedianFeature: " << this->TargetMedianFeature << "\n";
   os << indent << "FeatureMeasure: " << (this->FeatureMeasure == SCALE ? "Scale" : "LogScale") << "\n";
+  os << indent << "OutputPrecision: " << (this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION ? "Single" : "Double")
+     << "\n";
 }

@@ -12,6 +12,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
+#include "vtkSmartPointer.h"
 
 #include "gls/CoincidentPoints.h"
 #include "gls/NormalEstimation.h"
@@ -39,6 +40,7 @@ vtkGLSNormalEstimation::vtkGLSNormalEstimation()
   , MaximumGrowth(8.0)
   , Refinement(NO_REFINEMENT)
   , RefinementScale(1.5)
+  , OutputPrecision(vtkAlgorithm::DOUBLE_PRECISION)
 {
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::NORMALS);
@@ -230,24 +232,30 @@ void vtkGLSNormalEstimation::WriteNormals(
 {
   const vtkIdType n = run.Input->GetNumberOfPoints();
   const vtkGLSDistributedCloud& dist = run.Distributed;
-  vtkNew<vtkDoubleArray> normals;
-  normals->SetName(vtkGLSArrayNames::Normals);
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(n);
-  run.Cloud.ScatterToInput(result.normals.data(), 3, normals->GetPointer(0));
-  vtkNew<vtkDoubleArray> quality;
-  quality->SetName(vtkGLSArrayNames::NormalQuality);
-  quality->SetNumberOfTuples(n);
-  run.Cloud.ScatterToInput(result.spread.data(), 1, quality->GetPointer(0));
-  std::vector<double> counts(result.neighborCounts.begin(), result.neighborCounts.end()), perInput(n);
-  run.Cloud.ScatterToInput(counts.data(), 1, perInput.data());
+  // Doubles, or floats (OutputPrecision), each value converted from the double computed.
+  const bool single = this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION;
+  const auto newArray = [&](const char* name, const std::vector<double>& values, int width) {
+    vtkSmartPointer<vtkDataArray> array;
+    array.TakeReference(vtkDataArray::CreateDataArray(single ? VTK_FLOAT : VTK_DOUBLE));
+    array->SetName(name);
+    array->SetNumberOfComponents(width);
+    array->SetNumberOfTuples(n);
+    if (single)
+    {
+      run.Cloud.ScatterToInput(values.data(), width, static_cast<float*>(array->GetVoidPointer(0)));
+    }
+    else
+    {
+      run.Cloud.ScatterToInput(values.data(), width, static_cast<double*>(array->GetVoidPointer(0)));
+    }
+    return array;
+  };
+  const vtkSmartPointer<vtkDataArray> normals = newArray(vtkGLSArrayNames::Normals, result.normals, 3);
+  const vtkSmartPointer<vtkDataArray> quality = newArray(vtkGLSArrayNames::NormalQuality, result.spread, 1);
   vtkNew<vtkIntArray> neighbors;
   neighbors->SetName(vtkGLSArrayNames::NormalNeighbors);
   neighbors->SetNumberOfTuples(n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    neighbors->SetValue(i, static_cast<int>(perInput[i]));
-  }
+  run.Cloud.ScatterToInput(result.neighborCounts.data(), 1, neighbors->GetPointer(0));
   vtkPointData* out = run.Output->GetPointData();
   out->SetNormals(normals);
   out->AddArray(quality);
@@ -262,7 +270,7 @@ void vtkGLSNormalEstimation::WriteNormals(
                                                 : static_cast<std::size_t>(i);
     const double* x = &run.Cloud.Points[3 * at];
     const bool finite = std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
-    undefined += finite && !std::isfinite(normals->GetValue(3 * i)) ? 1.0 : 0.0;
+    undefined += finite && !std::isfinite(result.normals[3 * at]) ? 1.0 : 0.0;
   }
   undefined = dist.Sum(undefined);
   const double total = dist.Sum(static_cast<double>(n));
@@ -471,6 +479,8 @@ void vtkGLSNormalEstimation::DescribeSettings(std::vector<SettingRange>& setting
   settings.push_back({ "MaximumGrowth", static_cast<double>(this->MaximumGrowth), static_cast<double>(1.0), static_cast<double>(64.0) });
   settings.push_back({ "Orientation", static_cast<double>(this->Orientation), static_cast<double>(NONE), static_cast<double>(UP) });
   settings.push_back({ "GraphNeighbors", static_cast<double>(this->GraphNeighbors), static_cast<double>(1), static_cast<double>(1000) });
+  settings.push_back({ "OutputPrecision", static_cast<double>(this->OutputPrecision),
+    static_cast<double>(vtkAlgorithm::SINGLE_PRECISION), static_cast<double>(vtkAlgorithm::DOUBLE_PRECISION) });
 }
 
 void vtkGLSNormalEstimation::PrintSelf(ostream& os, vtkIndent indent)
@@ -489,4 +499,6 @@ void vtkGLSNormalEstimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumGrowth: " << this->MaximumGrowth << "\n";
   os << indent << "Refinement: " << (this->Refinement == GLS_REFINEMENT ? "GLS" : "None") << "\n";
   os << indent << "RefinementScale: " << this->RefinementScale << "\n";
+  os << indent << "OutputPrecision: " << (this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION ? "Single" : "Double")
+     << "\n";
 }

@@ -296,6 +296,59 @@ TEST(ContinuousFeaturesFilter, ScaleSummaryFollowsTheStoredScaleSpaceAndKeepsThe
   EXPECT_LT(undefined, stable.size() / 100);
 }
 
+TEST(OutputPrecision, SingleWritesFloatsRoundedFromTheDoublesOfADoubleRun)
+{
+  // Normal estimation: Normals and NormalQuality as floats, each the float nearest the double run's value.
+  vtkNew<vtkGLSNormalEstimation> singleNormals;
+  singleNormals->SetOutputPrecision(vtkAlgorithm::SINGLE_PRECISION);
+  auto sn = run(singleNormals.Get(), bunnyCloud());
+  const auto expectNarrowed = [](vtkPolyData* narrow, vtkPolyData* wide, const char* name) {
+    vtkDataArray* f = narrow->GetPointData()->GetArray(name);
+    vtkDataArray* d = wide->GetPointData()->GetArray(name);
+    ASSERT_TRUE(f && d) << name;
+    EXPECT_EQ(f->GetDataType(), VTK_FLOAT) << name;
+    EXPECT_EQ(d->GetDataType(), VTK_DOUBLE) << name;
+    ASSERT_EQ(f->GetNumberOfValues(), d->GetNumberOfValues()) << name;
+    std::size_t finite = 0;
+    for (vtkIdType k = 0; k < f->GetNumberOfValues(); ++k)
+    {
+      const float expected = static_cast<float>(d->GetVariantValue(k).ToDouble());
+      const float got = static_cast<float>(f->GetVariantValue(k).ToDouble());
+      ASSERT_TRUE(identical({ double(got) }, { double(expected) })) << name << " value " << k;
+      finite += std::isfinite(got) ? 1 : 0;
+    }
+    EXPECT_GT(finite, static_cast<std::size_t>(f->GetNumberOfValues()) / 2) << name;
+  };
+  expectNarrowed(sn, bunnyWithNormals(), "Normals");
+  expectNarrowed(sn, bunnyWithNormals(), "NormalQuality");
+  EXPECT_EQ(sn->GetPointData()->GetNormals(), sn->GetPointData()->GetArray("Normals"));
+  // The fused features and summary, on the same (double) normals.
+  vtkNew<vtkGLSContinuousFeatures> wide, narrow;
+  wide->ScaleSummaryOn();
+  narrow->ScaleSummaryOn();
+  narrow->SetOutputPrecision(vtkAlgorithm::SINGLE_PRECISION);
+  auto d = run(wide.Get(), bunnyWithNormals());
+  auto f = run(narrow.Get(), bunnyWithNormals());
+  for (const char* name : { "GLSFeature", "GLSStableScale", "GLSStableTau", "GLSStableKappa", "GLSStablePhi",
+         "GLSMaxVariation", "GLSMaxVariationScale" })
+  {
+    expectNarrowed(f, d, name);
+  }
+  EXPECT_TRUE(identical(pointArray(f, "GLSPertinentScaleCount"), pointArray(d, "GLSPertinentScaleCount")));
+  EXPECT_EQ(f->GetPointData()->GetArray("GLSPertinentScaleCount")->GetDataType(), VTK_INT);
+  // Without the summary, GLSFeature alone.
+  vtkNew<vtkGLSContinuousFeatures> plain;
+  plain->SetOutputPrecision(vtkAlgorithm::SINGLE_PRECISION);
+  expectNarrowed(run(plain.Get(), bunnyWithNormals()), d, "GLSFeature");
+  // Neither single nor double: refused.
+  vtkNew<vtkGLSContinuousFeatures> bad;
+  bad->SetOutputPrecision(vtkAlgorithm::DEFAULT_PRECISION);
+  const auto errors = catchErrors(bad.Get());
+  auto none = run(bad.Get(), bunnyWithNormals());
+  EXPECT_EQ(none->GetPointData()->GetArray("GLSFeature"), nullptr);
+  EXPECT_NE(errors->Message.find("Invalid OutputPrecision"), std::string::npos) << errors->Message;
+}
+
 TEST(DissimilarityFilter, SphereIsUniformAndTheQueryIsSimilarToItself)
 {
   const Cloud c = sphere(3000, 1.0);

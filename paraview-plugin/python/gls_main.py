@@ -160,7 +160,8 @@ def summary_pipeline(args, upstream, watch, budget):
     sigma = {} if args.sigma is None else {'SigmaMode': 'Absolute', 'Sigma': args.sigma}
     return watch.watch(gls_filter('GLSContinuousFeatures', registrationName='Features', Input=upstream,
                                   Normals=NORMALS, NumberOfScales=args.scales, ScaleSummary=1,
-                                  MemoryBudget=gls_memory.filter_budget_mib(budget), **scale_range(args, **sigma)),
+                                  OutputPrecision='Single', MemoryBudget=gls_memory.filter_budget_mib(budget),
+                                  **scale_range(args, **sigma)),
                        'features and summary')
 
 
@@ -230,7 +231,7 @@ def analyze(args, outputs):
         orientation = dict(Orientation='Towards per-point viewpoints',
                            ViewpointArray=['POINTS', 'ScannerPosition']) if scanners else {}
         upstream = watch.watch(gls_filter('GLSNormalEstimation', registrationName='Normals', Input=source,
-                                          **orientation), 'normals')
+                                          OutputPrecision='Single', **orientation), 'normals')
         watch.update(upstream)
         print('normals: %.2f s%s' % (time.time() - start, ', each facing its scanner (ScannerPosition)'
                                      if scanners else ''))
@@ -259,11 +260,12 @@ def analyze(args, outputs):
         output.SetVerts(gls_cloud.poly_vertex_cell(output.GetNumberOfPoints()))
     if not args.per_scale:
         output, narrowed = gls_outputs.compact(output, args.full_precision)
-        print('output: per-point summaries; narrowed to float32 (uint8 for the count): %s%s'
-              % (', '.join(narrowed), '' if args.full_precision else
-                 '; rounded to a relative 1.2e-4 (the normals 7.6e-6): --full-precision keeps every bit'))
-        # The features' double-precision arrays are not needed any more (the output holds their float32 copies, or
-        # shares them): released before the writer's fork, whose copy of this process would keep them.
+        print('output: per-point summaries in float32 (the filters write them so: OutputPrecision Single), the count '
+              'in uint8; %s%s' % ('narrowed here: %s' % ', '.join(narrowed) if narrowed else 'none narrowed here',
+                                  '' if args.full_precision else '; rounded to a relative 1.2e-4 (the normals '
+                                  '7.6e-6): --full-precision keeps every bit'))
+        # The features' arrays are not needed any more (the output holds their rounded copies, or shares them):
+        # released before the writer's fork, whose copy of this process would keep them.
         del feature, pd
         result.Initialize()
         gls_io.release_output(features)

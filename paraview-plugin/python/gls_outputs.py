@@ -218,10 +218,12 @@ def compact(polydata, full_precision=False):
             continue
         kind = np.float32 if name in SUMMARY_FLOAT32 else np.uint8 if name in SUMMARY_UINT8 else None
         values = vtk_to_numpy(array) if kind is not None else None
-        if kind is None or values.dtype == kind or (kind == np.uint8 and values.max(initial=0) > 255):
+        bits = SUMMARY_MANTISSA_BITS.get(name) if kind == np.float32 and not full_precision else None
+        # (The filters may have written float32 already, OutputPrecision Single: rounded all the same.)
+        if kind is None or (values.dtype == kind and bits is None) or \
+                (kind == np.uint8 and values.max(initial=0) > 255):
             target.AddArray(array)
             continue
-        bits = SUMMARY_MANTISSA_BITS.get(name) if kind == np.float32 and not full_precision else None
         narrow = numpy_to_vtk(np.ascontiguousarray(values, dtype=kind) if bits is None else
                               rounded_float32(values, bits), deep=True)
         narrow.SetName(name)

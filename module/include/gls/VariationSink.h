@@ -50,25 +50,27 @@ private:
 };
 
 /// The fused pass of the main job: per point, the continuous feature (as VariationReductionSink with
-/// continuousFeature: the same bits) and the summary over the scales (summarizeScales), nothing per scale.
-class ScaleSummarySink : public ScaleSampleSink
+/// continuousFeature: the same bits) and the summary over the scales (summarizeScales), nothing per scale. Real: the
+/// outputs' type (double, or float: each value rounded to nearest from its double, half the memory).
+template <typename Real>
+class ScaleSummarySinkT : public ScaleSampleSink
 {
 public:
   /// Where each point's values go (arrays of one value per point).
   struct Outputs
   {
-    double* feature = nullptr;
+    Real* feature = nullptr;
     int* pertinentCount = nullptr;
-    double* stableScale = nullptr;
-    double* tau = nullptr;
-    double* kappa = nullptr;
-    double* phi = nullptr;
-    double* maxVariation = nullptr;
-    double* maxVariationScale = nullptr;
+    Real* stableScale = nullptr;
+    Real* tau = nullptr;
+    Real* kappa = nullptr;
+    Real* phi = nullptr;
+    Real* maxVariation = nullptr;
+    Real* maxVariationScale = nullptr;
   };
 
   /// scales: the engine's scales (kept by reference); sigma and measure: those of the feature.
-  ScaleSummarySink(const std::vector<double>& scales, int threads, VariationWeights weights, double sigma,
+  ScaleSummarySinkT(const std::vector<double>& scales, int threads, VariationWeights weights, double sigma,
     FeatureMeasure measure, const Outputs& out)
     : Scales(scales)
     , Weights(weights)
@@ -89,14 +91,15 @@ public:
       nu[i] = geometricVariation(s[k], this->Scales[i], this->Weights);
     }
     const ScaleSummary summary = summarizeScales(s, nu.data(), this->Scales.data(), count);
-    this->Out.feature[id] = continuousFeature(nu.data(), this->Scales.data(), count, this->Sigma, this->Measure);
+    this->Out.feature[id] =
+      static_cast<Real>(continuousFeature(nu.data(), this->Scales.data(), count, this->Sigma, this->Measure));
     this->Out.pertinentCount[id] = summary.pertinentCount;
-    this->Out.stableScale[id] = summary.stableScale;
-    this->Out.tau[id] = summary.tau;
-    this->Out.kappa[id] = summary.kappa;
-    this->Out.phi[id] = summary.phi;
-    this->Out.maxVariation[id] = summary.maxVariation;
-    this->Out.maxVariationScale[id] = summary.maxVariationScale;
+    this->Out.stableScale[id] = static_cast<Real>(summary.stableScale);
+    this->Out.tau[id] = static_cast<Real>(summary.tau);
+    this->Out.kappa[id] = static_cast<Real>(summary.kappa);
+    this->Out.phi[id] = static_cast<Real>(summary.phi);
+    this->Out.maxVariation[id] = static_cast<Real>(summary.maxVariation);
+    this->Out.maxVariationScale[id] = static_cast<Real>(summary.maxVariationScale);
   }
 
 private:
@@ -107,5 +110,7 @@ private:
   Outputs Out;
   std::vector<std::vector<double>> Nu;
 };
+
+using ScaleSummarySink = ScaleSummarySinkT<double>;
 
 } // namespace gls
