@@ -7,12 +7,14 @@ the fused features and summaries, the compact output) and, with --per-scale, eve
 import math
 
 # The default path's peak resident memory, whatever the number of scales: FIXED_BYTES plus DEFAULT_BYTES_PER_POINT a
-# point. Measured on the bunny sampled by area (2026-12-06, seventh session, VmHWM of each stage): 984 MiB at 1M points
-# (the pictures), 2,805 MiB at 10M and 8,038 MiB at 30M (the fused pass); the estimate is 8%, 24% and 10% above, and
-# extrapolated (274 bytes a point from 10M to 30M) 4% above at 100M. (Before, 330 bytes a point: the fused pass kept
-# its copy of the cloud and the profiles gathered the whole cloud; 3,454 MiB at 10M, 9,474 MiB at 30M.)
-FIXED_BYTES = 800.0 * 1024.0 ** 2
-DEFAULT_BYTES_PER_POINT = 280.0
+# point. Measured on the bunny sampled by area (VmHWM of each stage), eighth session (2026-12-06: the engine keeps no
+# copy of the positions and frees the cloud's once sorted, the filters write float32): the normals and the fused pass
+# both peak at 201 bytes a point beside the 340 MiB of pvpython and ParaView, 2,255 MiB at 10M and 6,101 MiB at 30M
+# (6,094 the fused pass); the estimate is 24% and 10% above, 6% above 984 MiB at 1M (the pictures), and 5% above the
+# 100M extrapolation (19.1 GiB). (Seventh session: 0.78 GiB and 280 bytes a point, the fused pass 274 bytes a point,
+# 8,038 MiB at 30M.)
+FIXED_BYTES = 850.0 * 1024.0 ** 2
+DEFAULT_BYTES_PER_POINT = 205.0
 # With --per-scale: bytes per point and scale on top (the scale space, nu, and their copy in the written file).
 PER_SCALE_BYTES_PER_POINT_SCALE = 240.0
 GIB = 1024.0 ** 3
