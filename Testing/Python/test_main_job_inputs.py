@@ -92,6 +92,12 @@ class DistinctPositions(unittest.TestCase):
         for points in self.clouds():
             self.check(points)
         self.check(np.random.default_rng(5).random((50000, 3)).astype(np.float32).astype(float))
+        # A scan's case: a few copies among many distinct rows (only the rows whose hash another shares are
+        # compared), as float64 and as float32 rows.
+        few = np.random.default_rng(6).random((50000, 3))
+        few = np.vstack([few, few[[10, 20, 10]], [[-0.0, 0.5, 0.5], [0.0, 0.5, 0.5], [np.nan, 1, 1], [np.nan, 1, 1]]])
+        self.check(few)
+        self.check(few.astype(np.float32))
 
     def test_positions_that_share_a_hash(self):
         mixed = gls_coincident._mixed

@@ -65,52 +65,66 @@ def distinct_positions(points):
     """(first, inverse): the index of the first copy of each distinct row of `points`, in order of appearance,
     and for every row the index of its distinct position. Rows are equal as floats are (-0.0 is 0.0; a row with a
     NaN equals no other). The rows are sorted by a 64-bit hash of their bits (one stable argsort, about six times
-    faster than np.unique(axis=0) at 10M rows), so equal rows lie next to each other; should two different rows
-    share a hash, they are sorted by their coordinates instead."""
-    return _distinct_hashed(*hashed_rows(points))
+    faster than np.unique(axis=0) at 10M rows), so that equal rows lie next to each other; only the rows whose hash
+    another row shares are then compared, by their coordinates (so two different rows that share a hash stay apart).
+    About 40 bytes a row at most beside `points` (the rows are hashed a chunk at a time, never copied whole)."""
+    return _distinct_hashed(points, row_keys(points))
 
 
-def hashed_rows(points):
-    """(rows, key): the rows of `points` as float64 with -0.0 made 0.0, and a 64-bit hash of each row's bits
-    (equal rows have equal keys)."""
-    rows = np.ascontiguousarray(points, dtype=np.float64).reshape(-1, 3) + 0.0  # -0.0 + 0.0 is +0.0
-    bits = rows.view(np.uint64)
-    with np.errstate(over='ignore'):
-        key = _mixed(_mixed(_mixed(bits[:, 0]) ^ bits[:, 1]) ^ bits[:, 2])
-    return rows, key
+def _rows(points):
+    """`points` (n x 3, or 3n) as float64 rows with -0.0 made 0.0 (-0.0 + 0.0 is +0.0)."""
+    return np.ascontiguousarray(points, dtype=np.float64).reshape(-1, 3) + 0.0
 
 
-def _distinct_hashed(rows, key):
-    """distinct_positions of rows hashed by hashed_rows."""
-    count = len(rows)
+def row_keys(points, chunk=1 << 20):
+    """A 64-bit hash of the bits of each row of `points` as _rows gives it (equal rows have equal keys), computed
+    `chunk` rows at a time."""
+    flat = np.asarray(points).reshape(-1, 3)
+    key = np.empty(len(flat), dtype=np.uint64)
+    for start in range(0, len(flat), chunk):
+        bits = _rows(flat[start:start + chunk]).view(np.uint64)
+        with np.errstate(over='ignore'):
+            key[start:start + chunk] = _mixed(_mixed(_mixed(bits[:, 0]) ^ bits[:, 1]) ^ bits[:, 2])
+    return key
+
+
+def _distinct_hashed(points, key):
+    """distinct_positions of the rows of `points` hashed by row_keys."""
+    count = len(key)
     if count == 0:
         return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
-    bits = rows.view(np.uint64)
-    columns = [np.ascontiguousarray(bits[:, a]) for a in range(3)]
-
-    def equal_neighbours(order):  # whether each sorted row has the bits of the row before it
-        equal = np.ones(count - 1, dtype=bool)
-        for column in columns:
-            sorted_column = column[order]
-            equal &= sorted_column[1:] == sorted_column[:-1]
-        return equal
+    # The rows whose key another row shares (a few, in a scan): only they can coincide.
     order = np.argsort(key, kind='stable')
     sorted_key = key[order]
-    equal_bits = equal_neighbours(order)
-    if np.any((sorted_key[1:] == sorted_key[:-1]) & ~equal_bits):  # two positions share a hash: sort them apart
-        order = np.lexsort((columns[2], columns[1], columns[0], key))
-        equal_bits = equal_neighbours(order)
-    has_nan = np.isnan(rows).any(axis=1)[order]
-    starts = np.ones(count, dtype=bool)
-    starts[1:] = ~(equal_bits & ~has_nan[1:] & ~has_nan[:-1])
-    group = np.cumsum(starts) - 1  # the distinct position of each sorted row, numbered in sorted order
-    first = order[starts]  # the stable sort puts each position's first copy first
-    by_appearance = np.argsort(first, kind='stable')
-    rank = np.empty_like(by_appearance)
-    rank[by_appearance] = np.arange(len(by_appearance))
-    inverse = np.empty(count, dtype=np.int64)
-    inverse[order] = rank[group]
-    return first[by_appearance], inverse
+    shared = sorted_key[1:] == sorted_key[:-1]
+    del sorted_key
+    in_run = np.zeros(count, dtype=bool)
+    in_run[1:] |= shared
+    in_run[:-1] |= shared
+    del shared
+    candidates = np.sort(order[in_run])
+    del order, in_run
+    # Among them, equal bits (NaN rows apart), each group led by its first row.
+    later = np.zeros(count, dtype=bool)
+    leader_of_later = np.zeros(0, dtype=np.int64)
+    later_rows = np.zeros(0, dtype=np.int64)
+    if len(candidates) > 1:
+        rows = _rows(np.asarray(points).reshape(-1, 3)[candidates])
+        bits = rows.view(np.uint64)
+        by_bits = np.lexsort((candidates, bits[:, 2], bits[:, 1], bits[:, 0]))
+        sorted_bits = bits[by_bits]
+        has_nan = np.isnan(rows).any(axis=1)[by_bits]
+        starts = np.ones(len(candidates), dtype=bool)
+        starts[1:] = ~((sorted_bits[1:] == sorted_bits[:-1]).all(axis=1) & ~has_nan[1:] & ~has_nan[:-1])
+        leaders = candidates[by_bits][starts][np.cumsum(starts) - 1]  # each sorted row's group's first row
+        members = candidates[by_bits]
+        copies = ~starts
+        later_rows, leader_of_later = members[copies], leaders[copies]
+        later[later_rows] = True
+    first = np.flatnonzero(~later)
+    inverse = np.cumsum(~later, dtype=np.int64) - 1  # a first copy's index among the first copies
+    inverse[later_rows] = inverse[leader_of_later]
+    return first, inverse
 
 
 def merged_normals(normals, inverse, count):
@@ -145,17 +159,18 @@ def merge(polydata):
     from vtkmodules.vtkCommonCore import vtkPoints
     from vtkmodules.vtkCommonDataModel import vtkPolyData
     points = vtk_to_numpy(polydata.GetPoints().GetData())
-    rows, key = hashed_rows(points)
+    key = row_keys(points)
     sorted_key = np.sort(key)
     if not np.any(sorted_key[1:] == sorted_key[:-1]):  # no two rows share a hash, so no two coincide (a scan's
         return None                                    # usual case: one unstable sort, a third of the full cost)
     del sorted_key
-    first, inverse = _distinct_hashed(rows, key)
+    first, inverse = _distinct_hashed(points, key)
+    del key
     if len(first) == len(points):
         return None
     merged = vtkPolyData()
     pts = vtkPoints()
-    pts.SetData(numpy_to_vtk(np.ascontiguousarray(points[first], dtype=np.float64), deep=True))
+    pts.SetData(numpy_to_vtk(np.ascontiguousarray(points[first]), deep=True))  # in the input's type
     merged.SetPoints(pts)
     merged.SetVerts(renumbered_cells(polydata.GetVerts(), inverse))
     merged.SetLines(renumbered_cells(polydata.GetLines(), inverse))

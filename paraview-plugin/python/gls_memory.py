@@ -50,6 +50,13 @@ def resident_bytes():
     return kib_line_bytes('/proc/self/status', 'VmRSS')
 
 
+def machine_budget_bytes():
+    """What this job may reach without --memory-budget: the memory available now and what it holds already; None
+    where /proc does not say."""
+    available = available_bytes()
+    return None if available is None else available + (resident_bytes() or 0.0)
+
+
 def filter_budget_mib(budget):
     """The MemoryBudget (MiB) of a GLS filter created now: FILTER_SHARE of what the main job's budget (bytes) leaves
     beside what this process holds, so that the fused pass cuts its fit into spatial tiles rather than exceed it;
@@ -67,10 +74,11 @@ def needed_bytes(points, scales, per_scale):
 
 
 def check(points, scales, per_scale, budget_gib=None, announced=False):
-    """Raises BudgetError when the estimate exceeds the budget (GiB; default: the memory available now).
-    Returns (needed bytes, budget bytes or None). `announced`: the count is the file's header's (checked before the
-    file is read; the message says so)."""
-    budget = budget_gib * GIB if budget_gib is not None else available_bytes()
+    """Raises BudgetError when the estimate exceeds the budget (GiB; default: the memory available now, plus what
+    this process already holds: the estimate is the job's whole peak, and after reading a 10^8-point file the job
+    holds a few GiB of it). Returns (needed bytes, budget bytes or None). `announced`: the count is the file's
+    header's (checked before the file is read; the message says so)."""
+    budget = budget_gib * GIB if budget_gib is not None else machine_budget_bytes()
     needed = needed_bytes(points, scales, per_scale)
     if budget is None or needed <= budget:
         return needed, budget
