@@ -148,7 +148,7 @@ std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Empty()
 }
 
 bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
-  const gls::ParallelOptions& parallel, gls::Backend backend, gls::RunReport& report) const
+  const gls::ParallelOptions& parallel, gls::RunReport& report) const
 {
   report = gls::RunReport();
   if (this->Engine && this->Cloud->IsMerged())
@@ -172,11 +172,11 @@ bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std:
       }
     }
     CopiesSink copies(sink, *this->Cloud, ids ? &requested : nullptr);
-    return this->Engine->run(copies, ids ? &positions : nullptr, parallel, backend, report);
+    return this->Engine->run(copies, ids ? &positions : nullptr, parallel, report);
   }
   if (this->Engine)
   {
-    return this->Engine->run(sink, ids, parallel, backend, report);
+    return this->Engine->run(sink, ids, parallel, report);
   }
   report.used = gls::Backend::CPU;
   const std::size_t n = ids ? ids->size() : this->PointCount;

@@ -52,11 +52,11 @@ public:
   bool RunsFits() const { return this->Engine != nullptr; }
 
   /// Feeds the sink with the samples of the given points of this piece (all of them when ids is null) on
-  /// parallel.threads threads, reporting progress through parallel.progress. A fit runs on `backend` and says in
-  /// `report` where it ran. A stored sample is valid when every value read back is finite; the values not read back
+  /// parallel.threads threads, reporting progress through parallel.progress. A fit runs on the backend of its
+  /// settings and says in `report` where it ran. A stored sample is valid when every value read back is finite; the values not read back
   /// are NaN. Returns false if aborted.
   bool Feed(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const gls::ParallelOptions& parallel,
-    gls::Backend backend, gls::RunReport& report) const;
+    gls::RunReport& report) const;
 
   /// Bytes of the buffers of an engine over the cloud under these settings (gls::ScaleSpaceEngine::footprint, its
   /// pyramid counted from the points), besides the points and normals it is given (vtkGLSCloud::BytesPerPoint each),

@@ -220,6 +220,7 @@ bool vtkGLSScaleFilterBase::PrepareFit(vtkGLSRun& run, const SampleRequest& requ
   settings.scales = run.Scales;
   settings.minNeighbors = run.MinimumNeighbors;
   settings.parallel.threads = this->NumberOfThreads;
+  settings.backend = static_cast<gls::Backend>(this->Backend);
   // The pyramid's build reports its progress in the first 2% (the feed's own progress follows) and stops when
   // aborted.
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 0.02); };
@@ -353,7 +354,7 @@ bool vtkGLSScaleFilterBase::FeedSamples(vtkGLSRun& run, gls::ScaleSampleSink& si
   const bool diagnose = !ids && run.Samples->RunsFits(); // every point of a fit: say when most fits are NaN
   CoverageSink coverage(sink, run.Scales.size(), threads);
   const bool completed = run.Samples->Feed(
-    diagnose ? coverage : sink, ids, parallel, static_cast<gls::Backend>(this->Backend), report);
+    diagnose ? coverage : sink, ids, parallel, report);
   if (!ids && completed)
   {
     this->WarnAboutUndefinedScales(run, diagnose ? &coverage : nullptr);

@@ -169,10 +169,11 @@ Measure scaleSpaceAndNu(const Cloud& c, const std::vector<double>& scales, int t
   gls::ScaleSpaceSettings settings;
   settings.scales = scales;
   settings.parallel.threads = threads;
+  settings.method = method;
   Timer t;
   gls::ScaleSpaceEngine engine(c.xyz.data(), c.normals.data(), c.size(), settings);
   VariationSink sink(c.size(), scales, gls::resolveThreadCount(threads), kappa != nullptr);
-  engine.run(sink, nullptr, method);
+  engine.run(sink);
   Measure m{ t.seconds(), t.utilisation(), sink.visits() };
   if (nu)
   {

@@ -74,10 +74,11 @@ inline CollectingSink runScaleSpace(const std::vector<double>& points, const std
   settings.scales = scales;
   settings.minNeighbors = minNeighbors;
   settings.parallel.threads = threads;
+  settings.method = method;
   const std::size_t n = points.size() / 3;
   gls::ScaleSpaceEngine engine(points.data(), normals.data(), n, settings);
   CollectingSink sink(n, scales.size());
-  engine.run(sink, nullptr, method);
+  engine.run(sink);
   return sink;
 }
 

@@ -27,11 +27,19 @@ gls::ScaleSpaceSettings settingsFor(const std::vector<double>& scales, gls::Eval
   return settings;
 }
 
-CollectingSink runOn(const gls::ScaleSpaceEngine& engine, gls::Backend backend, gls::RunReport& report)
+CollectingSink runOn(const gls::ScaleSpaceEngine& engine, gls::RunReport& report)
 {
   CollectingSink sink(engine.pointCount(), engine.scales().size());
-  engine.run(sink, nullptr, gls::EvaluationMethod::OnePass, nullptr, backend, &report);
+  engine.run(sink, nullptr, nullptr, &report);
   return sink;
+}
+
+/// An engine on the backend (the settings' evaluator is chosen when the engine is built).
+CollectingSink runOn(const Cloud& c, gls::ScaleSpaceSettings settings, gls::Backend backend, gls::RunReport& report)
+{
+  settings.backend = backend;
+  const gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  return runOn(engine, report);
 }
 
 CollectingSink runWith(const Cloud& c, const std::vector<double>& scales, gls::Backend backend,
@@ -39,8 +47,7 @@ CollectingSink runWith(const Cloud& c, const std::vector<double>& scales, gls::B
 {
   gls::ScaleSpaceSettings settings = settingsFor(scales, evaluation);
   settings.deviceChunkLimit = chunkLimit;
-  const gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
-  return runOn(engine, backend, report);
+  return runOn(c, settings, backend, report);
 }
 
 /// The bunny's surface sampled by area (mesh normals) and scales from `low` to `high` of its box diagonal.
@@ -194,11 +201,12 @@ TEST(CudaDevice, MultiresolutionMatchesTheCpu)
   const Cloud c = sampledBunny(300000, 0.008, 0.08, 20, scales);
   ASSERT_EQ(c.size(), 300000u);
   gls::ScaleSpaceSettings settings = settingsFor(scales, gls::Evaluation::Multiresolution);
+  settings.backend = gls::Backend::CUDA;
   const gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
   ASSERT_EQ(engine.evaluation(), gls::Evaluation::Multiresolution);
   gls::RunReport r1, r2;
-  const CollectingSink cpu = runOn(engine, gls::Backend::CPU, r1);
-  const CollectingSink gpu = runOn(engine, gls::Backend::CUDA, r2);
+  const CollectingSink cpu = runOn(c, settings, gls::Backend::CPU, r1);
+  const CollectingSink gpu = runOn(engine, r2);
   ASSERT_EQ(r2.used, gls::Backend::CUDA) << r2.fallbackReason;
   EXPECT_LE(maxRelativeDifference(cpu, gpu, scales), 1e-9);
   long valid = 0;
@@ -207,11 +215,10 @@ TEST(CudaDevice, MultiresolutionMatchesTheCpu)
     valid += q.valid ? 1 : 0;
   }
   EXPECT_GT(valid, static_cast<long>(gpu.Samples.size() * 9 / 10));
-  const CollectingSink again = runOn(engine, gls::Backend::CUDA, r2);
+  const CollectingSink again = runOn(engine, r2);
   EXPECT_TRUE(bitwiseEqual(gpu, again));
   settings.deviceChunkLimit = 7000;
-  const gls::ScaleSpaceEngine chunkedEngine(c.points.data(), c.normals.data(), c.size(), settings);
-  const CollectingSink chunked = runOn(chunkedEngine, gls::Backend::CUDA, r2);
+  const CollectingSink chunked = runOn(c, settings, gls::Backend::CUDA, r2);
   ASSERT_EQ(r2.used, gls::Backend::CUDA) << r2.fallbackReason;
   EXPECT_TRUE(bitwiseEqual(gpu, chunked));
 }

@@ -57,7 +57,7 @@ CollectingSink runTiles(const Cloud& c, std::size_t evaluated, const gls::ScaleS
     sample.neighbors = -1.0;
   }
   gls::RunReport report;
-  EXPECT_TRUE(tiled.run(sink, ids, s.parallel, gls::Backend::CPU, report));
+  EXPECT_TRUE(tiled.run(sink, ids, s.parallel, report));
   if (tileCount)
   {
     *tileCount = tiled.tileCount();
@@ -293,7 +293,7 @@ TEST(TiledScaleSpace, ProgressRunsOnceAcrossTheTilesAndAnAbortStopsThem)
     seen.push_back(f);
     return false;
   };
-  ASSERT_TRUE(tiled.run(sink, nullptr, parallel, gls::Backend::CPU, report));
+  ASSERT_TRUE(tiled.run(sink, nullptr, parallel, report));
   ASSERT_FALSE(seen.empty());
   for (std::size_t i = 1; i < seen.size(); ++i)
   {
@@ -307,7 +307,7 @@ TEST(TiledScaleSpace, ProgressRunsOnceAcrossTheTilesAndAnAbortStopsThem)
     ++calls;
     return f > 0.3;
   };
-  EXPECT_FALSE(tiled.run(sink, nullptr, parallel, gls::Backend::CPU, report));
+  EXPECT_FALSE(tiled.run(sink, nullptr, parallel, report));
   EXPECT_LT(calls, seen.size());
 }
 
@@ -341,7 +341,7 @@ TEST(TiledScaleSpace, AFitAroundAFewPointsGivesThemTheWholeRunsSamples)
           sample.neighbors = -1.0;
         }
         gls::RunReport report;
-        ASSERT_TRUE(around.run(sink, some ? &asked : nullptr, s.parallel, gls::Backend::CPU, report));
+        ASSERT_TRUE(around.run(sink, some ? &asked : nullptr, s.parallel, report));
         for (std::size_t i = 0; i < c.size(); ++i)
         {
           const bool fed = some ? std::find(asked.begin(), asked.end(), i) != asked.end()
@@ -369,6 +369,6 @@ TEST(TiledScaleSpace, AFitAroundAFewPointsGivesThemTheWholeRunsSamples)
     c.points.data(), c.normals.data(), c.size(), c.size(), s, std::vector<std::uint64_t>());
   CollectingSink sink(c.size(), s.scales.size());
   gls::RunReport report;
-  EXPECT_TRUE(none.run(sink, nullptr, s.parallel, gls::Backend::CPU, report));
+  EXPECT_TRUE(none.run(sink, nullptr, s.parallel, report));
   EXPECT_EQ(none.largestTile(), 0u);
 }

@@ -103,13 +103,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   settings.scales = scales;
   settings.minNeighbors = 1 + in.byte() % 6;
   settings.parallel.threads = 1;
-  gls::ScaleSpaceEngine engine(xyz.data(), (in.byte() & 1) ? nr.normals.data() : nrm.data(), n, settings);
+  const double* normals = (in.byte() & 1) ? nr.normals.data() : nrm.data();
+  gls::ScaleSpaceEngine engine(xyz.data(), normals, n, settings);
+  settings.method = gls::EvaluationMethod::PerScale;
+  gls::ScaleSpaceEngine reference(xyz.data(), normals, n, settings);
   Sink onePass, perScale;
   onePass.S = perScale.S = scales.size();
   onePass.samples.resize(n * scales.size());
   perScale.samples.resize(n * scales.size());
   engine.run(onePass);
-  engine.run(perScale, nullptr, gls::EvaluationMethod::PerScale);
+  reference.run(perScale);
   std::vector<double> nu(scales.size()), pertinent(scales.size());
   for (std::size_t i = 0; i < n; ++i)
   {

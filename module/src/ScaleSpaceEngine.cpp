@@ -1,9 +1,9 @@
 #include "gls/ScaleSpaceEngine.h"
 
+#include "SampleEvaluators.h"
+
 #include "gls/KeySort.h"
-#include "gls/MultiresolutionKernel.h"
 #include "gls/Numeric.h"
-#include "gls/OnePassKernel.h"
 #include "gls/PointBox.h"
 #include "gls/PointScaleSpace.h"
 #include "gls/ScaleSampling.h"
@@ -15,14 +15,6 @@ namespace gls
 {
 namespace
 {
-
-/// The fewest points per chunk of a multi-resolution run on the CPU (ParallelOptions::chunk): each chunk's first point
-/// walks anew. Measured on the bunny at 3M points (2 threads): 53,900 far walks and 203,500 walks with 4096 against
-/// 64,500 and 213,500 with 256; a chunk of 4096 points still takes well under a second.
-constexpr std::size_t kMultiresolutionChunk = 4096;
-
-/// The fewest chunks per thread that a multi-resolution run's larger chunks leave (the load's balance at the end).
-constexpr std::size_t kChunksPerThread = 8;
 
 /// A multi-resolution run given fewer than 1 / kSampleFraction of the points takes them in pyramid order.
 constexpr std::size_t kSampleFraction = 4;
@@ -124,6 +116,46 @@ ScaleSpaceEngine::ScaleSpaceEngine(const double* points, const double* normals, 
     this->Order.assign(g.ids, g.ids + g.count);
   }
   this->Order.insert(this->Order.end(), rest.begin(), rest.end());
+  this->chooseEvaluators();
+}
+
+ScaleSpaceEngine::~ScaleSpaceEngine() = default;
+ScaleSpaceEngine::ScaleSpaceEngine(ScaleSpaceEngine&&) noexcept = default;
+ScaleSpaceEngine& ScaleSpaceEngine::operator=(ScaleSpaceEngine&&) noexcept = default;
+
+void ScaleSpaceEngine::chooseEvaluators()
+{
+  const EvaluatorBasis basis{ this->binning(), this->Settings.minNeighbors };
+  const bool multiresolution = this->Settings.evaluation == Evaluation::Multiresolution;
+  if (multiresolution)
+  {
+    this->Cpu = makeMultiresolutionEvaluator(this->Pyramid.view(), basis);
+  }
+  else if (this->Settings.method == EvaluationMethod::PerScale)
+  {
+    this->Cpu = makePerScaleEvaluator(this->Grid.view(), basis);
+  }
+  else
+  {
+    this->Cpu = makeOnePassEvaluator(this->Grid.view(), basis);
+  }
+  // The one place the device is chosen, or the CPU instead with the reason.
+  if (this->Settings.backend == Backend::CPU)
+  {
+    return;
+  }
+  if (!multiresolution && this->Settings.method != EvaluationMethod::OnePass)
+  {
+    this->DeviceRefusal = "the per-scale reference evaluation runs on the CPU only";
+    return;
+  }
+  if (!cudaAvailability().usable)
+  {
+    this->DeviceRefusal = cudaAvailability().reason;
+    return;
+  }
+  this->Device = makeCudaEvaluator(this->Grid.view(), multiresolution ? &this->Pyramid.view() : nullptr,
+    this->Pyramid.nodeCount(), this->Pyramid.cellCount(), basis, this->Settings.deviceChunkLimit);
 }
 
 PyramidLayout ScaleSpaceEngine::pyramidLayout(
@@ -191,61 +223,8 @@ ScaleBinning ScaleSpaceEngine::binning() const
   return b;
 }
 
-bool ScaleSpaceEngine::runOnDevice(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-  const std::uint64_t* slots, const ParallelOptions& options, std::string& reason, bool& aborted) const
-{
-  aborted = false;
-  const int S = static_cast<int>(this->Settings.scales.size());
-  CudaScaleSpace device;
-  const bool prepared = this->Settings.evaluation == Evaluation::Multiresolution
-    ? device.prepare(this->Pyramid.view(), this->Pyramid.nodeCount(), this->Pyramid.cellCount(), this->binning(),
-        this->Settings.minNeighbors, reason)
-    : device.prepare(this->Grid.view(), this->binning(), this->Settings.minNeighbors, reason);
-  if (!prepared)
-  {
-    return false;
-  }
-  std::size_t chunk = device.chunkCapacity();
-  if (this->Settings.deviceChunkLimit > 0)
-  {
-    chunk = std::min(chunk, this->Settings.deviceChunkLimit);
-  }
-  std::vector<Vec3> positions;
-  std::vector<ScaleSample> samples;
-  const Vec3* sorted = this->sortedPositions();
-  const std::size_t sortedCount = this->sortedCount();
-  ParallelOptions feed;
-  feed.threads = options.threads;
-  for (std::size_t begin = 0; begin < orderSize; begin += chunk)
-  {
-    const std::size_t count = std::min(chunk, orderSize - begin);
-    positions.resize(count);
-    samples.resize(count * static_cast<std::size_t>(S));
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      positions[i] = this->positionInSlot(slots ? slots[begin + i] : begin + i, sorted, sortedCount);
-    }
-    if (!device.evaluate(positions.data(), count, samples.data(), reason))
-    {
-      return false;
-    }
-    parallelFor(count, feed, [&](std::size_t b, std::size_t e, int thread) {
-      for (std::size_t i = b; i < e; ++i)
-      {
-        sink.consume(order[begin + i], samples.data() + i * S, thread);
-      }
-    });
-    if (options.progress && options.progress(static_cast<double>(begin + count) / orderSize))
-    {
-      aborted = true;
-      return false;
-    }
-  }
-  return true;
-}
-
-bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, EvaluationMethod method,
-  const ParallelOptions* parallel, Backend backend, RunReport* report) const
+bool ScaleSpaceEngine::run(
+  ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const ParallelOptions* parallel, RunReport* report) const
 {
   if (this->BuildAborted)
   {
@@ -257,18 +236,42 @@ bool ScaleSpaceEngine::run(ScaleSampleSink& sink, const std::vector<std::uint64_
   {
     this->orderGivenIds(*ids, options.threads, givenOrder, givenSlots);
   }
-  const std::uint64_t* order = ids ? givenOrder.data() : this->Order.data();
-  const std::uint64_t* slots = ids ? givenSlots.data() : nullptr;
-  const std::size_t orderSize = ids ? ids->size() : this->Order.size();
+  const RunPoints points = ids ? this->pointsOfRun(givenOrder.data(), ids->size(), givenSlots.data())
+                               : this->pointsOfRun(this->Order.data(), this->Order.size(), nullptr);
   RunReport local;
   RunReport& r = report ? *report : local;
   r = RunReport();
+  r.fallbackReason = this->DeviceRefusal;
   bool aborted = false;
-  if (this->runOnDeviceIfAsked(sink, order, orderSize, slots, method, options, backend, r, aborted))
+  std::string failure;
+  if (this->Device)
   {
-    return true;
+    if (this->Device->run(points, sink, options, aborted, failure))
+    {
+      r.used = this->Device->backend();
+      return true;
+    }
+    if (aborted)
+    {
+      return false;
+    }
+    r.fallbackReason = "CUDA failed (" + failure + ")";
   }
-  return !aborted && this->runOnCpu(sink, order, orderSize, slots, method, options);
+  r.used = Backend::CPU;
+  return this->Cpu->run(points, sink, options, aborted, failure);
+}
+
+RunPoints ScaleSpaceEngine::pointsOfRun(
+  const std::uint64_t* order, std::size_t count, const std::uint64_t* slots) const
+{
+  RunPoints points;
+  points.order = order;
+  points.count = count;
+  points.slots = slots;
+  points.sorted = this->sortedPositions();
+  points.sortedCount = this->sortedCount();
+  points.rest = this->RestPositions.data();
+  return points;
 }
 
 const Vec3* ScaleSpaceEngine::sortedPositions() const
@@ -343,12 +346,11 @@ void ScaleSpaceEngine::orderGivenIds(const std::vector<std::uint64_t>& ids, int 
   // A sample of the points in pyramid order, so that consecutive walks find their cells in cache: the relative
   // sigma's 20,000 scattered points of a 10M-point cloud (2 threads) took 1.09 s in input order, 0.85 s in this
   // one. (Longer lists come in that order already: the owned points of a distributed piece.)
-  const Vec3* sorted = this->sortedPositions();
-  const std::size_t sortedCount = this->sortedCount();
+  const RunPoints points = this->pointsOfRun(ids.data(), ids.size(), given.data());
   KeyedIndices byKey(ids.size());
   for (std::size_t k = 0; k < ids.size(); ++k)
   {
-    byKey[k] = { this->Pyramid.finestKey(this->positionInSlot(given[k], sorted, sortedCount)), k };
+    byKey[k] = { this->Pyramid.finestKey(points.positionAt(k)), k };
   }
   sortByKey(byKey, threads);
   order.resize(ids.size());
@@ -360,138 +362,19 @@ void ScaleSpaceEngine::orderGivenIds(const std::vector<std::uint64_t>& ids, int 
   }
 }
 
-bool ScaleSpaceEngine::runOnDeviceIfAsked(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-  const std::uint64_t* slots, EvaluationMethod method, const ParallelOptions& options, Backend backend, RunReport& r,
-  bool& aborted) const
-{
-  // The one place that falls back to the CPU: r.fallbackReason says why (empty when the CPU was asked for).
-  r.used = Backend::CPU;
-  aborted = false;
-  if (backend == Backend::CPU)
-  {
-    return false;
-  }
-  if (method != EvaluationMethod::OnePass && this->Settings.evaluation != Evaluation::Multiresolution)
-  {
-    r.fallbackReason = "the per-scale reference evaluation runs on the CPU only";
-    return false;
-  }
-  if (!cudaAvailability().usable)
-  {
-    r.fallbackReason = cudaAvailability().reason;
-    return false;
-  }
-  if (this->runOnDevice(sink, order, orderSize, slots, options, r.fallbackReason, aborted))
-  {
-    r.used = Backend::CUDA;
-    return true;
-  }
-  if (!aborted)
-  {
-    r.fallbackReason = "CUDA failed (" + r.fallbackReason + ")";
-  }
-  return false;
-}
-
-template <typename EvaluateAt>
-bool ScaleSpaceEngine::forEachPoint(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-  const std::uint64_t* slots, const ParallelOptions& cpu, const EvaluateAt& evaluateAt) const
-{
-  const std::size_t S = this->Settings.scales.size();
-  // A run in the engine's own order reads its positions from the grid's or the pyramid's sorted copy in that order
-  // (through a copy in input order, each point cost a cache miss: 2% of a 10M-point run).
-  const Vec3* sorted = this->sortedPositions();
-  const std::size_t sortedCount = this->sortedCount();
-  std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(resolveThreadCount(cpu.threads)));
-  return parallelFor(orderSize, cpu, [&](std::size_t begin, std::size_t end, int thread) {
-    std::vector<ScaleSample>& out = samples[static_cast<std::size_t>(thread)];
-    out.resize(S);
-    for (std::size_t o = begin; o < end; ++o)
-    {
-      const std::uint64_t id = order[o];
-      const Vec3& p = this->positionInSlot(slots ? slots[o] : o, sorted, sortedCount);
-      if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
-      {
-        for (std::size_t k = 0; k < S; ++k)
-        {
-          out[k] = invalidSample<double>(0.0);
-        }
-      }
-      else
-      {
-        evaluateAt(p, thread, out.data());
-      }
-      sink.consume(id, out.data(), thread);
-    }
-  });
-}
-
-bool ScaleSpaceEngine::runOnCpu(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-  const std::uint64_t* slots, EvaluationMethod method, const ParallelOptions& options) const
-{
-  const std::size_t threads = static_cast<std::size_t>(resolveThreadCount(options.threads));
-  const double minNeighbors = this->Settings.minNeighbors;
-  const ScaleBinning binning = this->binning();
-  ParallelOptions cpu = options;
-  if (this->Settings.evaluation == Evaluation::Multiresolution)
-  {
-    // Consecutive points in pyramid order share their walks (MultiresolutionScratch keeps a thread's last ones), and
-    // a chunk's first point walks anew: at 256 points per chunk that added 16% more far walks at 3M points. At least
-    // kChunksPerThread chunks per thread, so that a small run (a sample of scattered points) stays balanced.
-    const std::size_t balanced = orderSize / (kChunksPerThread * threads);
-    cpu.chunk = std::max(cpu.chunk, std::min(kMultiresolutionChunk, balanced));
-    std::vector<MultiresolutionScratch> scratch(threads);
-    const MultiresolutionView& v = this->Pyramid.view();
-    return this->forEachPoint(sink, order, orderSize, slots, cpu, [&](const Vec3& p, int t, ScaleSample* out) {
-      evaluateAllScalesMultiresolutionOnCpu(v, p, binning, minNeighbors, scratch[static_cast<std::size_t>(t)], out);
-    });
-  }
-  const GridView& g = this->Grid.view();
-  if (method == EvaluationMethod::OnePass)
-  {
-    // Each thread's bins, allocated by the thread that uses them (from its own heap arena): allocated here, the exact
-    // pass on the bunny at 1M points (2 threads, 10 scales) took 19.9-20.0 s, against 18.2-18.6 s.
-    std::vector<std::vector<Moments>> bins(threads);
-    const std::size_t S = this->Settings.scales.size();
-    return this->forEachPoint(sink, order, orderSize, slots, cpu, [&](const Vec3& p, int t, ScaleSample* out) {
-      std::vector<Moments>& b = bins[static_cast<std::size_t>(t)];
-      if (b.size() != S)
-      {
-        b.resize(S);
-      }
-      evaluateAllScalesOnCpu(g, p, binning, minNeighbors, b.data(), out);
-    });
-  }
-  const std::vector<double>& scales = this->Settings.scales;
-  return this->forEachPoint(sink, order, orderSize, slots, cpu, [&](const Vec3& p, int, ScaleSample* out) {
-    for (std::size_t k = 0; k < scales.size(); ++k)
-    {
-      out[k] = evaluateOneScale(g, p, scales[k], minNeighbors);
-    }
-  });
-}
-
 void ScaleSpaceEngine::evaluatePosition(const Vec3& p, std::vector<ScaleSample>& out) const
 {
-  const int S = static_cast<int>(this->Settings.scales.size());
-  out.resize(static_cast<std::size_t>(S));
-  if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
+  const std::size_t S = this->Settings.scales.size();
+  out.resize(S);
+  if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)) || !this->Cpu)
   {
-    for (int k = 0; k < S; ++k)
+    for (std::size_t k = 0; k < S; ++k)
     {
       out[k] = invalidSample<double>(0.0);
     }
     return;
   }
-  if (this->Settings.evaluation == Evaluation::Multiresolution)
-  {
-    MultiresolutionScratch scratch;
-    evaluateAllScalesMultiresolutionOnCpu(
-      this->Pyramid.view(), p, this->binning(), this->Settings.minNeighbors, scratch, out.data());
-    return;
-  }
-  std::vector<Moments> b(static_cast<std::size_t>(S));
-  evaluateAllScalesOnCpu(this->Grid.view(), p, this->binning(), this->Settings.minNeighbors, b.data(), out.data());
+  this->Cpu->evaluatePosition(p, out.data());
 }
 
 } // namespace gls

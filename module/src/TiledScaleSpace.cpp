@@ -260,13 +260,13 @@ void TiledScaleSpace::collect(
 }
 
 bool TiledScaleSpace::run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
-  const ParallelOptions& parallel, Backend backend, RunReport& report) const
+  const ParallelOptions& parallel, RunReport& report) const
 {
   report = RunReport();
   if (this->Whole)
   {
     const std::vector<std::uint64_t>* order = ids || this->WholeOwnedOrder.empty() ? ids : &this->WholeOwnedOrder;
-    return this->Whole->run(sink, order, EvaluationMethod::OnePass, &parallel, backend, &report);
+    return this->Whole->run(sink, order, &parallel, &report);
   }
   if (this->AroundSelected)
   {
@@ -279,13 +279,13 @@ bool TiledScaleSpace::run(ScaleSampleSink& sink, const std::vector<std::uint64_t
       }
     }
     return this->runMembers(
-      this->SelectedMembers, this->SelectedOwn, &requested, sink, parallel, backend, report, true);
+      this->SelectedMembers, this->SelectedOwn, &requested, sink, parallel, report, true);
   }
   const double tiles = static_cast<double>(this->Tiles.count());
   for (std::size_t k = 0; k < this->Tiles.count(); ++k)
   {
     const ParallelOptions stage = progressStage(parallel, k / tiles, (k + 1) / tiles);
-    if (!this->runTile(k, sink, ids, stage, backend, report))
+    if (!this->runTile(k, sink, ids, stage, report))
     {
       return false;
     }
@@ -294,7 +294,7 @@ bool TiledScaleSpace::run(ScaleSampleSink& sink, const std::vector<std::uint64_t
 }
 
 bool TiledScaleSpace::runTile(std::size_t k, ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
-  const ParallelOptions& parallel, Backend backend, RunReport& report) const
+  const ParallelOptions& parallel, RunReport& report) const
 {
   std::vector<std::uint64_t> requested; // the requested points this tile holds
   if (ids)
@@ -314,12 +314,12 @@ bool TiledScaleSpace::runTile(std::size_t k, ScaleSampleSink& sink, const std::v
   std::vector<std::uint64_t> members;
   std::vector<unsigned char> own;
   this->members(k, members, own);
-  return this->runMembers(members, own, ids ? &requested : nullptr, sink, parallel, backend, report, k == 0);
+  return this->runMembers(members, own, ids ? &requested : nullptr, sink, parallel, report, k == 0);
 }
 
 bool TiledScaleSpace::runMembers(const std::vector<std::uint64_t>& members, const std::vector<unsigned char>& own,
   const std::vector<std::uint64_t>* requested, ScaleSampleSink& sink, const ParallelOptions& parallel,
-  Backend backend, RunReport& report, bool first) const
+  RunReport& report, bool first) const
 {
   // The evaluation list, in the engine's indices: the requested points, or all the own points.
   std::vector<std::uint64_t> local;
@@ -369,7 +369,7 @@ bool TiledScaleSpace::runMembers(const std::vector<std::uint64_t>& members, cons
   const ParallelOptions evaluation = progressStage(parallel, kBuildShare, 1.0);
   RunReport partReport;
   const bool completed =
-    engine->run(toCloud, &local, EvaluationMethod::OnePass, &evaluation, backend, &partReport);
+    engine->run(toCloud, &local, &evaluation, &partReport);
   if (first || partReport.used != Backend::CUDA)
   {
     report = partReport; // a fallback on any part is reported

@@ -14,6 +14,13 @@ enum class Evaluation
   Multiresolution = 1 ///< cells of edge <= Accuracy * distance taken whole (MultiresolutionTakeWhole.h)
 };
 
+/// How the exact evaluation fits: the method of reference, or the one pass that every evaluation is tested against it.
+enum class EvaluationMethod
+{
+  OnePass,   ///< all scales from one gather (the moment formulation); the default
+  PerScale   ///< one ball query and one weighted fit per scale (reference and benchmark baseline; CPU only)
+};
+
 /// The default Accuracy (epsilon) of the multi-resolution evaluation (docs/math.md gives the measurements).
 constexpr double kDefaultAccuracy = 0.5;
 

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,14 +48,21 @@ struct MultiresolutionSettings
   double high[3] = { 0.0, 0.0, 0.0 };
 };
 
+/// What an engine computes and how: the scales, the evaluation (exact or multi-resolution, with its accuracy in
+/// `multiresolution`), the exact evaluation's method and the backend, all chosen once when the engine is built.
 struct ScaleSpaceSettings
 {
   std::vector<double> scales;   ///< strictly increasing absolute scales (see checkScaleList)
   double minNeighbors = 6.0;    ///< fits with fewer neighbours in the ball are invalid (3 suits 2D curves)
   ParallelOptions parallel;
-  std::size_t deviceChunkLimit = 0; ///< CUDA: at most this many points per device pass (0 = as memory allows)
   Evaluation evaluation = Evaluation::Exact; ///< how each ball's moments are evaluated
   MultiresolutionSettings multiresolution;
+  /// The exact evaluation's method (a multi-resolution engine runs its own pass whatever this says).
+  EvaluationMethod method = EvaluationMethod::OnePass;
+  /// Where the samples are computed: Auto or CUDA run the one pass on the CUDA device when one is usable, and the
+  /// engine falls back to the CPU otherwise (or on any CUDA error), saying why (RunReport).
+  Backend backend = Backend::CPU;
+  std::size_t deviceChunkLimit = 0; ///< CUDA: at most this many points per device pass (0 = as memory allows)
   /// The exact evaluation's grid lattice when given (a spatial tile of a larger cloud takes the whole cloud's, so that
   /// its sums equal the whole run's bit for bit: TiledScaleSpace); else exactGridLattice of the points.
   bool haveGridLattice = false;
@@ -78,12 +86,12 @@ struct RunReport
   std::string fallbackReason;
 };
 
-enum class EvaluationMethod
-{
-  OnePass,   ///< all scales from one gather (the moment formulation); the default
-  PerScale   ///< one ball query and one weighted fit per scale (reference and benchmark baseline)
-};
+class SampleEvaluator;
+class CpuSampleEvaluator;
+struct RunPoints;
 
+/// The CPU or CUDA engine of the scale space: built once over a cloud, it evaluates any of its points (or any
+/// position) at every scale with the evaluator its settings choose (module/src/SampleEvaluators.h).
 class ScaleSpaceEngine
 {
 public:
@@ -95,6 +103,9 @@ public:
   /// engine is left empty (buildAborted()).
   ScaleSpaceEngine(const double* points, const double* normals, std::size_t count, ScaleSpaceSettings settings,
     const std::function<void()>& inputsCopied = nullptr);
+  ~ScaleSpaceEngine();
+  ScaleSpaceEngine(ScaleSpaceEngine&&) noexcept;
+  ScaleSpaceEngine& operator=(ScaleSpaceEngine&&) noexcept;
 
   /// The most memory (bytes) an engine over these points holds at once, its build's scratch included, for a budget
   /// checked before it is built: its positions and order, and its grid (exact) or its pyramid (multi-resolution: the
@@ -118,16 +129,15 @@ public:
   const UninitializedArray<std::uint64_t>& evaluationOrder() const { return this->Order; }
 
   /// Evaluates the given points (all when ids is null) and feeds the sink, in an order of the engine's choosing (a
-  /// multi-resolution engine takes a few given points, under a quarter of them, in pyramid order). A multi-resolution
-  /// engine runs its pass whatever `method` says (the per-scale reference is of the exact evaluation). `parallel`
-  /// overrides the settings' threads and progress callback for this run. `backend` Auto or CUDA runs the one-pass
-  /// method on the CUDA device when one is usable and falls back to the CPU otherwise (or on any CUDA error), saying
-  /// why in `report`. Returns false if aborted.
+  /// multi-resolution engine takes a few given points, under a quarter of them, in pyramid order), with the
+  /// evaluator of its settings: on the CUDA device when the backend asks for it and the device can run it, else on
+  /// the CPU, `report` saying which and, when the device was asked for but not used, why. `parallel` overrides the
+  /// settings' threads and progress callback for this run. Returns false if aborted.
   bool run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids = nullptr,
-    EvaluationMethod method = EvaluationMethod::OnePass, const ParallelOptions* parallel = nullptr,
-    Backend backend = Backend::CPU, RunReport* report = nullptr) const;
+    const ParallelOptions* parallel = nullptr, RunReport* report = nullptr) const;
 
-  /// Evaluates an arbitrary position (not necessarily a data point) at all scales, on the calling thread.
+  /// Evaluates an arbitrary position (not necessarily a data point) at all scales, on the calling thread (the CPU
+  /// evaluator of the settings).
   void evaluatePosition(const Vec3& p, std::vector<ScaleSample>& out) const;
 
 private:
@@ -145,33 +155,15 @@ private:
   /// 1 / kSampleFraction of the points) takes it in pyramid order, any other run as given.
   void orderGivenIds(const std::vector<std::uint64_t>& ids, int threads, UninitializedArray<std::uint64_t>& order,
     UninitializedArray<std::uint64_t>& slots) const;
+  /// The points of a run (their ids, and the slots of a caller's order: null for the engine's own), their positions
+  /// read from the sorted copy and RestPositions.
+  RunPoints pointsOfRun(const std::uint64_t* order, std::size_t count, const std::uint64_t* slots) const;
   /// The points of the grid or pyramid, in their sorted order: Order's first sortedCount() ids.
   const Vec3* sortedPositions() const;
   std::size_t sortedCount() const;
-  /// The position of the point at index `slot` of Order: the sorted copy's, or else RestPositions'.
-  const Vec3& positionInSlot(std::uint64_t slot, const Vec3* sorted, std::size_t sortedCount) const
-  {
-    return slot < sortedCount ? sorted[slot] : this->RestPositions[slot - sortedCount];
-  }
-  /// The run on the CUDA device when `backend` asks for it and it can run there: true when it ran there (r.used
-  /// CUDA); false to run on the CPU, with r.fallbackReason saying why unless the CPU was asked for, or with `aborted`
-  /// set when the progress callback asked to stop.
-  bool runOnDeviceIfAsked(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-    const std::uint64_t* slots, EvaluationMethod method, const ParallelOptions& options, Backend backend, RunReport& r,
-    bool& aborted) const;
-  /// The run on the CPU, with the evaluation chosen once for every point (multi-resolution, one pass, or per scale).
-  bool runOnCpu(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-    const std::uint64_t* slots, EvaluationMethod method, const ParallelOptions& options) const;
-  /// Feeds the sink with every point of `order` in parallel: evaluateAt(p, thread, samples) for a finite position,
-  /// invalid samples for another. `slots`: the slot of each point of a caller's order (orderGivenIds); null for the
-  /// engine's own order (the k-th point's slot is k).
-  template <typename EvaluateAt>
-  bool forEachPoint(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-    const std::uint64_t* slots, const ParallelOptions& cpu, const EvaluateAt& evaluateAt) const;
-  /// The CUDA run: false with `reason` on a CUDA failure (nothing was fed to the sink), false with `aborted` set
-  /// when the progress callback asked to stop.
-  bool runOnDevice(ScaleSampleSink& sink, const std::uint64_t* order, std::size_t orderSize,
-    const std::uint64_t* slots, const ParallelOptions& options, std::string& reason, bool& aborted) const;
+  /// The evaluators of the settings, once the grid or pyramid is built: the CPU's, and the device's when the backend
+  /// asks for one and it can run (else DeviceRefusal says why).
+  void chooseEvaluators();
 
   ScaleSpaceSettings Settings;
   std::vector<double> SquaredScales;
@@ -184,6 +176,9 @@ private:
   NeighborGrid Grid;                    ///< exact evaluation
   MultiresolutionCloud Pyramid;         ///< multi-resolution evaluation
   bool BuildAborted = false;
+  std::unique_ptr<CpuSampleEvaluator> Cpu; ///< always (the fallback of the device's)
+  std::unique_ptr<SampleEvaluator> Device; ///< when the backend asks for the device and it can run the settings
+  std::string DeviceRefusal;               ///< why the device was asked for but not chosen (empty otherwise)
 };
 
 } // namespace gls

@@ -57,9 +57,10 @@ public:
 
   /// ScaleSpaceEngine::run over the evaluated points (all when ids is null; ids are cloud indices below
   /// `evaluated`, and among the selected points when some were): each tile's engine built, run and freed in turn,
-  /// progress over all tiles through parallel.progress. The sink sees cloud indices. Returns false if aborted.
+  /// progress over all tiles through parallel.progress, each engine with the settings' evaluator (backend
+  /// included). The sink sees cloud indices. Returns false if aborted.
   bool run(ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const ParallelOptions& parallel,
-    Backend backend, RunReport& report) const;
+    RunReport& report) const;
 
 private:
   /// The members both public constructors set.
@@ -69,13 +70,13 @@ private:
   /// its grid or the frame of its pyramid, and the reach of a point's neighbourhood.
   void layOnTheWholeCloud();
   bool runTile(std::size_t k, ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
-    const ParallelOptions& parallel, Backend backend, RunReport& report) const;
+    const ParallelOptions& parallel, RunReport& report) const;
   /// One engine over `members` (cloud indices, increasing) run on the requested points (cloud indices among the
   /// members; those with own[j], in the engine's order, when null). `first`: its backend report replaces `report`
   /// (a later part's only when it fell back).
   bool runMembers(const std::vector<std::uint64_t>& members, const std::vector<unsigned char>& own,
     const std::vector<std::uint64_t>* requested, ScaleSampleSink& sink, const ParallelOptions& parallel,
-    Backend backend, RunReport& report, bool first) const;
+    RunReport& report, bool first) const;
   /// The one membership rule of the tiles: 1 when cloud point i is evaluated in tile k (an evaluated point in its
   /// box), 2 when it is only a neighbour there (an admitted point within the ghost reach of the box), 0 otherwise.
   int membership(std::size_t k, std::size_t i) const;
