@@ -53,14 +53,25 @@ bool feedEachPoint(const RunPoints& points, std::size_t S, ScaleSampleSink& sink
   });
 }
 
-class OnePassEvaluator : public CpuSampleEvaluator
+/// What the exact evaluators read: the grid and the basis.
+class GridEvaluator : public CpuSampleEvaluator
 {
 public:
-  OnePassEvaluator(const GridView& grid, const EvaluatorBasis& basis)
+  GridEvaluator(const GridView& grid, const EvaluatorBasis& basis)
     : Grid(grid)
     , Basis(basis)
   {
   }
+
+protected:
+  GridView Grid;
+  EvaluatorBasis Basis;
+};
+
+class OnePassEvaluator : public GridEvaluator
+{
+public:
+  using GridEvaluator::GridEvaluator;
 
   bool run(const RunPoints& points, ScaleSampleSink& sink, const ParallelOptions& options, bool& aborted,
     std::string&) const override
@@ -85,20 +96,12 @@ public:
     std::vector<Moments> b(this->Basis.scaleCount());
     evaluateAllScalesOnCpu(this->Grid, p, this->Basis.binning, this->Basis.minNeighbors, b.data(), out);
   }
-
-private:
-  GridView Grid;
-  EvaluatorBasis Basis;
 };
 
-class PerScaleEvaluator : public CpuSampleEvaluator
+class PerScaleEvaluator : public GridEvaluator
 {
 public:
-  PerScaleEvaluator(const GridView& grid, const EvaluatorBasis& basis)
-    : Grid(grid)
-    , Basis(basis)
-  {
-  }
+  using GridEvaluator::GridEvaluator;
 
   bool run(const RunPoints& points, ScaleSampleSink& sink, const ParallelOptions& options, bool& aborted,
     std::string&) const override
@@ -115,10 +118,6 @@ public:
       out[k] = evaluateOneScale(this->Grid, p, this->Basis.binning.scales[k], this->Basis.minNeighbors);
     }
   }
-
-private:
-  GridView Grid;
-  EvaluatorBasis Basis;
 };
 
 class MultiresolutionEvaluator : public CpuSampleEvaluator
