@@ -213,9 +213,11 @@ bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std:
   });
 }
 
-double vtkGLSSampleSource::EngineBytes(const vtkGLSCloud& cloud, const gls::ScaleSpaceSettings& settings)
+double vtkGLSSampleSource::EngineBytes(
+  const vtkGLSCloud& cloud, const gls::ScaleSpaceSettings& settings, bool releasing)
 {
-  return gls::ScaleSpaceEngine::footprint(cloud.Points.data(), cloud.Normals.data(), cloud.Size(), settings);
+  const double inputs = releasing ? static_cast<double>(cloud.Size()) * vtkGLSCloud::BytesPerPoint : 0.0;
+  return gls::ScaleSpaceEngine::footprint(cloud.Points.data(), cloud.Normals.data(), cloud.Size(), settings, inputs);
 }
 
 double vtkGLSSampleSource::EngineShareBytes(

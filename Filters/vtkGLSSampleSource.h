@@ -53,15 +53,17 @@ public:
 
   /// Feeds the sink with the samples of the given points of this piece (all of them when ids is null) on
   /// parallel.threads threads, reporting progress through parallel.progress. A fit runs on the backend of its
-  /// settings and says in `report` where it ran. A stored sample is valid when every value read back is finite; the values not read back
-  /// are NaN. Returns false if aborted.
+  /// settings and says in `report` where it ran. A stored sample is valid when every value read back is finite; the
+  /// values not read back are NaN. Returns false if aborted.
   bool Feed(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const gls::ParallelOptions& parallel,
     gls::RunReport& report) const;
 
   /// Bytes of the buffers of an engine over the cloud under these settings (gls::ScaleSpaceEngine::footprint, its
   /// pyramid counted from the points), besides the points and normals it is given (vtkGLSCloud::BytesPerPoint each),
-  /// and of its threads' scratch: its share of `points` points (ghosts included) when it runs on a tile of that size.
-  static double EngineBytes(const vtkGLSCloud& cloud, const gls::ScaleSpaceSettings& settings);
+  /// or with them when `releasing` (FitWholeReleasing: the cloud's coordinates are freed once the engine holds its
+  /// copies); and of its threads' scratch: its share of `points` points (ghosts included) when it runs on a tile of
+  /// that size.
+  static double EngineBytes(const vtkGLSCloud& cloud, const gls::ScaleSpaceSettings& settings, bool releasing);
   static double EngineShareBytes(
     double wholeEngineBytes, std::size_t wholePoints, std::size_t points, std::size_t S, int threads);
 

@@ -259,12 +259,14 @@ bool vtkGLSScaleFilterBase::ChooseTiles(const vtkGLSRun& run, const gls::ScaleSp
   {
     return true;
   }
-  const double whole = vtkGLSSampleSource::EngineBytes(run.Cloud, settings);
-  if (fixed + cloud + vtkGLSSampleSource::EngineShareBytes(whole, run.Cloud.Size(), run.Cloud.Size(), S, threads) <=
-    budget)
+  // One engine over the whole cloud frees the cloud's coordinates once it holds its copies (FitWholeReleasing);
+  // tiles read them while they are built.
+  const double releasing = vtkGLSSampleSource::EngineBytes(run.Cloud, settings, true);
+  if (fixed + vtkGLSSampleSource::EngineShareBytes(releasing, run.Cloud.Size(), run.Cloud.Size(), S, threads) <= budget)
   {
     return true;
   }
+  const double whole = vtkGLSSampleSource::EngineBytes(run.Cloud, settings, false);
   // Twice the tiles until the largest (with its ghost band) fits, while cutting still makes tiles clearly smaller.
   double need = 0.0;
   std::size_t previous = run.Cloud.Size();

@@ -1,6 +1,6 @@
 // ScaleSpaceEngine::footprint, the memory a budget counts before an engine is built, against the memory of the engine
 // then built (its arrays' capacity): never below it, and close to it, for the exact and the multi-resolution engine
-// on a scan, a sparse random cloud and a plane.
+// on a scan, a sparse random cloud and a plane; and with inputs the caller frees once the sorted copies exist.
 #include "TestClouds.h"
 #include "gls/ScaleSpaceEngine.h"
 
@@ -30,6 +30,16 @@ void expectFootprintCovers(const Cloud& c, const std::vector<double>& scales, co
     EXPECT_GE(estimate, built) << what;
     // The build's scratch (sort keys, normalized normals) on top of what stays, and no more.
     EXPECT_LE(estimate, built + c.size() * 90.0 + 1e6) << what;
+    // A caller that frees its points and normals (48 bytes a point) once the engine has its sorted copies holds them
+    // while the copies are made only: at most their bytes more, and for a pyramid less (its cells come after).
+    const double inputs = 48.0 * c.size();
+    const double releasing = gls::ScaleSpaceEngine::footprint(c.points.data(), c.normals.data(), c.size(), s, inputs);
+    EXPECT_GE(releasing, estimate) << what;
+    EXPECT_LE(releasing, estimate + inputs) << what;
+    if (e == gls::Evaluation::Multiresolution)
+    {
+      EXPECT_LT(releasing, estimate + inputs) << what;
+    }
   }
 }
 

@@ -92,7 +92,7 @@ def _distinct_hashed(points, key):
     """distinct_positions of the rows of `points` hashed by row_keys."""
     count = len(key)
     if count == 0:
-        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int32)
     # The rows whose key another row shares (a few, in a scan): only they can coincide.
     order = np.argsort(key, kind='stable')
     sorted_key = key[order]
@@ -122,7 +122,8 @@ def _distinct_hashed(points, key):
         later_rows, leader_of_later = members[copies], leaders[copies]
         later[later_rows] = True
     first = np.flatnonzero(~later)
-    inverse = np.cumsum(~later, dtype=np.int64) - 1  # a first copy's index among the first copies
+    # A first copy's index among the first copies (32 bits where they fit: 0.4 GB less kept at 10^8 points).
+    inverse = np.cumsum(~later, dtype=np.int32 if count < 2 ** 31 else np.int64) - 1
     inverse[later_rows] = inverse[leader_of_later]
     return first, inverse
 

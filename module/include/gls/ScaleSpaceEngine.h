@@ -108,11 +108,13 @@ public:
   ScaleSpaceEngine& operator=(ScaleSpaceEngine&&) noexcept;
 
   /// The most memory (bytes) an engine over these points holds at once, its build's scratch included, for a budget
-  /// checked before it is built: its positions and order, and its grid (exact) or its pyramid (multi-resolution: the
-  /// pyramid's nodes counted from the points' sorted finest keys, 0.65 s at 10M points where the build takes 2.2 s).
+  /// checked before it is built: its order and sorted copies, and its grid's index (exact) or its pyramid
+  /// (multi-resolution: the pyramid's nodes counted from the points' sorted finest keys, 0.65 s at 10M points where
+  /// the build takes 2.2 s). `inputBytes`: what the caller holds for the points and normals and frees when the engine
+  /// calls inputsCopied (0 when it keeps them): counted while the sorted copies are made, not once the cells are.
   /// At least memoryBytes() of the engine built (tested).
-  static double footprint(
-    const double* points, const double* normals, std::size_t count, const ScaleSpaceSettings& settings);
+  static double footprint(const double* points, const double* normals, std::size_t count,
+    const ScaleSpaceSettings& settings, double inputBytes = 0.0);
   /// The bytes the built engine's arrays hold (their capacity).
   double memoryBytes() const;
 
