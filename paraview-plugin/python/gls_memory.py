@@ -7,14 +7,15 @@ the fused features and summaries, the compact output) and, with --per-scale, eve
 import math
 
 # The default path's peak resident memory, whatever the number of scales: FIXED_BYTES plus DEFAULT_BYTES_PER_POINT a
-# point. Measured on the bunny sampled by area (VmHWM of each stage), eighth session (2026-12-06: the engine keeps no
-# copy of the positions and frees the cloud's once sorted, the filters write float32): the normals and the fused pass
-# both peak at 201 bytes a point beside the 340 MiB of pvpython and ParaView, 2,255 MiB at 10M and 6,101 MiB at 30M
-# (6,094 the fused pass); the estimate is 24% and 10% above, 6% above 984 MiB at 1M (the pictures), and 5% above the
-# 100M extrapolation (19.1 GiB). (Seventh session: 0.78 GiB and 280 bytes a point, the fused pass 274 bytes a point,
-# 8,038 MiB at 30M.)
+# point. Measured on the bunny sampled by area (VmHWM of each stage), eighth session (2026-12-06): the normals and the
+# fused pass both peak at about 201 bytes a point beside the 340 MiB of pvpython and ParaView at 10M and 30M points
+# (2,255 and 6,101 MiB). At 10^8 points more is asked: the normals peaked at 20.4 GiB (with the coincident points'
+# map and copy of the cloud, 2.9 GiB), and the fused pass's own check asks for its outputs and its engine's footprint
+# (158 bytes a point at 10^8 points, 131 at 10^7: the pyramid holds 1.32 nodes a point against 1.04) with a tenth in
+# reserve (FILTER_SHARE): about 23.6 GiB in all. The estimate follows that (250 bytes a point): 3.2, 7.8 and 24.1 GiB
+# at 10M, 30M and 100M points, so that a cloud the fused pass would refuse is refused before any stage runs.
 FIXED_BYTES = 850.0 * 1024.0 ** 2
-DEFAULT_BYTES_PER_POINT = 205.0
+DEFAULT_BYTES_PER_POINT = 250.0
 # With --per-scale: bytes per point and scale on top (the scale space, nu, and their copy in the written file).
 PER_SCALE_BYTES_PER_POINT_SCALE = 240.0
 GIB = 1024.0 ** 3
