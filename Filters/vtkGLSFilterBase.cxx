@@ -28,6 +28,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <sstream>
+#include <unistd.h>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -75,6 +76,7 @@ vtkSmartPointer<vtkCompositeDataIterator> Leaves(vtkCompositeDataSet* composite)
 
 vtkGLSFilterBase::vtkGLSFilterBase()
   : NumberOfThreads(0)
+  , MemoryBudget(0.0)
 {
   this->SetController(vtkMultiProcessController::GetGlobalController());
 }
@@ -145,6 +147,44 @@ int vtkGLSFilterBase::MakeDeclaredOutputs(vtkInformationVector* outputVector)
 void vtkGLSFilterBase::DescribeSettings(std::vector<SettingRange>& settings)
 {
   settings.push_back({ "NumberOfThreads", static_cast<double>(this->NumberOfThreads), 0.0, 1024.0 });
+  settings.push_back({ "MemoryBudget", this->MemoryBudget, 0.0, VTK_DOUBLE_MAX });
+}
+
+double vtkGLSFilterBase::MemoryBudgetBytes() const
+{
+  const double budget = this->MemoryBudget * 1024.0 * 1024.0;
+  if (budget > 0.0)
+  {
+    return budget;
+  }
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && pageSize > 0 ? 0.5 * static_cast<double>(pages) * static_cast<double>(pageSize) : 4e9;
+}
+
+bool vtkGLSFilterBase::AgreeToContinue(const vtkGLSRun& run, bool ok)
+{
+  if (run.Distributed.AllTrue(ok))
+  {
+    return true;
+  }
+  if (ok)
+  {
+    vtkErrorMacro("Stopped: another process of this distributed run failed (see its error).");
+  }
+  return false;
+}
+
+bool vtkGLSFilterBase::CheckMemoryBudget(double needed, const char* what, const char* advice)
+{
+  const double budget = this->MemoryBudgetBytes();
+  if (needed <= budget)
+  {
+    return true;
+  }
+  vtkErrorMacro("Not enough memory budget: " << what << " needs about " << needed / (1024.0 * 1024.0)
+                                             << " MiB, above the budget of " << budget / (1024.0 * 1024.0)
+                                             << " MiB (MemoryBudget; 0 = half of the physical memory). " << advice);
+  return false;
 }
 
 double vtkGLSFilterBase::GetSettingMinimum(const char* name)
@@ -715,5 +755,6 @@ void vtkGLSFilterBase::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "MemoryBudget (MiB): " << this->MemoryBudget << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
 }

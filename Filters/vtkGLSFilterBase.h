@@ -8,9 +8,9 @@
  * whole input -- and hands the run (vtkGLSRun, private) to Execute, which the family bases and the filters
  * implement:
  *
- *     vtkGLSFilterBase               NumberOfThreads, Controller
+ *     vtkGLSFilterBase               NumberOfThreads, MemoryBudget, Controller
  *     |- vtkGLSNormalEstimation
- *     `- vtkGLSFitFilterBase         Normals, ScaleUnits, MinimumNeighbors, MemoryBudget: the cloud to fit
+ *     `- vtkGLSFitFilterBase         Normals, ScaleUnits, MinimumNeighbors: the cloud to fit
  *        |- vtkGLSProjection
  *        `- vtkGLSScaleFilterBase    the scales, Backend: the samples at every scale
  *           |- vtkGLSScaleSpace, vtkGLSMultiScaleDissimilarity
@@ -71,6 +71,17 @@ public:
   ///@}
 
   ///@{
+  /// Memory this filter may allocate for its outputs and scratch, in MiB (0, the default: half of the physical
+  /// memory). Before allocating, the filter estimates what it needs; above the budget it stops with an error that
+  /// says how much it needs and what to change, and computes nothing. A filter that takes scales fits the cloud in
+  /// spatial tiles, one after the other, when its fitting engine alone would not fit: each tile with the points
+  /// within reach of its largest scale, results bit for bit those of one engine (the output field data GLSTiles says
+  /// how many).
+  vtkSetMacro(MemoryBudget, double);
+  vtkGetMacro(MemoryBudget, double);
+  ///@}
+
+  ///@{
   /// The controller of a distributed run (default: the global controller when the filter is created, as ParaView's
   /// pvbatch and pvserver set it). Null or a single process: serial.
   virtual void SetController(vtkMultiProcessController* controller);
@@ -96,6 +107,15 @@ protected:
   /// The filter's range-checked settings: a subclass appends its own to its superclass's (the one place their ranges
   /// are written; the ParaView XML's domains agree, tested).
   virtual void DescribeSettings(std::vector<SettingRange>& settings);
+
+  /// False (with an error naming `needed`, `what` and `advice`) when `needed` bytes exceed the MemoryBudget.
+  bool CheckMemoryBudget(double needed, const char* what, const char* advice);
+
+  /// The MemoryBudget in bytes (0 resolved to half of the physical memory).
+  double MemoryBudgetBytes() const;
+
+  /// False on every rank when `ok` is false on some rank; a rank that was fine then says why it stopped.
+  bool AgreeToContinue(const vtkGLSRun& run, bool ok);
 
   /// False (with an error naming the setting, the value given and its range) when a setting is outside its range or
   /// NaN. Checked before any work, on every rank alike.
@@ -199,6 +219,7 @@ protected:
   static void CopyTriples(vtkDataArray* triples, vtkIdType n, double* out);
 
   int NumberOfThreads;
+  double MemoryBudget;
   vtkMultiProcessController* Controller = nullptr;
 
 private:

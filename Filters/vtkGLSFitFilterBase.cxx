@@ -8,14 +8,12 @@
 
 #include "gls/Planarity.h"
 
-#include <unistd.h>
 
 #include <string>
 
 vtkGLSFitFilterBase::vtkGLSFitFilterBase()
   : ScaleUnits(RELATIVE_TO_DIAGONAL)
   , MinimumNeighbors(0)
-  , MemoryBudget(0.0)
 {
   this->SetInputArrayToProcess(
     0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::NORMALS);
@@ -87,48 +85,10 @@ bool vtkGLSFitFilterBase::AddGhosts(vtkGLSRun& run, double reach)
   return true;
 }
 
-double vtkGLSFitFilterBase::MemoryBudgetBytes() const
-{
-  const double budget = this->MemoryBudget * 1024.0 * 1024.0;
-  if (budget > 0.0)
-  {
-    return budget;
-  }
-  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && pageSize > 0 ? 0.5 * static_cast<double>(pages) * static_cast<double>(pageSize) : 4e9;
-}
-
-bool vtkGLSFitFilterBase::CheckMemoryBudget(double needed, const char* what, const char* advice)
-{
-  const double budget = this->MemoryBudgetBytes();
-  if (needed <= budget)
-  {
-    return true;
-  }
-  vtkErrorMacro("Not enough memory budget: " << what << " needs about " << needed / (1024.0 * 1024.0)
-                                             << " MiB, above the budget of " << budget / (1024.0 * 1024.0)
-                                             << " MiB (MemoryBudget; 0 = half of the physical memory). " << advice);
-  return false;
-}
-
-bool vtkGLSFitFilterBase::AgreeToContinue(const vtkGLSRun& run, bool ok)
-{
-  if (run.Distributed.AllTrue(ok))
-  {
-    return true;
-  }
-  if (ok)
-  {
-    vtkErrorMacro("Stopped: another process of this distributed run failed (see its error).");
-  }
-  return false;
-}
-
 void vtkGLSFitFilterBase::DescribeSettings(std::vector<SettingRange>& settings)
 {
   this->Superclass::DescribeSettings(settings);
   settings.push_back({ "ScaleUnits", static_cast<double>(this->ScaleUnits), static_cast<double>(ABSOLUTE), static_cast<double>(RELATIVE_TO_DIAGONAL) });
-  settings.push_back({ "MemoryBudget", static_cast<double>(this->MemoryBudget), static_cast<double>(0.0), static_cast<double>(VTK_DOUBLE_MAX) });
 }
 
 void vtkGLSFitFilterBase::PrintSelf(ostream& os, vtkIndent indent)
@@ -136,5 +96,4 @@ void vtkGLSFitFilterBase::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ScaleUnits: " << (this->ScaleUnits == ABSOLUTE ? "Absolute" : "RelativeToDiagonal") << "\n";
   os << indent << "MinimumNeighbors: " << this->MinimumNeighbors << "\n";
-  os << indent << "MemoryBudget (MiB): " << this->MemoryBudget << "\n";
 }

@@ -50,16 +50,6 @@ public:
   vtkGetMacro(MinimumNeighbors, int);
   ///@}
 
-  ///@{
-  /// Memory this filter may allocate for its outputs and scratch, in MiB (0, the default: half of the physical
-  /// memory). Before allocating, the filter estimates what it needs; above the budget it stops with an error that
-  /// says how much it needs and what to change. A filter that takes scales fits the cloud in spatial tiles, one
-  /// after the other, when its fitting engine alone would not fit: each tile with the points within reach of its
-  /// largest scale, results bit for bit those of one engine (the output field data GLSTiles says how many).
-  vtkSetMacro(MemoryBudget, double);
-  vtkGetMacro(MemoryBudget, double);
-  ///@}
-
 protected:
   void DescribeSettings(std::vector<SettingRange>& settings) override;
 
@@ -84,18 +74,8 @@ protected:
   /// run) and records their number in run.GhostPoints. Collective; false (with an error) when the exchange fails.
   bool AddGhosts(vtkGLSRun& run, double reach);
 
-  /// False (with an error naming `needed`, `what` and `advice`) when `needed` bytes exceed the MemoryBudget.
-  bool CheckMemoryBudget(double needed, const char* what, const char* advice);
-
-  /// The MemoryBudget in bytes (0 resolved to half of the physical memory).
-  double MemoryBudgetBytes() const;
-
-  /// False on every rank when `ok` is false on some rank; a rank that was fine then says why it stopped.
-  bool AgreeToContinue(const vtkGLSRun& run, bool ok);
-
   int ScaleUnits;
   int MinimumNeighbors;
-  double MemoryBudget;
 
 private:
   vtkGLSFitFilterBase(const vtkGLSFitFilterBase&) = delete;

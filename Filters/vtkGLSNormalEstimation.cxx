@@ -58,7 +58,10 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
 {
   gls::NormalEstimationSettings settings;
   std::vector<double> reference;
-  if (!this->CheckRun(run) || !this->ResolveSettings(settings) || !this->GatherReference(run, reference, settings))
+  if (!this->CheckRun(run) || !this->ResolveSettings(settings) || !this->GatherReference(run, reference, settings) ||
+    !this->AgreeToContinue(run, this->CheckMemoryBudget(this->NeededBytes(run, settings, reference),
+                                  "the normal estimation",
+                                  "Use fewer NumberOfNeighbors or GraphNeighbors, or raise MemoryBudget.")))
   {
     return FAILED;
   }
@@ -225,6 +228,17 @@ int vtkGLSNormalEstimation::EstimateSerial(vtkGLSRun& run, std::vector<double>& 
     return ABORTED;
   }
   return COMPLETED;
+}
+
+double vtkGLSNormalEstimation::NeededBytes(
+  const vtkGLSRun& run, const gls::NormalEstimationSettings& settings, const std::vector<double>& reference) const
+{
+  // The core's arrays, this piece's copy of its points (made when the run began), the reference normals, and the
+  // outputs: Normals and NormalQuality in their type, NormalNeighbors.
+  const double n = static_cast<double>(run.Cloud.Owned);
+  const double value = this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION ? sizeof(float) : sizeof(double);
+  return gls::normalEstimationBytes(run.Cloud.Owned, settings) + n * (3.0 * sizeof(double) + 4.0 * value + 4.0) +
+    static_cast<double>(reference.size()) * sizeof(double);
 }
 
 void vtkGLSNormalEstimation::WriteNormals(

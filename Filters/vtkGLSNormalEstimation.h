@@ -42,7 +42,9 @@
  * [0, 1]; threshold it to see where the normals are weak; NaN with fewer than 3 neighbours) and `NormalNeighbors`
  * (the neighbours used, after any growth). In RADIUS mode the field data `GLSNormalRadius` records the radius used.
  * OutputPrecision SINGLE_PRECISION writes Normals and NormalQuality as float32 (half their memory, for clouds of 10^8
- * points). An empty input, a negative or non-finite Radius, or AGREE_WITH_EXISTING without a valid normals array is
+ * points). Before any work the estimation's memory (gls::normalEstimationBytes with the filter's copy of the points
+ * and its outputs: about 223 bytes a point at the defaults with float32 outputs) is checked against MemoryBudget;
+ * above it the filter stops with an error saying how much it needs. An empty input, a negative or non-finite Radius, or AGREE_WITH_EXISTING without a valid normals array is
  * an error.
  *
  * Distributed runs (pvbatch / pvserver on N MPI ranks; the Controller has several processes): each rank fetches the
@@ -207,6 +209,11 @@ protected:
   /// The run's own refusals (a bad or, on several processes, automatic Radius; a planar distributed input), with an
   /// error; false then.
   bool CheckRun(const vtkGLSRun& run);
+
+  /// The bytes this piece's estimation holds at once (gls::normalEstimationBytes, its copy of the points, the
+  /// reference normals and the outputs), checked against MemoryBudget before any work.
+  double NeededBytes(const vtkGLSRun& run, const gls::NormalEstimationSettings& settings,
+    const std::vector<double>& reference) const;
   /// The core's settings from the properties (UpDirection checked: false, with an error, when it is zero or not
   /// finite).
   bool ResolveSettings(gls::NormalEstimationSettings& settings);

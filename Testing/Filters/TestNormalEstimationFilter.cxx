@@ -144,3 +144,35 @@ TEST(NormalEstimationFilter, UpFacesTheGivenDirectionAndRefusesNone)
   EXPECT_NE(errors->Message.find("UpDirection (0, 0, 0)"), std::string::npos) << errors->Message;
   EXPECT_EQ(f->GetPolyDataOutput()->GetNumberOfPoints(), 0);
 }
+
+TEST(NormalEstimationFilter, ANeedAboveTheMemoryBudgetIsRefusedBeforeAnyWork)
+{
+  // The estimation's need (gls::normalEstimationBytes with the filter's copy and outputs) against MemoryBudget: the
+  // refusal names it; a budget just above it runs, just below it is refused; float32 outputs need less.
+  const Cloud c = sphere(20000, 1.0);
+  const auto neededMiB = [&](int precision, double budget, bool& ran) {
+    vtkNew<vtkGLSNormalEstimation> f;
+    f->SetOutputPrecision(precision);
+    f->SetMemoryBudget(budget);
+    f->SetInputData(makePolyData(c.points, {}));
+    const auto errors = catchErrors(f.Get());
+    f->Update();
+    ran = f->GetOutput()->GetPointData()->GetArray("Normals") != nullptr;
+    const std::string key = "the normal estimation needs about ";
+    const std::size_t at = errors->Message.find(key);
+    EXPECT_EQ(ran, at == std::string::npos) << errors->Message;
+    return at == std::string::npos ? 0.0 : std::stod(errors->Message.substr(at + key.size()));
+  };
+  bool ran = true;
+  const double wide = neededMiB(vtkAlgorithm::DOUBLE_PRECISION, 0.01, ran);
+  EXPECT_FALSE(ran);
+  // About 240 bytes a point at the defaults with double outputs (the grid, the estimates, the graph and the forest).
+  EXPECT_GT(wide, 20000 * 200.0 / (1024.0 * 1024.0));
+  EXPECT_LT(wide, 20000 * 300.0 / (1024.0 * 1024.0));
+  neededMiB(vtkAlgorithm::DOUBLE_PRECISION, wide * 0.99, ran);
+  EXPECT_FALSE(ran);
+  neededMiB(vtkAlgorithm::DOUBLE_PRECISION, wide * 1.01, ran);
+  EXPECT_TRUE(ran);
+  const double narrow = neededMiB(vtkAlgorithm::SINGLE_PRECISION, 0.01, ran);
+  EXPECT_NEAR(wide - narrow, 20000 * 16.0 / (1024.0 * 1024.0), 1e-3);
+}

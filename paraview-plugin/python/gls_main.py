@@ -231,7 +231,9 @@ def analyze(args, outputs):
         orientation = dict(Orientation='Towards per-point viewpoints',
                            ViewpointArray=['POINTS', 'ScannerPosition']) if scanners else {}
         upstream = watch.watch(gls_filter('GLSNormalEstimation', registrationName='Normals', Input=source,
-                                          OutputPrecision='Single', **orientation), 'normals')
+                                          OutputPrecision='Single',
+                                          MemoryBudget=gls_memory.filter_budget_mib(budget), **orientation),
+                               'normals')
         watch.update(upstream)
         print('normals: %.2f s%s' % (time.time() - start, ', each facing its scanner (ScannerPosition)'
                                      if scanners else ''))

@@ -471,6 +471,25 @@ private:
 
 } // namespace
 
+double normalEstimationBytes(std::size_t n, const NormalEstimationSettings& settings)
+{
+  // The grid (sorted points and ids, its cell index), the estimates in grid order (normal, counts, spread, reach,
+  // degree) and the result in input order, while it is scattered.
+  const double grid = sizeof(Vec3) + 8.0 + 16.0;
+  const double estimates = sizeof(Vec3) + 4.0 + 8.0 + 8.0 + 4.0;
+  double perPoint = grid + 2.0 * estimates;
+  if (settings.orientation == NormalOrientation::MinimumSpanningTree)
+  {
+    // Beside the grid (its cell index released) and the estimates: the graph's lists (32-bit node numbers), their
+    // reverse edges (about half as many) with their offsets, the node flags, and the forest's arrays (parent, tree,
+    // sign and turn flags, the Boruvka rounds' cheapest edges and costs).
+    const double graph = 6.0 * settings.graphNeighbors + 8.0 + 1.0;
+    const double forest = 4.0 + 4.0 + 1.0 + 1.0 + 4.0 + 4.0 + 8.0 + 4.0;
+    perPoint = std::max(perPoint, grid - 16.0 + estimates + graph + forest);
+  }
+  return perPoint * static_cast<double>(n);
+}
+
 double reachableRadius(const NormalEstimationSettings& settings)
 {
   return grownRadius(settings.radius, adaptiveGrowthSteps(settings.maximumGrowth));
