@@ -215,7 +215,15 @@ int vtkGLSNormalEstimation::EstimateSerial(vtkGLSRun& run, std::vector<double>& 
       return FAILED;
     }
   }
-  if (!gls::estimateNormals(run.Cloud.Points.data(), run.Cloud.Owned, settings, result))
+  if (this->Refinement != GLS_REFINEMENT)
+  {
+    // Nothing reads this piece's points after the core's grid is built (the refinement does): 24 bytes a point
+    // less at the estimation's peak.
+    settings.pointsCopied = [&run] { run.Cloud.ReleaseCoordinates(); };
+  }
+  const bool completed = gls::estimateNormals(run.Cloud.Points.data(), run.Cloud.Owned, settings, result);
+  settings.pointsCopied = nullptr;
+  if (!completed)
   {
     return ABORTED; // the output is the input, without partial normals
   }
@@ -233,11 +241,14 @@ int vtkGLSNormalEstimation::EstimateSerial(vtkGLSRun& run, std::vector<double>& 
 double vtkGLSNormalEstimation::NeededBytes(
   const vtkGLSRun& run, const gls::NormalEstimationSettings& settings, const std::vector<double>& reference) const
 {
-  // The core's arrays, this piece's copy of its points (made when the run began), the reference normals, and the
-  // outputs: Normals and NormalQuality in their type, NormalNeighbors.
+  // The core's arrays, this piece's copy of its points (made when the run began; freed once the core's grid is
+  // built in a serial run without refinement, before the core's peak), the reference normals, and the outputs:
+  // Normals and NormalQuality in their type, NormalNeighbors.
   const double n = static_cast<double>(run.Cloud.Owned);
   const double value = this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION ? sizeof(float) : sizeof(double);
-  return gls::normalEstimationBytes(run.Cloud.Owned, settings) + n * (3.0 * sizeof(double) + 4.0 * value + 4.0) +
+  const bool pointsKept = run.Distributed.IsParallel() || this->Refinement == GLS_REFINEMENT;
+  return gls::normalEstimationBytes(run.Cloud.Owned, settings) +
+    n * ((pointsKept ? 3.0 * sizeof(double) : 0.0) + 4.0 * value + 4.0) +
     static_cast<double>(reference.size()) * sizeof(double);
 }
 
@@ -275,15 +286,16 @@ void vtkGLSNormalEstimation::WriteNormals(
   out->AddArray(quality);
   out->AddArray(neighbors);
 
-  // One line for the points with finite coordinates that no neighbourhood gives a normal (every copy counted).
+  // One line for the points with finite coordinates that no neighbourhood gives a normal (every copy counted). A
+  // fitted position is finite when it has a neighbourhood (itself at least); stray points and non-finite
+  // coordinates have none.
   double undefined = 0.0;
   for (vtkIdType i = 0; i < n; ++i)
   {
-    // The fitted position (stray points are NaN there; a merged copy's is its distinct position's).
+    // A merged copy's is its distinct position's.
     const std::size_t at = run.Cloud.IsMerged() ? run.Cloud.Copies.representative[static_cast<std::size_t>(i)]
                                                 : static_cast<std::size_t>(i);
-    const double* x = &run.Cloud.Points[3 * at];
-    const bool finite = std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]);
+    const bool finite = result.neighborCounts[at] > 0;
     undefined += finite && !std::isfinite(result.normals[3 * at]) ? 1.0 : 0.0;
   }
   undefined = dist.Sum(undefined);

@@ -12,12 +12,13 @@ import math
 # (2,255 and 6,101 MiB). At 10^8 points more is asked: the normals peaked at 20.4 GiB (with the coincident points'
 # map and copy of the cloud, 2.9 GiB), and the fused pass's own check asks for its outputs and its engine's footprint
 # (158 bytes a point at 10^8 points, 131 at 10^7: the pyramid holds 1.32 nodes a point against 1.04) with a tenth in
-# reserve (FILTER_SHARE): about 23.6 GiB in all; the normal estimation's own check asks for 223 bytes a point with a
-# tenth in reserve beside the points read (about 260 bytes a point in all). The estimate follows the larger (262 bytes
-# a point): 3.3, 8.2 and 25.2 GiB at 10M, 30M and 100M points, so that a cloud a filter of the job would refuse is
+# reserve (FILTER_SHARE): about 23.6 GiB in all, 250 bytes a point; the normal estimation's own check asks for 199
+# bytes a point with a tenth in reserve beside the points read (233 bytes a point in all; it frees its copy of the
+# points once its grid is built: its peak at 10M is now 2,026 MiB). The estimate follows the larger (250 bytes a
+# point): 3.2, 7.8 and 24.1 GiB at 10M, 30M and 100M points, so that a cloud a filter of the job would refuse is
 # refused before any stage runs.
 FIXED_BYTES = 850.0 * 1024.0 ** 2
-DEFAULT_BYTES_PER_POINT = 262.0
+DEFAULT_BYTES_PER_POINT = 250.0
 # With --per-scale: bytes per point and scale on top (the scale space, nu, and their copy in the written file).
 PER_SCALE_BYTES_PER_POINT_SCALE = 240.0
 GIB = 1024.0 ** 3

@@ -15,6 +15,7 @@
 #include "gls/Vec3.h"
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace gls
@@ -64,6 +65,9 @@ struct NormalEstimationSettings
   double minimumSpread = 0.05;      ///< a neighbourhood with a smaller spread is degenerate (0: only lines)
   double maximumGrowth = 8.0;       ///< largest factor on the neighbour count when growing (1: no growth)
   ParallelOptions parallel;
+  /// Called, when given, once estimateNormals has read the points for the last time (its grid holds a sorted copy),
+  /// so that a caller can free them before the neighbourhoods and the orientation's graph are made.
+  std::function<void()> pointsCopied;
 };
 
 struct NormalEstimationResult
@@ -91,9 +95,9 @@ bool refineNormalsByGls(const double* xyz, std::size_t n, const std::vector<doub
 /// The most memory (bytes) estimateNormals holds at once for n points, its result included, besides the caller's
 /// points: the grid's sorted copy and cell index, the estimates in grid order and the result in input order, and for
 /// MinimumSpanningTree the graph (graphNeighbors nearest others a node and their reverse edges) and the spanning
-/// forest. A bound for a budget checked before any work: at 10M and 100M points (k 16, graph 10) the normal
-/// estimation filter held 184 to 190 bytes a point with its copy of the points and its float32 outputs (44 bytes a
-/// point), where this gives 179 plus those 44.
+/// forest. A bound for a budget checked before any work: at 10M points (k 16, graph 10) the normal estimation filter
+/// held 164 bytes a point with its float32 outputs (20 bytes a point; it frees its copy of the points through
+/// pointsCopied), where this gives 179 plus those 20.
 double normalEstimationBytes(std::size_t n, const NormalEstimationSettings& settings);
 
 /// How far the neighbourhoods of these settings can reach after growing: the k of the largest k-nearest

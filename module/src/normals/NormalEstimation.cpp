@@ -505,6 +505,10 @@ bool estimateNormals(
 {
   result.components = 0;
   GridEstimation run(xyz, n, settings);
+  if (settings.pointsCopied)
+  {
+    settings.pointsCopied(); // the grid holds its own copy: xyz is not read again
+  }
   // Progress: the first neighbourhoods [0, 0.5], the grown ones [0.5, 0.6], the orientation [0.6, 1] (when it is
   // the minimum spanning tree; else the estimate is the whole range).
   const bool tree = settings.orientation == NormalOrientation::MinimumSpanningTree;
