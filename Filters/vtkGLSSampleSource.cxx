@@ -213,11 +213,10 @@ bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std:
   });
 }
 
-double vtkGLSSampleSource::EngineBytes(
-  const vtkGLSCloud& cloud, const gls::ScaleSpaceSettings& settings, bool releasing)
+gls::EngineFootprint vtkGLSSampleSource::EngineBytes(
+  const vtkGLSCloud& cloud, const gls::ScaleSpaceSettings& settings)
 {
-  const double inputs = releasing ? static_cast<double>(cloud.Size()) * vtkGLSCloud::BytesPerPoint : 0.0;
-  return gls::ScaleSpaceEngine::footprint(cloud.Points.data(), cloud.Normals.data(), cloud.Size(), settings, inputs);
+  return gls::ScaleSpaceEngine::footprint(cloud.Points.data(), cloud.Normals.data(), cloud.Size(), settings);
 }
 
 double vtkGLSSampleSource::EngineShareBytes(

@@ -58,12 +58,11 @@ public:
   bool Feed(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const gls::ParallelOptions& parallel,
     gls::RunReport& report) const;
 
-  /// Bytes of the buffers of an engine over the cloud under these settings (gls::ScaleSpaceEngine::footprint, its
-  /// pyramid counted from the points), besides the points and normals it is given (vtkGLSCloud::BytesPerPoint each),
-  /// or with them when `releasing` (FitWholeReleasing: the cloud's coordinates are freed once the engine holds its
-  /// copies); and of its threads' scratch: its share of `points` points (ghosts included) when it runs on a tile of
-  /// that size.
-  static double EngineBytes(const vtkGLSCloud& cloud, const gls::ScaleSpaceSettings& settings, bool releasing);
+  /// The buffers of an engine over the cloud under these settings (gls::ScaleSpaceEngine::footprint, its pyramid
+  /// counted from the points), besides the points and normals it is given (vtkGLSCloud::BytesPerPoint each; with
+  /// them, bytes(their bytes), when FitWholeReleasing frees them once the engine holds its copies); and of its
+  /// threads' scratch: its share of `points` points (ghosts included) when it runs on a tile of that size.
+  static gls::EngineFootprint EngineBytes(const vtkGLSCloud& cloud, const gls::ScaleSpaceSettings& settings);
   static double EngineShareBytes(
     double wholeEngineBytes, std::size_t wholePoints, std::size_t points, std::size_t S, int threads);
 

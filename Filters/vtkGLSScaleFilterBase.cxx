@@ -253,20 +253,21 @@ bool vtkGLSScaleFilterBase::ChooseTiles(const vtkGLSRun& run, const gls::ScaleSp
   const std::size_t S = settings.scales.size();
   const int threads = gls::resolveThreadCount(this->NumberOfThreads);
   const double budget = this->MemoryBudgetBytes();
-  const double cloud = static_cast<double>(run.Cloud.Size()) * vtkGLSCloud::BytesPerPoint; // kept while tiles run
+  // The cloud's coordinates: one engine over the whole cloud frees them once it holds its copies
+  // (FitWholeReleasing); tiles read them while they are built.
+  const double cloud = static_cast<double>(run.Cloud.Size()) * vtkGLSCloud::BytesPerPoint;
   tiled.reset();
   if (run.Cloud.Owned == 0)
   {
     return true;
   }
-  // One engine over the whole cloud frees the cloud's coordinates once it holds its copies (FitWholeReleasing);
-  // tiles read them while they are built.
-  const double releasing = vtkGLSSampleSource::EngineBytes(run.Cloud, settings, true);
-  if (fixed + vtkGLSSampleSource::EngineShareBytes(releasing, run.Cloud.Size(), run.Cloud.Size(), S, threads) <= budget)
+  const gls::EngineFootprint engine = vtkGLSSampleSource::EngineBytes(run.Cloud, settings);
+  if (fixed + vtkGLSSampleSource::EngineShareBytes(engine.bytes(cloud), run.Cloud.Size(), run.Cloud.Size(), S,
+                threads) <= budget)
   {
     return true;
   }
-  const double whole = vtkGLSSampleSource::EngineBytes(run.Cloud, settings, false);
+  const double whole = engine.bytes(0.0);
   // Twice the tiles until the largest (with its ghost band) fits, while cutting still makes tiles clearly smaller.
   double need = 0.0;
   std::size_t previous = run.Cloud.Size();

@@ -22,7 +22,9 @@ void expectFootprintCovers(const Cloud& c, const std::vector<double>& scales, co
     s.scales = scales;
     s.evaluation = e;
     s.parallel.threads = 2;
-    const double estimate = gls::ScaleSpaceEngine::footprint(c.points.data(), c.normals.data(), c.size(), s);
+    const gls::EngineFootprint footprint =
+      gls::ScaleSpaceEngine::footprint(c.points.data(), c.normals.data(), c.size(), s);
+    const double estimate = footprint.bytes(0.0);
     const gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), s);
     const double built = engine.memoryBytes();
     std::printf("%s, %s: footprint %.1f bytes a point, built %.1f\n", what,
@@ -33,7 +35,7 @@ void expectFootprintCovers(const Cloud& c, const std::vector<double>& scales, co
     // A caller that frees its points and normals (48 bytes a point) once the engine has its sorted copies holds them
     // while the copies are made only: at most their bytes more, and for a pyramid less (its cells come after).
     const double inputs = 48.0 * c.size();
-    const double releasing = gls::ScaleSpaceEngine::footprint(c.points.data(), c.normals.data(), c.size(), s, inputs);
+    const double releasing = footprint.bytes(inputs);
     EXPECT_GE(releasing, estimate) << what;
     EXPECT_LE(releasing, estimate + inputs) << what;
     if (e == gls::Evaluation::Multiresolution)

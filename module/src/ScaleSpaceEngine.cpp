@@ -177,8 +177,8 @@ void ScaleSpaceEngine::buildPyramid(const double* points, const double* normals,
     !this->Pyramid.build(points, normals, count, admit, layout, this->Settings.parallel, inputsCopied);
 }
 
-double ScaleSpaceEngine::footprint(const double* points, const double* normals, std::size_t count,
-  const ScaleSpaceSettings& settings, double inputBytes)
+EngineFootprint ScaleSpaceEngine::footprint(
+  const double* points, const double* normals, std::size_t count, const ScaleSpaceSettings& settings)
 {
   const double n = static_cast<double>(count);
   UninitializedArray<unsigned char> admit(count);
@@ -189,7 +189,7 @@ double ScaleSpaceEngine::footprint(const double* points, const double* normals, 
     left += admit[i] ? 0 : 1;
   }
   // Throughout the build: the admit flags, the positions left out and their ids. Then the sorted copies (points,
-  // normals, ids) and the sort's keys while the inputs are still read (inputBytes); after that, what stays.
+  // normals, ids) and the sort's keys while the inputs are still read; after that, what stays.
   const double kept = n + static_cast<double>(left) * (sizeof(Vec3) + 8.0);
   const double sorted = n * (2.0 * sizeof(Vec3) + 8.0);
   if (settings.evaluation != Evaluation::Multiresolution || settings.scales.empty())
@@ -197,8 +197,7 @@ double ScaleSpaceEngine::footprint(const double* points, const double* normals, 
     // The normalized normals the grid is built from; the grid's cell index, dense up to about 2 cells a point
     // (NeighborGrid::indexOccupiedCells), else smaller; Order, a copy of the grid's ids.
     const double index = n * 2.0 * 8.0 + 65537.0 * 8.0;
-    const double copying = kept + n * (sizeof(Vec3) + sizeof(KeyedIndex)) + sorted + index;
-    return std::max(inputBytes + copying, kept + sorted + index + n * 8.0);
+    return { kept + n * (sizeof(Vec3) + sizeof(KeyedIndex)) + sorted + index, kept + sorted + index + n * 8.0 };
   }
   const PyramidCounts counts = MultiresolutionCloud::count(points, admit.data(), count,
     pyramidLayout(settings, points, count, admit.data()), resolveThreadCount(settings.parallel.threads));
@@ -207,7 +206,7 @@ double ScaleSpaceEngine::footprint(const double* points, const double* normals, 
   const double nodes = static_cast<double>(counts.nodes);
   const double levels = std::max(n * sizeof(KeyedIndex),
     nodes * sizeof(PyramidNode) + static_cast<double>(counts.cells) * sizeof(PyramidCell));
-  return std::max(inputBytes + kept + n * sizeof(KeyedIndex) + sorted, kept + sorted + nodes * 2.0 * 8.0 + levels);
+  return { kept + n * sizeof(KeyedIndex) + sorted, kept + sorted + nodes * 2.0 * 8.0 + levels };
 }
 
 double ScaleSpaceEngine::memoryBytes() const

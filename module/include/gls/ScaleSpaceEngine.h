@@ -14,6 +14,7 @@
 #include "gls/ScaleSampling.h"
 #include "gls/UninitializedArray.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -79,6 +80,17 @@ GridLattice exactGridLattice(
 void resolvePyramidFrame(
   MultiresolutionSettings& m, const double* points, std::size_t count, const unsigned char* admit);
 
+/// The most memory (bytes) an engine's build holds at once, in its two phases: while it makes its sorted copies of the
+/// points and normals (reading its inputs), and after that (its cells built, the engine as it stays).
+struct EngineFootprint
+{
+  double copying = 0.0;
+  double built = 0.0;
+  /// The peak with `inputBytes` that the caller holds for the inputs and frees when the engine calls inputsCopied
+  /// (0 when it keeps them: then its own count): counted while the copies are made, not once the cells are.
+  double bytes(double inputBytes) const { return std::max(inputBytes + this->copying, this->built); }
+};
+
 /// What a run did: the backend that computed the samples and, when a CUDA run fell back to the CPU, why.
 struct RunReport
 {
@@ -107,14 +119,12 @@ public:
   ScaleSpaceEngine(ScaleSpaceEngine&&) noexcept;
   ScaleSpaceEngine& operator=(ScaleSpaceEngine&&) noexcept;
 
-  /// The most memory (bytes) an engine over these points holds at once, its build's scratch included, for a budget
-  /// checked before it is built: its order and sorted copies, and its grid's index (exact) or its pyramid
-  /// (multi-resolution: the pyramid's nodes counted from the points' sorted finest keys, 0.65 s at 10M points where
-  /// the build takes 2.2 s). `inputBytes`: what the caller holds for the points and normals and frees when the engine
-  /// calls inputsCopied (0 when it keeps them): counted while the sorted copies are made, not once the cells are.
-  /// At least memoryBytes() of the engine built (tested).
-  static double footprint(const double* points, const double* normals, std::size_t count,
-    const ScaleSpaceSettings& settings, double inputBytes = 0.0);
+  /// The most memory an engine over these points holds at once, its build's scratch included, for a budget checked
+  /// before it is built: its order and sorted copies, and its grid's index (exact) or its pyramid (multi-resolution:
+  /// the pyramid's nodes counted from the points' sorted finest keys, 0.65 s at 10M points where the build takes
+  /// 2.2 s). bytes(0) is at least memoryBytes() of the engine built (tested).
+  static EngineFootprint footprint(
+    const double* points, const double* normals, std::size_t count, const ScaleSpaceSettings& settings);
   /// The bytes the built engine's arrays hold (their capacity).
   double memoryBytes() const;
 
