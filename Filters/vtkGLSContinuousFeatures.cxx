@@ -1,6 +1,7 @@
 #include "vtkGLSContinuousFeatures.h"
 
 #include "vtkGLSArrayNames.h"
+#include "vtkGLSOutputPrecision.h"
 #include "vtkGLSRun.h"
 
 #include "vtkDoubleArray.h"
@@ -61,23 +62,6 @@ constexpr double kSigmaSampleSize = 20000;
 /// count.
 constexpr double kSummaryValueArrays = 6.0;
 
-/// A point array of n values, of doubles or (single) of floats.
-vtkSmartPointer<vtkDataArray> NewPointArray(const char* name, vtkIdType n, bool single)
-{
-  vtkSmartPointer<vtkDataArray> array;
-  array.TakeReference(vtkDataArray::CreateDataArray(single ? VTK_FLOAT : VTK_DOUBLE));
-  array->SetName(name);
-  array->SetNumberOfTuples(n);
-  return array;
-}
-
-/// The values of an array made by NewPointArray, as the type it holds.
-template <typename Real>
-Real* ValuesOf(vtkDataArray* array)
-{
-  return static_cast<Real*>(array->GetVoidPointer(0));
-}
-
 }
 
 vtkGLSContinuousFeatures::vtkGLSContinuousFeatures()
@@ -118,7 +102,7 @@ bool vtkGLSContinuousFeatures::CheckParameters(vtkGLSRun& run)
 vtkGLSScaleFilterBase::SampleRequest vtkGLSContinuousFeatures::GetSampleRequest(const vtkGLSRun& run) const
 {
   SampleRequest request = VariationRequest(this->ReuseInputScaleSpace);
-  const double value = this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION ? sizeof(float) : sizeof(double);
+  const double value = vtkGLSOutputPrecision::ValueBytes(this->OutputPrecision);
   if (this->ScaleSummary)
   {
     request.Descriptors = true; // tau, kappa and phi at the stable scale
@@ -154,8 +138,8 @@ int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)
   {
     return ABORTED;
   }
-  const auto feature = NewPointArray(vtkGLSArrayNames::Feature, run.Input->GetNumberOfPoints(),
-    this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION);
+  const auto feature =
+    vtkGLSOutputPrecision::NewArray(vtkGLSArrayNames::Feature, run.Input->GetNumberOfPoints(), 1, this->OutputPrecision);
   if (!this->ComputeFeatureAndSummary(run, sigma, feature))
   {
     return ABORTED; // no partial arrays
@@ -172,7 +156,9 @@ int vtkGLSContinuousFeatures::ComputeOutputs(vtkGLSRun& run)
 
 bool vtkGLSContinuousFeatures::ComputeFeatureAndSummary(vtkGLSRun& run, double sigma, vtkDataArray* featureArray)
 {
-  const bool single = this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION;
+  using vtkGLSOutputPrecision::ValuesOf;
+  const int precision = this->OutputPrecision;
+  const bool single = vtkGLSOutputPrecision::IsSingle(precision);
   const gls::FeatureMeasure measure = static_cast<gls::FeatureMeasure>(this->FeatureMeasure);
   const std::vector<double>& t = run.Scales;
   const vtkIdType n = run.Input->GetNumberOfPoints();
@@ -195,12 +181,12 @@ bool vtkGLSContinuousFeatures::ComputeFeatureAndSummary(vtkGLSRun& run, double s
     vtkNew<vtkIntArray> count;
     count->SetName(vtkGLSArrayNames::PertinentScaleCount);
     count->SetNumberOfTuples(n);
-    const auto stableScale = NewPointArray(vtkGLSArrayNames::StableScale, n, single);
-    const auto tau = NewPointArray(vtkGLSArrayNames::StableTau, n, single);
-    const auto kappa = NewPointArray(vtkGLSArrayNames::StableKappa, n, single);
-    const auto phi = NewPointArray(vtkGLSArrayNames::StablePhi, n, single);
-    const auto maxNu = NewPointArray(vtkGLSArrayNames::MaxVariation, n, single);
-    const auto maxNuScale = NewPointArray(vtkGLSArrayNames::MaxVariationScale, n, single);
+    const auto stableScale = vtkGLSOutputPrecision::NewArray(vtkGLSArrayNames::StableScale, n, 1, precision);
+    const auto tau = vtkGLSOutputPrecision::NewArray(vtkGLSArrayNames::StableTau, n, 1, precision);
+    const auto kappa = vtkGLSOutputPrecision::NewArray(vtkGLSArrayNames::StableKappa, n, 1, precision);
+    const auto phi = vtkGLSOutputPrecision::NewArray(vtkGLSArrayNames::StablePhi, n, 1, precision);
+    const auto maxNu = vtkGLSOutputPrecision::NewArray(vtkGLSArrayNames::MaxVariation, n, 1, precision);
+    const auto maxNuScale = vtkGLSOutputPrecision::NewArray(vtkGLSArrayNames::MaxVariationScale, n, 1, precision);
     typename gls::ScaleSummarySinkT<Real>::Outputs out;
     out.feature = ValuesOf<Real>(featureArray);
     out.pertinentCount = count->GetPointer(0);
@@ -313,6 +299,5 @@ void vtkGLSContinuousFeatures::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Sigma: " << this->Sigma << "\n";
   os << indent << "TargetMedianFeature: " << this->TargetMedianFeature << "\n";
   os << indent << "FeatureMeasure: " << (this->FeatureMeasure == SCALE ? "Scale" : "LogScale") << "\n";
-  os << indent << "OutputPrecision: " << (this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION ? "Single" : "Double")
-     << "\n";
+  os << indent << "OutputPrecision: " << vtkGLSOutputPrecision::Name(this->OutputPrecision) << "\n";
 }

@@ -1,6 +1,7 @@
 #include "vtkGLSNormalEstimation.h"
 
 #include "vtkGLSArrayNames.h"
+#include "vtkGLSOutputPrecision.h"
 #include "vtkGLSRun.h"
 
 #include "vtkDataArray.h"
@@ -245,7 +246,7 @@ double vtkGLSNormalEstimation::NeededBytes(
   // built in a serial run without refinement, before the core's peak), the reference normals, and the outputs:
   // Normals and NormalQuality in their type, NormalNeighbors.
   const double n = static_cast<double>(run.Cloud.Owned);
-  const double value = this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION ? sizeof(float) : sizeof(double);
+  const double value = vtkGLSOutputPrecision::ValueBytes(this->OutputPrecision);
   const bool pointsKept = run.Distributed.IsParallel() || this->Refinement == GLS_REFINEMENT;
   return gls::normalEstimationBytes(run.Cloud.Owned, settings) +
     n * ((pointsKept ? 3.0 * sizeof(double) : 0.0) + 4.0 * value + 4.0) +
@@ -258,20 +259,16 @@ void vtkGLSNormalEstimation::WriteNormals(
   const vtkIdType n = run.Input->GetNumberOfPoints();
   const vtkGLSDistributedCloud& dist = run.Distributed;
   // Doubles, or floats (OutputPrecision), each value converted from the double computed.
-  const bool single = this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION;
   const auto newArray = [&](const char* name, const std::vector<double>& values, int width) {
-    vtkSmartPointer<vtkDataArray> array;
-    array.TakeReference(vtkDataArray::CreateDataArray(single ? VTK_FLOAT : VTK_DOUBLE));
-    array->SetName(name);
-    array->SetNumberOfComponents(width);
-    array->SetNumberOfTuples(n);
-    if (single)
+    using vtkGLSOutputPrecision::ValuesOf;
+    const auto array = vtkGLSOutputPrecision::NewArray(name, n, width, this->OutputPrecision);
+    if (vtkGLSOutputPrecision::IsSingle(this->OutputPrecision))
     {
-      run.Cloud.ScatterToInput(values.data(), width, static_cast<float*>(array->GetVoidPointer(0)));
+      run.Cloud.ScatterToInput(values.data(), width, ValuesOf<float>(array));
     }
     else
     {
-      run.Cloud.ScatterToInput(values.data(), width, static_cast<double*>(array->GetVoidPointer(0)));
+      run.Cloud.ScatterToInput(values.data(), width, ValuesOf<double>(array));
     }
     return array;
   };
@@ -525,6 +522,5 @@ void vtkGLSNormalEstimation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumGrowth: " << this->MaximumGrowth << "\n";
   os << indent << "Refinement: " << (this->Refinement == GLS_REFINEMENT ? "GLS" : "None") << "\n";
   os << indent << "RefinementScale: " << this->RefinementScale << "\n";
-  os << indent << "OutputPrecision: " << (this->OutputPrecision == vtkAlgorithm::SINGLE_PRECISION ? "Single" : "Double")
-     << "\n";
+  os << indent << "OutputPrecision: " << vtkGLSOutputPrecision::Name(this->OutputPrecision) << "\n";
 }

@@ -116,8 +116,8 @@ def _distinct_hashed(points, key):
         has_nan = np.isnan(rows).any(axis=1)[by_bits]
         starts = np.ones(len(candidates), dtype=bool)
         starts[1:] = ~((sorted_bits[1:] == sorted_bits[:-1]).all(axis=1) & ~has_nan[1:] & ~has_nan[:-1])
-        leaders = candidates[by_bits][starts][np.cumsum(starts) - 1]  # each sorted row's group's first row
         members = candidates[by_bits]
+        leaders = members[starts][np.cumsum(starts) - 1]  # each sorted row's group's first row
         copies = ~starts
         later_rows, leader_of_later = members[copies], leaders[copies]
         later[later_rows] = True

@@ -63,7 +63,8 @@ def machine_budget_bytes():
 
 def filter_budget_mib(budget):
     """The MemoryBudget (MiB) of a GLS filter created now: FILTER_SHARE of what the main job's budget (bytes) leaves
-    beside what this process holds, so that the fused pass cuts its fit into spatial tiles rather than exceed it;
+    beside what this process holds, so that the filter (the normals, the fused pass) refuses, or cuts its fit into
+    spatial tiles, rather than exceed it;
     0 (the filters' own default, half of the physical memory) where the budget is not known."""
     if budget is None:
         return 0.0
