@@ -59,7 +59,7 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
 {
   gls::NormalEstimationSettings settings;
   std::vector<double> reference;
-  if (!this->CheckRun(run) || !this->ResolveSettings(settings) || !this->GatherReference(run, reference, settings) ||
+  if (!this->CheckRun(run) || !this->ResolveSettings(run, settings) || !this->GatherReference(run, reference, settings) ||
     !this->AgreeToContinue(run, this->CheckMemoryBudget(this->NeededBytes(run, settings, reference),
                                   "the normal estimation",
                                   "Use fewer NumberOfNeighbors or GraphNeighbors, or raise MemoryBudget.")))
@@ -116,8 +116,12 @@ bool vtkGLSNormalEstimation::CheckRun(const vtkGLSRun& run)
   return true;
 }
 
-bool vtkGLSNormalEstimation::ResolveSettings(gls::NormalEstimationSettings& settings)
+bool vtkGLSNormalEstimation::ResolveSettings(const vtkGLSRun& run, gls::NormalEstimationSettings& settings)
 {
+  // The core keeps the neighbourhoods' reach for the GLS refinement only, and the graph's degrees for the
+  // orientation across pieces only.
+  settings.reachWanted = this->Refinement == GLS_REFINEMENT;
+  settings.graphDegreeWanted = run.Distributed.IsParallel();
   settings.neighborhood = static_cast<gls::NeighborhoodType>(this->NeighborhoodType);
   settings.k = this->NumberOfNeighbors;
   settings.radius = this->Radius;
@@ -242,15 +246,17 @@ int vtkGLSNormalEstimation::EstimateSerial(vtkGLSRun& run, std::vector<double>& 
 double vtkGLSNormalEstimation::NeededBytes(
   const vtkGLSRun& run, const gls::NormalEstimationSettings& settings, const std::vector<double>& reference) const
 {
-  // The core's arrays, this piece's copy of its points (made when the run began; freed once the core's grid is
-  // built in a serial run without refinement, before the core's peak), the reference normals, and the outputs:
-  // Normals and NormalQuality in their type, NormalNeighbors.
+  // The larger of two moments: the core's peak beside this piece's copy of its points (made when the run began;
+  // freed once the core's grid is built in a serial run without refinement, before the core's peak), and the
+  // core's result beside the outputs (Normals and NormalQuality in their type, NormalNeighbors), which are made
+  // once the core's grid and graph are gone. The reference normals are held throughout.
   const double n = static_cast<double>(run.Cloud.Owned);
   const double value = vtkGLSOutputPrecision::ValueBytes(this->OutputPrecision);
   const bool pointsKept = run.Distributed.IsParallel() || this->Refinement == GLS_REFINEMENT;
-  return gls::normalEstimationBytes(run.Cloud.Owned, settings) +
-    n * ((pointsKept ? 3.0 * sizeof(double) : 0.0) + 4.0 * value + 4.0) +
-    static_cast<double>(reference.size()) * sizeof(double);
+  const double points = pointsKept ? n * 3.0 * sizeof(double) : 0.0;
+  const double estimating = gls::normalEstimationBytes(run.Cloud.Owned, settings) + points;
+  const double writing = gls::normalEstimationResultBytes(run.Cloud.Owned, settings) + points + n * (4.0 * value + 4.0);
+  return std::max(estimating, writing) + static_cast<double>(reference.size()) * sizeof(double);
 }
 
 void vtkGLSNormalEstimation::WriteNormals(

@@ -216,7 +216,7 @@ protected:
     const std::vector<double>& reference) const;
   /// The core's settings from the properties (UpDirection checked: false, with an error, when it is zero or not
   /// finite).
-  bool ResolveSettings(gls::NormalEstimationSettings& settings);
+  bool ResolveSettings(const vtkGLSRun& run, gls::NormalEstimationSettings& settings);
   /// AGREE_WITH_EXISTING and TOWARDS_VIEWPOINT_ARRAY: the reference directions of every point (the selected normals,
   /// or the directions to each point's viewpoint) and the orientation that follows them; false, with an error, when
   /// the selected array is missing here or on another process. Nothing for the other orientations.

@@ -91,6 +91,53 @@ TEST(NormalEstimation, ViewpointAndReferenceOrientations)
   }
 }
 
+TEST(NormalEstimation, WithoutReachAndDegreesTheRestIsBitForBitTheSame)
+{
+  // What a caller does not want is left empty, and the normals, counts, spreads and components do not change: a
+  // sphere with a line sticking out (grown neighbourhoods, raised graph degrees), for each neighbourhood type and
+  // with and without the tree. The need asked before the run is smaller.
+  Cloud c = sphere(3000, 1.0);
+  for (int i = 0; i < 60; ++i)
+  {
+    c.points.insert(c.points.end(), { 1.0 + 0.02 * i, 0.0, 0.0 });
+  }
+  for (auto type : { gls::NeighborhoodType::KNearest, gls::NeighborhoodType::Radius })
+  {
+    for (auto orientation : { gls::NormalOrientation::MinimumSpanningTree, gls::NormalOrientation::Up })
+    {
+      gls::NormalEstimationSettings all;
+      all.neighborhood = type;
+      all.radius = 0.15;
+      all.orientation = orientation;
+      gls::NormalEstimationSettings lean = all;
+      lean.reachWanted = false;
+      lean.graphDegreeWanted = false;
+      gls::NormalEstimationResult full, less;
+      ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.points.size() / 3, all, full));
+      ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.points.size() / 3, lean, less));
+      EXPECT_EQ(full.reach.size(), c.points.size() / 3);
+      EXPECT_EQ(full.graphDegree.size(), c.points.size() / 3);
+      EXPECT_GT(*std::max_element(full.graphDegree.begin(), full.graphDegree.end()), all.graphNeighbors);
+      EXPECT_TRUE(less.reach.empty());
+      EXPECT_TRUE(less.graphDegree.empty());
+      ASSERT_EQ(full.normals.size(), less.normals.size());
+      for (std::size_t j = 0; j < full.normals.size(); ++j)
+      {
+        const double a = full.normals[j], b = less.normals[j];
+        ASSERT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << j;
+      }
+      EXPECT_EQ(full.neighborCounts, less.neighborCounts);
+      for (std::size_t j = 0; j < full.spread.size(); ++j)
+      {
+        const double a = full.spread[j], b = less.spread[j];
+        ASSERT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << j;
+      }
+      EXPECT_EQ(full.components, less.components);
+      EXPECT_LT(gls::normalEstimationBytes(1000, lean), gls::normalEstimationBytes(1000, all));
+    }
+  }
+}
+
 TEST(NormalEstimation, DegenerateNeighbourhoodsGiveNaN)
 {
   // Two points: fewer than 3 neighbours.

@@ -147,12 +147,15 @@ TEST(NormalEstimationFilter, UpFacesTheGivenDirectionAndRefusesNone)
 
 TEST(NormalEstimationFilter, ANeedAboveTheMemoryBudgetIsRefusedBeforeAnyWork)
 {
-  // The estimation's need (gls::normalEstimationBytes with the filter's copy and outputs) against MemoryBudget: the
-  // refusal names it; a budget just above it runs, just below it is refused; float32 outputs need less.
+  // The estimation's need against MemoryBudget: the larger of the core's peak (gls::normalEstimationBytes, beside
+  // the filter's copy of the points where it keeps it) and its result beside the outputs. The refusal names it; a
+  // budget just above it runs, just below it is refused. At the defaults the core's peak is the larger, so float32
+  // outputs need no less; the GLS refinement keeps the points and the reach (32 bytes a point more).
   const Cloud c = sphere(20000, 1.0);
-  const auto neededMiB = [&](int precision, double budget, bool& ran) {
+  const auto neededMiB = [&](int precision, int refinement, double budget, bool& ran) {
     vtkNew<vtkGLSNormalEstimation> f;
     f->SetOutputPrecision(precision);
+    f->SetRefinement(refinement);
     f->SetMemoryBudget(budget);
     f->SetInputData(makePolyData(c.points, {}));
     const auto errors = catchErrors(f.Get());
@@ -163,17 +166,19 @@ TEST(NormalEstimationFilter, ANeedAboveTheMemoryBudgetIsRefusedBeforeAnyWork)
     EXPECT_EQ(ran, at == std::string::npos) << errors->Message;
     return at == std::string::npos ? 0.0 : std::stod(errors->Message.substr(at + key.size()));
   };
+  const double mib = 1024.0 * 1024.0;
+  const int none = vtkGLSNormalEstimation::NO_REFINEMENT;
   bool ran = true;
-  const double wide = neededMiB(vtkAlgorithm::DOUBLE_PRECISION, 0.01, ran);
+  const double wide = neededMiB(vtkAlgorithm::DOUBLE_PRECISION, none, 0.01, ran);
   EXPECT_FALSE(ran);
-  // About 215 bytes a point at the defaults with double outputs (the grid, the estimates, the graph and the forest,
-  // and the outputs: the filter frees its copy of the points once the grid is built).
-  EXPECT_GT(wide, 20000 * 200.0 / (1024.0 * 1024.0));
-  EXPECT_LT(wide, 20000 * 300.0 / (1024.0 * 1024.0));
-  neededMiB(vtkAlgorithm::DOUBLE_PRECISION, wide * 0.99, ran);
+  // About 141 bytes a point at the defaults (the grid, the estimates, the graph and the forest).
+  EXPECT_GT(wide, 20000 * 120.0 / mib);
+  EXPECT_LT(wide, 20000 * 180.0 / mib);
+  neededMiB(vtkAlgorithm::DOUBLE_PRECISION, none, wide * 0.99, ran);
   EXPECT_FALSE(ran);
-  neededMiB(vtkAlgorithm::DOUBLE_PRECISION, wide * 1.01, ran);
+  neededMiB(vtkAlgorithm::DOUBLE_PRECISION, none, wide * 1.01, ran);
   EXPECT_TRUE(ran);
-  const double narrow = neededMiB(vtkAlgorithm::SINGLE_PRECISION, 0.01, ran);
-  EXPECT_NEAR(wide - narrow, 20000 * 16.0 / (1024.0 * 1024.0), 1e-3);
+  EXPECT_NEAR(neededMiB(vtkAlgorithm::SINGLE_PRECISION, none, 0.01, ran), wide, 1e-3);
+  const double refined = neededMiB(vtkAlgorithm::DOUBLE_PRECISION, vtkGLSNormalEstimation::GLS_REFINEMENT, 0.01, ran);
+  EXPECT_NEAR(refined - wide, 20000 * 32.0 / mib, 1e-3);
 }

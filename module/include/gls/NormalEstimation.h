@@ -65,6 +65,11 @@ struct NormalEstimationSettings
   double minimumSpread = 0.05;      ///< a neighbourhood with a smaller spread is degenerate (0: only lines)
   double maximumGrowth = 8.0;       ///< largest factor on the neighbour count when growing (1: no growth)
   ParallelOptions parallel;
+  /// Whether the result holds the reach of each neighbourhood (what the GLS refinement's scales follow) and each
+  /// point's degree in the tree's graph (what an orientation across pieces joins): those not wanted are left empty,
+  /// and are not kept in the grid's order either (8 and 4 bytes a point less at the orientation's peak).
+  bool reachWanted = true;
+  bool graphDegreeWanted = true;
   /// Called, when given, once estimateNormals has read the points for the last time (its grid holds a sorted copy),
   /// so that a caller can free them before the neighbourhoods and the orientation's graph are made.
   std::function<void()> pointsCopied;
@@ -75,8 +80,10 @@ struct NormalEstimationResult
   std::vector<double> normals;      ///< 3 n components; NaN where undefined
   std::vector<int> neighborCounts;  ///< neighbours used per point (those of the last neighbourhood tried)
   std::vector<double> spread;       ///< per point: the spread of that neighbourhood (NaN with < 3 neighbours)
-  std::vector<double> reach;        ///< per point: the distance to its farthest neighbour used (length)
-  std::vector<int> graphDegree;     ///< per point: k of its node in the tree's graph (graphNeighbors x growth)
+  std::vector<double> reach;        ///< per point: the distance to its farthest neighbour used (length); empty
+                                    ///< unless reachWanted
+  std::vector<int> graphDegree;     ///< per point: k of its node in the tree's graph (graphNeighbors x growth);
+                                    ///< empty unless graphDegreeWanted
   std::size_t components = 0;       ///< MinimumSpanningTree: connected components oriented
 };
 
@@ -95,10 +102,13 @@ bool refineNormalsByGls(const double* xyz, std::size_t n, const std::vector<doub
 /// The most memory (bytes) estimateNormals holds at once for n points, its result included, besides the caller's
 /// points: the grid's sorted copy and cell index, the estimates in grid order and the result in input order, and for
 /// MinimumSpanningTree the graph (graphNeighbors nearest others a node and their reverse edges) and the spanning
-/// forest. A bound for a budget checked before any work: at 10M points (k 16, graph 10) the normal estimation filter
-/// held 164 bytes a point with its float32 outputs (20 bytes a point; it frees its copy of the points through
-/// pointsCopied), where this gives 179 plus those 20.
+/// forest. A bound for a budget checked before any work: at 10M points of the bunny (k 16, graph 10, neither the
+/// reach nor the degrees wanted, the caller's points freed through pointsCopied) the estimate peaked at 137 bytes a
+/// point (164 before the eighth session's cuts), where this gives 141.
 double normalEstimationBytes(std::size_t n, const NormalEstimationSettings& settings);
+
+/// The bytes of the result of estimateNormals for n points (what it holds once the estimate is done).
+double normalEstimationResultBytes(std::size_t n, const NormalEstimationSettings& settings);
 
 /// How far the neighbourhoods of these settings can reach after growing: the k of the largest k-nearest
 /// neighbourhood, and the largest radius (for the ghost band of a distributed run).

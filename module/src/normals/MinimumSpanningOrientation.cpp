@@ -349,6 +349,11 @@ bool orientWith(OrientationGraph& graph, Vec3* normal, const ParallelOptions& pa
   {
     return false;
   }
+  graph.sortedDegrees = nullptr;
+  if (graph.listsMade)
+  {
+    graph.listsMade();
+  }
   graph.grid->releaseCells(); // the points and their ids stay: the graph's node s is the grid's point s
   const GridView& g = graph.grid->view();
   const std::size_t count = g.count;

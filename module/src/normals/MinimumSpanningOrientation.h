@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -25,6 +26,8 @@ struct OrientationGraph
   const int* sortedDegrees = nullptr;        ///< grid.count values (sorted order) raising a point's k above
                                              ///< graphNeighbors, or null
   const unsigned char* nodes = nullptr;      ///< grid.count flags (sorted order): a node of the graph; null: every point
+  /// Called, when given, once every node's list of nearest others is made: sortedDegrees is not read again.
+  std::function<void()> listsMade;
   /// Optional, what an earlier k-nearest query of the same grid found: graphNeighbors sorted indices per grid point,
   /// its nearest other points (nearest first, kNoNeighbor-padded). A point whose list is complete, holds nodes only
   /// and needs no more than graphNeighbors is not queried again. Empty: every node is queried.

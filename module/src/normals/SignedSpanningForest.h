@@ -29,16 +29,17 @@ struct SignedForest
   std::vector<unsigned char> turned;   ///< 1 where the node's normal must be turned over to agree with tree's node
 };
 
-/// The union-find of Boruvka's merges, each node's parent with the node's sign relative to it.
+/// The union-find of Boruvka's merges, kept in the forest's own arrays: each node's parent in forest.tree (always a
+/// lower node: a set's root is its lowest node) and its sign relative to it in forest.turned. flatten() makes every
+/// entry the node's root and its sign relative to it, the forest's meaning.
 template <typename Index>
 class SignedUnionFind
 {
 public:
-  explicit SignedUnionFind(std::size_t count)
-    : Parent(count)
-    , Sign(count, 0)
+  explicit SignedUnionFind(SignedForest<Index>& forest)
+    : Parent(forest.tree)
+    , Sign(forest.turned)
   {
-    std::iota(this->Parent.begin(), this->Parent.end(), Index(0));
   }
 
   /// The root of a's set, and a's sign relative to it (path halving).
@@ -71,31 +72,24 @@ public:
     return true;
   }
 
-  /// Every node's root and sign relative to it, into `forest` (in parallel: the structure is only read), then the
-  /// structure flattened to them.
-  void flatten(SignedForest<Index>& forest, const ParallelOptions& options)
+  /// Every node's entry made its root and its sign relative to it: in ascending order, each node's parent (a lower
+  /// node) is already its root's.
+  void flatten()
   {
-    parallelFor(this->Parent.size(), options, [&](std::size_t begin, std::size_t end, int) {
-      for (std::size_t s = begin; s < end; ++s)
+    for (std::size_t s = 0; s < this->Parent.size(); ++s)
+    {
+      const Index up = this->Parent[s];
+      if (up != s)
       {
-        Index a = static_cast<Index>(s);
-        unsigned char sign = 0;
-        while (this->Parent[a] != a)
-        {
-          sign ^= this->Sign[a];
-          a = this->Parent[a];
-        }
-        forest.tree[s] = a;
-        forest.turned[s] = sign;
+        this->Sign[s] ^= this->Sign[up];
+        this->Parent[s] = this->Parent[up];
       }
-    });
-    this->Parent = forest.tree;
-    this->Sign = forest.turned;
+    }
   }
 
 private:
-  std::vector<Index> Parent;
-  std::vector<unsigned char> Sign;
+  std::vector<Index>& Parent;
+  std::vector<unsigned char>& Sign;
 };
 
 /// The order of the graph's edges: by cost, then by the lower and the higher original index of their ends. It is
@@ -119,10 +113,11 @@ struct EdgeOrder
   }
 };
 
-/// Boruvka's rounds of the signed minimum spanning forest (signedSpanningForest): the nodes that may still have an
-/// edge out of their tree (a node without one never gets one again: trees only grow), per node the other end of its
-/// cheapest such edge and its cost (none before its first scan), per tree (its forest.tree node) the node whose edge
-/// is the tree's cheapest.
+/// Boruvka's rounds of the signed minimum spanning forest (signedSpanningForest): per node whether it may still have
+/// an edge out of its tree (a node without one never gets one again: trees only grow) and the other end of its
+/// cheapest such edge (none before its first scan; its cost is computed again where compared, not stored), per tree
+/// (its root, the forest.tree of its nodes) the node whose edge is the tree's cheapest. The union-find of the joins
+/// lives in the forest's arrays. 14 bytes a node at 32-bit indices.
 template <typename Index, typename Cost, typename Differ>
 class SignedForestRounds
 {
@@ -134,16 +129,14 @@ public:
     , EdgeCost(cost)
     , Differs(differ)
     , Forest(forest)
-    , Sets(count)
-    , Active(count)
+    , Sets(forest)
+    , Done(count, 0)
     , Cheapest(count, kNone)
-    , CheapestCost(count, 0.0)
     , From(count)
   {
     forest.tree.resize(count);
     std::iota(forest.tree.begin(), forest.tree.end(), Index(0));
     forest.turned.assign(count, 0);
-    std::iota(this->Active.begin(), this->Active.end(), Index(0));
     for (auto& f : this->From)
     {
       f.store(kNone, std::memory_order_relaxed);
@@ -152,48 +145,50 @@ public:
     this->Scan.chunk = 4096;
   }
 
-  bool anyActive() const { return !this->Active.empty(); }
-
-  /// Each active node's cheapest edge out of its tree, and each tree's (the strict order makes it one edge, whatever
-  /// the order in which the nodes offer theirs).
+  /// Each node's cheapest edge out of its tree (a node without one is done), and each tree's (the strict order makes
+  /// it one edge, whatever the order in which the nodes offer theirs).
   void findCheapestEdges()
   {
-    parallelFor(this->Active.size(), this->Scan, [&](std::size_t begin, std::size_t end, int) {
-      for (std::size_t a = begin; a < end; ++a)
+    parallelFor(this->Done.size(), this->Scan, [&](std::size_t begin, std::size_t end, int) {
+      for (std::size_t s = begin; s < end; ++s)
       {
-        const Index u = this->Active[a];
+        const Index u = static_cast<Index>(s);
+        if (this->Done[u])
+        {
+          continue;
+        }
         if (this->cheapestOutOf(u) != kNone)
         {
           this->offerToTree(u);
+        }
+        else
+        {
+          this->Done[u] = 1;
         }
       }
     });
   }
 
-  /// The nodes without an edge out leave; each tree joins the tree at the other end of its cheapest edge, and every
-  /// node's tree and sign follow. Whether any tree was joined.
+  /// Each tree joins the tree at the other end of its cheapest edge, and every node's tree and sign follow. The trees
+  /// are taken in the order of their roots; any order gives the same forest and signs (the chosen edges form a
+  /// forest of the trees, whose signs along it are unique, and a root is its set's lowest node). Whether any tree
+  /// was joined.
   bool joinTrees()
   {
-    std::size_t kept = 0;
     bool merged = false;
-    for (const Index u : this->Active)
+    for (std::size_t r = 0; r < this->From.size(); ++r)
     {
-      if (this->Cheapest[u] == kNone)
-      {
-        continue;
-      }
-      this->Active[kept++] = u;
-      std::atomic<Index>& f = this->From[this->Forest.tree[u]];
-      if (f.load(std::memory_order_relaxed) == u)
+      std::atomic<Index>& f = this->From[r];
+      const Index u = f.load(std::memory_order_relaxed);
+      if (u != kNone)
       {
         merged = this->Sets.join(u, this->Cheapest[u], this->Differs(u, this->Cheapest[u]) ? 1 : 0) || merged;
         f.store(kNone, std::memory_order_relaxed);
       }
     }
-    this->Active.resize(kept);
     if (merged)
     {
-      this->Sets.flatten(this->Forest, this->Scan);
+      this->Sets.flatten();
     }
     return merged;
   }
@@ -212,7 +207,7 @@ private:
       return best;
     }
     best = kNone;
-    double bestCost = this->CheapestCost[u];
+    double bestCost = 0.0;
     this->Edges.forEach(u, [&](Index v) {
       if (this->Forest.tree[v] == tree)
       {
@@ -226,7 +221,6 @@ private:
       }
     });
     this->Cheapest[u] = best;
-    this->CheapestCost[u] = bestCost;
     return best;
   }
 
@@ -234,8 +228,8 @@ private:
   void offerToTree(Index u)
   {
     const auto beforeCheapest = [&](Index a, Index b) {
-      return this->Order.before(
-        this->CheapestCost[a], a, this->Cheapest[a], this->CheapestCost[b], b, this->Cheapest[b]);
+      const Index ea = this->Cheapest[a], eb = this->Cheapest[b];
+      return this->Order.before(this->EdgeCost(a, ea), a, ea, this->EdgeCost(b, eb), b, eb);
     };
     std::atomic<Index>& f = this->From[this->Forest.tree[u]];
     Index held = f.load(std::memory_order_acquire);
@@ -251,9 +245,8 @@ private:
   const Differ& Differs;
   SignedForest<Index>& Forest;
   SignedUnionFind<Index> Sets;
-  std::vector<Index> Active;
+  std::vector<unsigned char> Done;
   std::vector<Index> Cheapest;
-  std::vector<double> CheapestCost;
   std::vector<std::atomic<Index>> From;
   ParallelOptions Scan;
 };
@@ -266,7 +259,7 @@ bool signedSpanningForest(const IncidentEdges<Index>& edges, std::size_t count, 
   const Cost& cost, const Differ& differ, SignedForest<Index>& forest, const ParallelOptions& parallel)
 {
   SignedForestRounds<Index, Cost, Differ> rounds(edges, count, order, cost, differ, forest, parallel.threads);
-  for (int round = 0; rounds.anyActive(); ++round)
+  for (int round = 0;; ++round)
   {
     if (parallel.progress && parallel.progress(std::min(0.9, 0.15 * round)))
     {
