@@ -365,9 +365,10 @@ bool vtkGLSNormalEstimation::EstimateWithGhosts(vtkGLSRun& run, std::vector<doub
   gls::NormalEstimationResult estimate;
   gls::estimateNormals(cloud.Points.data(), cloud.Size(), local, estimate);
   const std::size_t owned = cloud.Owned; // distinct positions of this piece
+  // (An array the settings did not want, such as the reach without the GLS refinement, stays empty.)
   const auto ownedPart = [owned](const auto& v, std::size_t width) {
     return std::vector<typename std::decay_t<decltype(v)>::value_type>(
-      v.begin(), v.begin() + static_cast<std::ptrdiff_t>(width * owned));
+      v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.empty() ? 0 : width * owned));
   };
   result.normals = ownedPart(estimate.normals, 3);
   result.neighborCounts = ownedPart(estimate.neighborCounts, 1);

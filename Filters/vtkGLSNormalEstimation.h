@@ -42,8 +42,9 @@
  * [0, 1]; threshold it to see where the normals are weak; NaN with fewer than 3 neighbours) and `NormalNeighbors`
  * (the neighbours used, after any growth). In RADIUS mode the field data `GLSNormalRadius` records the radius used.
  * OutputPrecision SINGLE_PRECISION writes Normals and NormalQuality as float32 (half their memory, for clouds of 10^8
- * points). Before any work the estimation's memory (gls::normalEstimationBytes with the filter's copy of the points
- * and its outputs: about 199 bytes a point at the defaults with float32 outputs, 164 measured at 10M points) is checked against MemoryBudget;
+ * points). Before any work the estimation's memory (the larger of gls::normalEstimationBytes, beside the filter's
+ * copy of the points where it keeps it, and the result beside the outputs: about 141 bytes a point at the defaults,
+ * 137 measured at 10M points) is checked against MemoryBudget;
  * above it the filter stops with an error saying how much it needs. An empty input, a negative or non-finite Radius, or AGREE_WITH_EXISTING without a valid normals array is
  * an error.
  *
@@ -210,8 +211,9 @@ protected:
   /// error; false then.
   bool CheckRun(const vtkGLSRun& run);
 
-  /// The bytes this piece's estimation holds at once (gls::normalEstimationBytes, its copy of the points, the
-  /// reference normals and the outputs), checked against MemoryBudget before any work.
+  /// The bytes this piece's estimation holds at once (the larger of the core's peak, gls::normalEstimationBytes,
+  /// and its result beside the outputs; its copy of the points where it keeps it, the reference normals), checked
+  /// against MemoryBudget before any work.
   double NeededBytes(const vtkGLSRun& run, const gls::NormalEstimationSettings& settings,
     const std::vector<double>& reference) const;
   /// The core's settings from the properties (UpDirection checked: false, with an error, when it is zero or not
