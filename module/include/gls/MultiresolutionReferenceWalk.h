@@ -57,7 +57,7 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
     const PyramidNode& cell = v.nodes[stack[top]];
     const int level = stackLevel[top];
     const double edge = v.levelSize[level];
-    const CellPlace place = placeCell(far, region, cell.corner, edge);
+    const CellPlace place = placeCell(far, region, nodeCorner(v.origin, cell, edge), edge);
     if (!(place.box2 < r2))
     {
       continue;

@@ -18,13 +18,29 @@ namespace gls
 constexpr int kMortonBits = 21;   ///< bits of a cell coordinate per axis in a 63-bit Morton key
 constexpr int kMaxPyramidLevels = 21;
 
-/// What the walk reads of a cell (32 bytes, apart from its sums, so that the walk touches few cache lines): its
-/// cube and its children.
+/// What the walk reads of a cell (16 bytes, apart from its sums, so that the walk touches few cache lines): its
+/// cube, as its lattice coordinates (nodeCorner gives its lower corner), and its children.
 struct PyramidNode
 {
-  Vec3 corner;              ///< lower corner of the cube (length unit)
+  std::uint64_t cube;        ///< the cube's lattice coordinates at its level, kMortonBits each: x, y, z from bit 0
   std::uint32_t first, last; ///< level > 0: its children, cells [first, last); level 0: its points [first, last)
 };
+
+/// The `cube` of a PyramidNode from the lattice coordinates of its level (each below 2^kMortonBits).
+GLS_INLINE std::uint64_t packCube(std::uint64_t x, std::uint64_t y, std::uint64_t z)
+{
+  return x | (y << kMortonBits) | (z << (2 * kMortonBits));
+}
+
+/// Lower corner of a node's cube at a level of edge `edge` (length unit), origin the lattice's: origin + coordinate
+/// times edge on each axis, exact (the lattice's edges have mantissas of at most three bits).
+GLS_INLINE Vec3 nodeCorner(const Vec3& origin, const PyramidNode& node, double edge)
+{
+  const std::uint64_t mask = (std::uint64_t(1) << kMortonBits) - 1;
+  return { origin.x + static_cast<double>(node.cube & mask) * edge,
+    origin.y + static_cast<double>((node.cube >> kMortonBits) & mask) * edge,
+    origin.z + static_cast<double>(node.cube >> (2 * kMortonBits)) * edge };
+}
 
 /// The pyramid as plain arrays (the same on the host and the device).
 struct MultiresolutionView

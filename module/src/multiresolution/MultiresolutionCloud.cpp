@@ -31,14 +31,6 @@ std::uint64_t compactMortonBits(std::uint64_t v)
   return v;
 }
 
-/// Lower corner of the cell with Morton key `key` at a level of edge `edge`.
-Vec3 cellCorner(const Vec3& origin, std::uint64_t key, double edge)
-{
-  return { origin.x + static_cast<double>(compactMortonBits(key)) * edge,
-    origin.y + static_cast<double>(compactMortonBits(key >> 1)) * edge,
-    origin.z + static_cast<double>(compactMortonBits(key >> 2)) * edge };
-}
-
 std::uint64_t latticeCoordinate(double v, double origin, double edge)
 {
   const double c = std::floor((v - origin) / edge);
@@ -448,7 +440,8 @@ bool MultiresolutionCloud::buildLevel(int level, const UninitializedArray<std::u
     for (std::size_t c = b; c < e; ++c)
     {
       PyramidNode& node = this->Nodes[first + c];
-      node.corner = cellCorner(origin, keys[c], edge);
+      node.cube = packCube(compactMortonBits(keys[c]), compactMortonBits(keys[c] >> 1), compactMortonBits(keys[c] >> 2));
+      const Vec3 corner = nodeCorner(origin, node, edge);
       node.first = static_cast<std::uint32_t>(level == 0 ? starts[c] : below + starts[c]);
       node.last = static_cast<std::uint32_t>(level == 0 ? starts[c + 1] : below + starts[c + 1]);
       if (!summed)
@@ -460,12 +453,12 @@ bool MultiresolutionCloud::buildLevel(int level, const UninitializedArray<std::u
       {
         std::uint32_t p0 = 0, p1 = 0;
         pointRange(this->Nodes.data(), static_cast<std::uint32_t>(first + c), level, p0, p1);
-        momentsOfPoints(this->Points.data(), this->Normals.data(), p0, p1, node.corner, cell);
+        momentsOfPoints(this->Points.data(), this->Normals.data(), p0, p1, corner, cell);
       }
       else
       {
         mergeChildren(
-          this->Cells.data() + (node.first - this->SummedBegin), node.last - node.first, node.corner, cell);
+          this->Cells.data() + (node.first - this->SummedBegin), node.last - node.first, corner, cell);
       }
     }
   });

@@ -46,7 +46,7 @@ GLS_FORCE_INLINE std::size_t classifyLevel(
   for (std::size_t i = 0; i < n; ++i)
   {
     const std::uint32_t c = s.frontier[i];
-    const CellPlace place = placeCell(w.far, w.region, w.v.nodes[c].corner, edge);
+    const CellPlace place = placeCell(w.far, w.region, nodeCorner(w.v.origin, w.v.nodes[c], edge), edge);
     const bool mine = w.part == 0 || place.far >= w.part;
     const bool inside = mine && place.box2 < w.r2;
     const bool whole = takenWhole(edge2, place.box2, w.eps2, w.floor2);
