@@ -114,6 +114,38 @@ class DistinctPositions(unittest.TestCase):
         np.testing.assert_array_equal(first, [0, 1, 2, 4])
         np.testing.assert_array_equal(inverse, [0, 1, 2, 2, 3, 3])
 
+    def test_merge_releases_the_positions_and_scatter_rebuilds_them_bit_for_bit(self):
+        """The merged view holds the distinct positions only (the input's are released while the analysis runs);
+        the written cloud has the input's every position back, bit for bit (-0.0 copies included), float32 and
+        float64, with a result array copied to every copy."""
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        from vtkmodules.vtkCommonCore import vtkPoints
+        from vtkmodules.vtkCommonDataModel import vtkPolyData
+        rng = np.random.default_rng(8)
+        for dtype in (np.float32, np.float64):
+            rows = rng.random((500, 3)).astype(dtype)
+            rows = np.vstack([rows, rows[[3, 7, 3]], np.array([[-0.0, 0.5, 0.5], [0.0, 0.5, 0.5],
+                                                                 [np.nan, 1, 1]], dtype=dtype)])
+            polydata = vtkPolyData()
+            points = vtkPoints()
+            points.SetData(numpy_to_vtk(rows.copy(), deep=True))
+            polydata.SetPoints(points)
+            merged = gls_coincident.merge(polydata)
+            self.assertIsNotNone(merged)
+            self.assertIsNone(polydata.GetPoints())
+            self.assertEqual(merged.copies, 4)
+            distinct = vtk_to_numpy(merged.polydata.GetPoints().GetData())
+            self.assertEqual(len(distinct), len(rows) - 4)
+            value = numpy_to_vtk(np.arange(len(distinct), dtype=np.float64), deep=True)
+            value.SetName('Value')
+            merged.polydata.GetPointData().AddArray(value)
+            out = merged.scatter(merged.polydata)
+            back = vtk_to_numpy(out.GetPoints().GetData())
+            self.assertEqual(back.dtype, rows.dtype)
+            np.testing.assert_array_equal(back.view(np.uint8), rows.view(np.uint8))
+            np.testing.assert_array_equal(point_array(out, 'Value'), merged.inverse)
+
+
 
 class ProfilePoints(unittest.TestCase):
     """gls_profiles.select_profile_points against its rule written as a stable sort: the points at ranks 0, n // 2

@@ -3,9 +3,12 @@ coordinates: ParaView's reader gives spot.obj's 2,930 vertices as 17,568 points)
 same position. The main job analyses each position once and writes the results back to every copy:
 
   merge(polydata)          -> Merged (the distinct positions, first copies first, with the cells renumbered and
-                              the normals of the copies averaged), or None when no two points coincide
-  Merged.scatter(result)   -> the input again (every point, cell and array of the file), with the arrays the
-                              analysis added to `result` copied to every copy of each position
+                              the normals of the copies averaged), or None when no two points coincide; the input's
+                              own positions are released meanwhile (a second copy of every position: 1.2 GB at
+                              10^8 float points), and only the later copies' rows are kept
+  Merged.scatter(result)   -> the input again (every point, cell and array of the file, its positions rebuilt bit
+                              for bit), with the arrays the analysis added to `result` copied to every copy of
+                              each position
 
 Coincident means equal coordinates (so 0.0 and -0.0 coincide, NaN coordinates never do). The normals of a merged
 position are the normalized mean of its copies' unit normals (NaN when they cancel, so the GLS filters leave that
@@ -16,30 +19,51 @@ import numpy as np
 class Merged:
     """The distinct positions of a cloud (`polydata`) and the map back to the input's points (`inverse`)."""
 
-    def __init__(self, source, polydata, inverse):
+    def __init__(self, source, polydata, inverse, copy_rows, copy_points):
+        """`source`'s positions are released: each point's is its distinct position's (`polydata`'s, by
+        `inverse`), but for the rows `copy_rows` (the later copies), whose own bits are `copy_points` (equal as
+        floats, they may differ in bits: -0.0 and 0.0)."""
         self.source = source
         self.polydata = polydata
         self.inverse = inverse
-        self.copies = source.GetNumberOfPoints() - polydata.GetNumberOfPoints()
+        self.count = len(inverse)
+        self.copies = self.count - polydata.GetNumberOfPoints()
+        self.copy_rows = copy_rows
+        self.copy_points = copy_points
+        source.SetPoints(None)
 
     def note(self):
         return ('note: %d of the %d points coincide with an earlier one; the analysis runs on the %d distinct '
                 'positions and writes the results back to every copy'
-                % (self.copies, self.source.GetNumberOfPoints(), self.polydata.GetNumberOfPoints()))
+                % (self.copies, self.count, self.polydata.GetNumberOfPoints()))
 
-    def scatter(self, result):
+    def source_points(self):
+        """The input's positions, bit for bit (vtkPoints in the input's type), rebuilt from the distinct ones."""
+        from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+        from vtkmodules.vtkCommonCore import vtkPoints
+        rows = vtk_to_numpy(self.polydata.GetPoints().GetData())[self.inverse]
+        rows[self.copy_rows] = self.copy_points
+        points = vtkPoints()
+        points.SetData(numpy_to_vtk(rows, deep=True))
+        return points
+
+    def scatter(self, result, release=()):
         """The input polydata with every point array of `result` (on the merged points) that the input lacks,
-        and `result`'s field data, copied to every copy of each position."""
+        and `result`'s field data, copied to every copy of each position; the arrays named in `release` (those no
+        one else shares) are emptied once copied (the main job: 10^8 points' arrays are not held twice)."""
         from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
         from vtkmodules.vtkCommonDataModel import vtkPolyData
         out = vtkPolyData()
         out.ShallowCopy(self.source)
+        out.SetPoints(self.source_points())
         arrays = result.GetPointData()
         for i in range(arrays.GetNumberOfArrays()):
             array = arrays.GetArray(i)
             if array is None or out.GetPointData().HasArray(array.GetName()):
                 continue
             values = vtk_to_numpy(array)[self.inverse]
+            if array.GetName() in release:  # its distinct values go once copied: one array at a time held twice
+                array.Initialize()
             copy = numpy_to_vtk(np.ascontiguousarray(values), deep=True, array_type=array.GetDataType())
             copy.SetName(array.GetName())
             for c in range(array.GetNumberOfComponents()):
@@ -169,6 +193,11 @@ def merge(polydata):
     del key
     if len(first) == len(points):
         return None
+    is_first = np.zeros(len(points), dtype=bool)
+    is_first[first] = True
+    copy_rows = np.flatnonzero(~is_first)
+    del is_first
+    copy_points = points[copy_rows].copy()
     merged = vtkPolyData()
     pts = vtkPoints()
     pts.SetData(numpy_to_vtk(np.ascontiguousarray(points[first]), deep=True))  # in the input's type
@@ -182,4 +211,5 @@ def merge(polydata):
         averaged = numpy_to_vtk(merged_normals(vtk_to_numpy(normals).astype(float), inverse, len(first)), deep=True)
         averaged.SetName('Normals')
         merged.GetPointData().SetNormals(averaged)
-    return Merged(polydata, merged, inverse)
+    del points
+    return Merged(polydata, merged, inverse, copy_rows, copy_points)

@@ -213,6 +213,7 @@ def analyze(args, outputs):
     merged = gls_coincident.merge(data)
     if merged is not None:
         print(merged.note())
+        gls_io.release_output(source)  # the reader's references: `data` keeps the file's other arrays, not its positions
         source = gls_cloud.producer(merged.polydata)
     analysed = merged.polydata if merged is not None else data
     if analysed.GetNumberOfPoints() < 2:
@@ -257,7 +258,13 @@ def analyze(args, outputs):
         pd.AddArray(dissimilarity)
 
     picks = gls_profiles.select_profile_points(feature, vtk_to_numpy(pd.GetArray('GLSPertinentScaleCount')))
-    output = merged.scatter(result) if merged is not None else result
+    if merged is not None:
+        # The arrays of the fused pass (not the normals', which the profiles and the denoising read) go once copied.
+        shared = gls_io.output_of(upstream).GetPointData()
+        own = [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays()) if not shared.HasArray(pd.GetArrayName(i))]
+        output = merged.scatter(result, release=set(own))
+    else:
+        output = result
     if output.GetNumberOfCells() == 0:  # a cloud without cells: one poly-vertex, so that ParaView shows the .vtp
         output.SetVerts(gls_cloud.poly_vertex_cell(output.GetNumberOfPoints()))
     if not args.per_scale:
