@@ -437,7 +437,7 @@ class Inputs(unittest.TestCase):
         # runs (no "input:" line), so a survey too large for the machine is refused in seconds, not after minutes of
         # reading. The budget: the fixed part and 2,999 points' worth (one point too few for the 3,000 here).
         n = len(self.points)
-        budget = (gls_memory.FIXED_BYTES + (n - 1) * gls_memory.DEFAULT_BYTES_PER_POINT) / gls_memory.GIB
+        budget = (gls_memory.FIXED_BYTES + (n - 1) * gls_memory.default_bytes_per_point(n)) / gls_memory.GIB
         ply = path('announced.ply')
         helpers.write_ply(ply, helpers.polydata_from(self.points), binary=True)
         las, _ = write_las('announced.las', self.points, np.zeros(n), self.colours)

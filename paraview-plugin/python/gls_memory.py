@@ -6,26 +6,30 @@ measured peak resident memory and rounded up (docs/main-job.md, "Memory, checked
 the fused features and summaries, the compact output) and, with --per-scale, every scale's arrays on top."""
 import math
 
-# The default path's peak resident memory, whatever the number of scales: FIXED_BYTES plus DEFAULT_BYTES_PER_POINT a
-# point. Measured on the bunny sampled by area (VmHWM of each stage), eighth session (2026-12-06): the normals and the
-# fused pass both peak at about 201 bytes a point beside the 340 MiB of pvpython and ParaView at 10M and 30M points
-# (2,255 and 6,101 MiB). At 10^8 points more is asked: the normals peaked at 20.4 GiB (with the coincident points'
-# map and copy of the cloud, 2.9 GiB), and the fused pass's own check asks for its outputs and its engine's footprint
-# (158 bytes a point at 10^8 points, 131 at 10^7: the pyramid holds 1.32 nodes a point against 1.04) with a tenth in
-# reserve (FILTER_SHARE): about 23.6 GiB in all, 250 bytes a point; the normal estimation's own check asks for 199
-# bytes a point with a tenth in reserve beside the points read (233 bytes a point in all; it frees its copy of the
-# points once its grid is built: its peak at 10M is now 2,026 MiB). The estimate follows the larger (250 bytes a
-# point): 3.2, 7.8 and 24.1 GiB at 10M, 30M and 100M points, so that a cloud a filter of the job would refuse is
-# refused before any stage runs.
+# The default path's peak resident memory, whatever the number of scales: FIXED_BYTES plus default_bytes_per_point(N)
+# a point, what the job's largest ask comes to: the fused pass's own check (ScaleFilterBase) asks for its outputs (37
+# bytes a point) and its engine's footprint (114.5 bytes a point at 10^7 points of the bunny sampled by area, 137.3 at
+# 10^8: the pyramid holds 1.04 and 1.32 nodes a point, 16 bytes each since the ninth session; 131 and 158 before)
+# within FILTER_SHARE of what the job leaves, beside what the job holds then (the float32 positions, the coincident
+# points' map, the normals and their quality and neighbour counts: 36 bytes a point): 196 bytes a point at 10^7
+# points, 220 at 10^8, DENSITY_BYTES_PER_POINT more for each tenfold beyond 10^7. The normal estimation asks for less
+# (141 bytes a point within FILTER_SHARE, beside 16). Measured (ninth session, 2026-12-07, VmHWM of each stage): at
+# 10^8 points (3 coincident) the job ran in 717 s with an 18.2 GiB peak (the fused pass; the normals 14.5 GiB, the
+# compact copy 14.3 GiB), where the estimate is 21.3 GiB; at 10^7, 2.1 GiB against 2.6. The fused pass's fit cannot
+# be cut into smaller tiles at the job's default scales (to 8% of the diagonal: each tile's band of neighbours holds
+# most of the cloud), so the estimate is its untiled ask: a cloud a filter of the job would refuse is refused before
+# any stage runs. On a 24 GB machine (22.0 GiB available) that is up to about 103M points.
 FIXED_BYTES = 850.0 * 1024.0 ** 2
-DEFAULT_BYTES_PER_POINT = 250.0
+DEFAULT_BYTES_PER_POINT = 196.0
+DENSITY_BYTES_PER_POINT = 24.0
 # With --per-scale: bytes per point and scale on top (the scale space, nu, and their copy in the written file).
 PER_SCALE_BYTES_PER_POINT_SCALE = 240.0
 GIB = 1024.0 ** 3
 MIB = 1024.0 ** 2
 # The part of what is left of the budget that a filter is given: the rest covers its allocations besides the ones it
-# counts (its outputs, its copy of the cloud and its engine).
-FILTER_SHARE = 0.9
+# counts (its outputs, its copy of the cloud, its engine or its graph), which are small: the counts are bounds (at
+# 10^8 points the fused pass peaked 1.9 GB below its count, the normals 0.8 GB below theirs).
+FILTER_SHARE = 0.95
 
 
 class BudgetError(Exception):
@@ -72,9 +76,15 @@ def filter_budget_mib(budget):
     return max(FILTER_SHARE * (budget - held), MIB) / MIB
 
 
+def default_bytes_per_point(points):
+    """The default path's bytes a point for a cloud of `points` points: DEFAULT_BYTES_PER_POINT up to 10^7 points,
+    DENSITY_BYTES_PER_POINT more for each tenfold beyond (a denser cloud's pyramid holds more nodes a point)."""
+    return DEFAULT_BYTES_PER_POINT + DENSITY_BYTES_PER_POINT * max(0.0, math.log10(max(points, 1) / 1e7))
+
+
 def needed_bytes(points, scales, per_scale):
     """The estimated peak (bytes) of the main job on `points` points at `scales` scales."""
-    per_point = DEFAULT_BYTES_PER_POINT + (PER_SCALE_BYTES_PER_POINT_SCALE * scales if per_scale else 0.0)
+    per_point = default_bytes_per_point(points) + (PER_SCALE_BYTES_PER_POINT_SCALE * scales if per_scale else 0.0)
     return FIXED_BYTES + points * per_point
 
 
@@ -91,7 +101,7 @@ def check(points, scales, per_scale, budget_gib=None, announced=False):
     counted = ' (as the file\'s header announces)' if announced else ''
     default = needed_bytes(points, scales, False)
     if per_scale and default <= budget:
-        fitting = int(math.floor(((budget - FIXED_BYTES) / points - DEFAULT_BYTES_PER_POINT)
+        fitting = int(math.floor(((budget - FIXED_BYTES) / points - default_bytes_per_point(points))
                                  / PER_SCALE_BYTES_PER_POINT_SCALE))
         advice = 'drop --per-scale (the per-point summaries need about %.1f GiB)' % (default / GIB)
         if fitting >= 2:
