@@ -59,7 +59,8 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
 {
   gls::NormalEstimationSettings settings;
   std::vector<double> reference;
-  if (!this->CheckRun(run) || !this->ResolveSettings(run, settings) || !this->GatherReference(run, reference, settings) ||
+  if (!this->CheckRun(run) || !this->ResolveSettings(run, settings) ||
+    !this->GatherReference(run, reference, settings) ||
     !this->AgreeToContinue(run, this->CheckMemoryBudget(this->NeededBytes(run, settings, reference),
                                   "the normal estimation",
                                   "Use fewer NumberOfNeighbors or GraphNeighbors, or raise MemoryBudget.")))

@@ -162,7 +162,8 @@ TEST(CellMoments, MergedSumsEqualTheSumsOfThePoints)
     std::uint32_t first = 0, last = 0;
     gls::pointRange(v.nodes, static_cast<std::uint32_t>(node), level, first, last);
     gls::PyramidCell direct;
-    gls::momentsOfPoints(v.points, v.normals, first, last, gls::nodeCorner(v.origin, v.nodes[node], v.levelSize[level]), direct);
+    const gls::Vec3 corner = gls::nodeCorner(v.origin, v.nodes[node], v.levelSize[level]);
+    gls::momentsOfPoints(v.points, v.normals, first, last, corner, direct);
     const gls::PyramidCell& stored = v.cells[node - v.summedBegin];
     const double h = v.levelSize[level];
     ASSERT_EQ(stored.count, direct.count);

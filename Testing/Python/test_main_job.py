@@ -213,7 +213,8 @@ class MainJob(unittest.TestCase):
         result = run('--output-dir', out, '--per-scale', '--memory-budget', '0.9')
         self.assertEqual(result.returncode, 2, failure_text(result))
         # 0.9 GiB: the fixed part and the summaries fit, every scale's arrays do not, 7 scales of them would.
-        fitting = int(((0.9 * gls_memory.GIB - gls_memory.FIXED_BYTES) / 35947 - gls_memory.default_bytes_per_point(35947))
+        per_point = gls_memory.default_bytes_per_point(35947)
+        fitting = int(((0.9 * gls_memory.GIB - gls_memory.FIXED_BYTES) / 35947 - per_point)
                       // gls_memory.PER_SCALE_BYTES_PER_POINT_SCALE)
         self.assertEqual(fitting, 7)
         self.assertIn('gls-analyze: storing every scale (--per-scale) of 35947 points at 20 scales needs about 1.0 '

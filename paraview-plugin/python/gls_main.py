@@ -213,7 +213,8 @@ def analyze(args, outputs):
     merged = gls_coincident.merge(data)
     if merged is not None:
         print(merged.note())
-        gls_io.release_output(source)  # the reader's references: `data` keeps the file's other arrays, not its positions
+        # The reader's references: `data` keeps the file's other arrays, not its positions.
+        gls_io.release_output(source)
         source = gls_cloud.producer(merged.polydata)
     analysed = merged.polydata if merged is not None else data
     if analysed.GetNumberOfPoints() < 2:

@@ -440,7 +440,8 @@ bool MultiresolutionCloud::buildLevel(int level, const UninitializedArray<std::u
     for (std::size_t c = b; c < e; ++c)
     {
       PyramidNode& node = this->Nodes[first + c];
-      node.cube = packCube(compactMortonBits(keys[c]), compactMortonBits(keys[c] >> 1), compactMortonBits(keys[c] >> 2));
+      const std::uint64_t key = keys[c];
+      node.cube = packCube(compactMortonBits(key), compactMortonBits(key >> 1), compactMortonBits(key >> 2));
       const Vec3 corner = nodeCorner(origin, node, edge);
       node.first = static_cast<std::uint32_t>(level == 0 ? starts[c] : below + starts[c]);
       node.last = static_cast<std::uint32_t>(level == 0 ? starts[c + 1] : below + starts[c + 1]);

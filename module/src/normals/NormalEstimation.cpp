@@ -518,7 +518,8 @@ double normalEstimationBytes(std::size_t n, const NormalEstimationSettings& sett
   const double kept = resultBytesPerPoint(settings);
   const double degree = settings.graphDegreeWanted ? 0.0 : 4.0;
   // The first neighbourhoods keep each point's nearest others for the tree's graph (32-bit indices).
-  const double nearest = tree && settings.neighborhood == NeighborhoodType::KNearest ? 4.0 * settings.graphNeighbors : 0.0;
+  const bool keepsNearest = tree && settings.neighborhood == NeighborhoodType::KNearest;
+  const double nearest = keepsNearest ? 4.0 * settings.graphNeighbors : 0.0;
   double perPoint = std::max(grid + kept + degree + nearest, grid - 16.0 + 2.0 * kept + degree);
   if (tree)
   {
