@@ -8,7 +8,6 @@
 
 #include "gls/Planarity.h"
 
-
 #include <string>
 
 vtkGLSFitFilterBase::vtkGLSFitFilterBase()

@@ -221,10 +221,8 @@ int vtkGLSNormalEstimation::EstimateSerial(vtkGLSRun& run, std::vector<double>& 
       return FAILED;
     }
   }
-  if (this->Refinement != GLS_REFINEMENT)
+  if (this->FreesPointsEarly(run))
   {
-    // Nothing reads this piece's points after the core's grid is built (the refinement does): 24 bytes a point
-    // less at the estimation's peak.
     settings.pointsCopied = [&run] { run.Cloud.ReleaseCoordinates(); };
   }
   const bool completed = gls::estimateNormals(run.Cloud.Points.data(), run.Cloud.Owned, settings, result);
@@ -244,6 +242,13 @@ int vtkGLSNormalEstimation::EstimateSerial(vtkGLSRun& run, std::vector<double>& 
   return COMPLETED;
 }
 
+bool vtkGLSNormalEstimation::FreesPointsEarly(const vtkGLSRun& run) const
+{
+  // Nothing reads a serial run's points after the core's grid is built, unless the GLS refinement does (a distributed
+  // run's ghosts and refinement read them too): 24 bytes a point less at the estimation's peak.
+  return !run.Distributed.IsParallel() && this->Refinement != GLS_REFINEMENT;
+}
+
 double vtkGLSNormalEstimation::NeededBytes(
   const vtkGLSRun& run, const gls::NormalEstimationSettings& settings, const std::vector<double>& reference) const
 {
@@ -253,8 +258,7 @@ double vtkGLSNormalEstimation::NeededBytes(
   // once the core's grid and graph are gone. The reference normals are held throughout.
   const double n = static_cast<double>(run.Cloud.Owned);
   const double value = vtkGLSOutputPrecision::ValueBytes(this->OutputPrecision);
-  const bool pointsKept = run.Distributed.IsParallel() || this->Refinement == GLS_REFINEMENT;
-  const double points = pointsKept ? n * 3.0 * sizeof(double) : 0.0;
+  const double points = this->FreesPointsEarly(run) ? 0.0 : n * 3.0 * sizeof(double);
   const double estimating = gls::normalEstimationBytes(run.Cloud.Owned, settings) + points;
   const double writing = gls::normalEstimationResultBytes(run.Cloud.Owned, settings) + points + n * (4.0 * value + 4.0);
   return std::max(estimating, writing) + static_cast<double>(reference.size()) * sizeof(double);

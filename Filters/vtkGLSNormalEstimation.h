@@ -211,6 +211,9 @@ protected:
   /// error; false then.
   bool CheckRun(const vtkGLSRun& run);
 
+  /// Whether the run frees its copy of the points once the core's grid holds its own (serial, without the GLS
+  /// refinement).
+  bool FreesPointsEarly(const vtkGLSRun& run) const;
   /// The bytes this piece's estimation holds at once (the larger of the core's peak, gls::normalEstimationBytes,
   /// and its result beside the outputs; its copy of the points where it keeps it, the reference normals), checked
   /// against MemoryBudget before any work.
