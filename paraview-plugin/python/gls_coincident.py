@@ -92,7 +92,8 @@ def distinct_positions(points):
     faster than np.unique(axis=0) at 10M rows), so that equal rows lie next to each other; only the rows whose hash
     another row shares are then compared, by their coordinates (so two different rows that share a hash stay apart).
     About 40 bytes a row at most beside `points` (the rows are hashed a chunk at a time, never copied whole)."""
-    return _distinct_hashed(points, row_keys(points))
+    first, inverse, _ = _distinct_hashed(points, row_keys(points))
+    return first, inverse
 
 
 def _rows(points):
@@ -113,10 +114,11 @@ def row_keys(points, chunk=1 << 20):
 
 
 def _distinct_hashed(points, key):
-    """distinct_positions of the rows of `points` hashed by row_keys."""
+    """distinct_positions of the rows of `points` hashed by row_keys, and the rows that are later copies (each
+    row that is not its position's first copy, once)."""
     count = len(key)
     if count == 0:
-        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int32)
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int32), np.zeros(0, dtype=np.int64)
     # The rows whose key another row shares (a few, in a scan): only they can coincide.
     order = np.argsort(key, kind='stable')
     sorted_key = key[order]
@@ -149,7 +151,7 @@ def _distinct_hashed(points, key):
     # A first copy's index among the first copies (32 bits where they fit: 0.4 GB less kept at 10^8 points).
     inverse = np.cumsum(~later, dtype=np.int32 if count < 2 ** 31 else np.int64) - 1
     inverse[later_rows] = inverse[leader_of_later]
-    return first, inverse
+    return first, inverse, later_rows
 
 
 def merged_normals(normals, inverse, count):
@@ -189,14 +191,10 @@ def merge(polydata):
     if not np.any(sorted_key[1:] == sorted_key[:-1]):  # no two rows share a hash, so no two coincide (a scan's
         return None                                    # usual case: one unstable sort, a third of the full cost)
     del sorted_key
-    first, inverse = _distinct_hashed(points, key)
+    first, inverse, copy_rows = _distinct_hashed(points, key)
     del key
     if len(first) == len(points):
         return None
-    is_first = np.zeros(len(points), dtype=bool)
-    is_first[first] = True
-    copy_rows = np.flatnonzero(~is_first)
-    del is_first
     copy_points = points[copy_rows].copy()
     merged = vtkPolyData()
     pts = vtkPoints()
