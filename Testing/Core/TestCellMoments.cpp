@@ -96,8 +96,10 @@ PatchErrors patchErrors(const Patch& patch, const gls::Vec3& p, double t)
     gls::accumulate(ds, gls::weightDerivativeAt(d2, t), x, patch.normals[i]);
   }
   gls::PyramidCell cell;
-  gls::momentsOfPoints(patch.points.data(), patch.normals.data(), 0, static_cast<std::uint32_t>(patch.points.size()),
-    patch.points[0], cell);
+  gls::StoredPoints stored;
+  stored.positions = patch.points.data();
+  stored.normals = patch.normals.data();
+  gls::momentsOfPoints(stored, 0, static_cast<std::uint32_t>(patch.points.size()), patch.points[0], cell);
   const double dc2 = gls::squaredNorm(cell.centroid - p);
   for (std::size_t i = 0; i < patch.points.size(); ++i)
   {
@@ -163,7 +165,7 @@ TEST(CellMoments, MergedSumsEqualTheSumsOfThePoints)
     gls::pointRange(v.nodes, static_cast<std::uint32_t>(node), level, first, last);
     gls::PyramidCell direct;
     const gls::Vec3 corner = gls::nodeCorner(v.origin, v.nodes[node], v.levelSize[level]);
-    gls::momentsOfPoints(v.points, v.normals, first, last, corner, direct);
+    gls::momentsOfPoints(v.points, first, last, corner, direct);
     const gls::PyramidCell& stored = v.cells[node - v.summedBegin];
     const double h = v.levelSize[level];
     ASSERT_EQ(stored.count, direct.count);

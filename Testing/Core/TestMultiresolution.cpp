@@ -110,7 +110,7 @@ SampleCounts countSamples(const gls::MultiresolutionView& v, const gls::Vec3& p,
   for (std::size_t i = 0; i < visits.size(); ++i)
   {
     n.pointsTwice += visits[i] > 1 ? 1 : 0;
-    n.ballPointsMissed += visits[i] == 0 && gls::squaredNorm(v.points[i] - p) < r2 ? 1 : 0;
+    n.ballPointsMissed += visits[i] == 0 && gls::squaredNorm(v.points.position(i) - p) < r2 ? 1 : 0;
   }
   return n;
 }
@@ -560,6 +560,63 @@ TEST(Multiresolution, ResultsAreBitwiseIdenticalForAnyThreadCount)
       ASSERT_TRUE(sameBits(a, b)) << "sample " << i << " with " << threads << " threads";
     }
   }
+}
+
+TEST(Multiresolution, FloatCoordinatesAreStoredAsFloatsAndGiveTheSameSamplesBitForBit)
+{
+  // A float32 cloud (every coordinate a float exactly; one point without a normal, one at NaN): its pyramid keeps
+  // the coordinates in 12 bytes a point, not 24, and every sample has the bits of the pyramid that keeps doubles.
+  Cloud c = paraboloid(200, 1.0, 0.7, 0.3, 0.02, 0.1, 3);
+  for (double& x : c.points)
+  {
+    x = static_cast<float>(x + 1000.0); // far from the origin, as a scan's coordinates often are
+  }
+  c.normals[3 * 10] = c.normals[3 * 10 + 1] = c.normals[3 * 10 + 2] = 0.0;
+  c.points[3 * 20 + 1] = std::nan("");
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.5, 8, gls::ScaleSampling::Quadratic);
+  gls::ScaleSpaceSettings settings = multiresolutionSettings(scales, 0.1, 2, 6.0, kNearLinearized);
+  const auto run = [&](const Cloud& cloud, bool single, double& bytes, bool& stored32) {
+    settings.multiresolution.singleWhereExact = single;
+    gls::ScaleSpaceEngine engine(cloud.points.data(), cloud.normals.data(), cloud.size(), settings);
+    CollectingSink sink(cloud.size(), scales.size());
+    EXPECT_TRUE(engine.run(sink));
+    const std::vector<std::uint64_t> ids = { 0, 20, 5, 10, 7 };
+    CollectingSink some(cloud.size(), scales.size());
+    EXPECT_TRUE(engine.run(some, &ids));
+    for (std::uint64_t id : ids)
+    {
+      for (std::size_t k = 0; k < scales.size(); ++k)
+      {
+        EXPECT_TRUE(sameBits(some.at(id, k), sink.at(id, k))) << id;
+      }
+    }
+    bytes = engine.memoryBytes();
+    stored32 = engine.pyramid().view().points.positions32 != nullptr;
+    EXPECT_LE(bytes, gls::ScaleSpaceEngine::footprint(cloud.points.data(), cloud.normals.data(), cloud.size(),
+      settings).bytes(0.0));
+    return sink;
+  };
+  double singleBytes = 0.0, doubleBytes = 0.0;
+  bool singleStored = false, doubleStored = true;
+  const CollectingSink single = run(c, true, singleBytes, singleStored);
+  const CollectingSink doubles = run(c, false, doubleBytes, doubleStored);
+  EXPECT_TRUE(singleStored);
+  EXPECT_FALSE(doubleStored);
+  const double admitted = static_cast<double>(c.size() - 2);
+  EXPECT_EQ(doubleBytes - singleBytes, admitted * 12.0);
+  long valid = 0;
+  for (std::size_t i = 0; i < single.Samples.size(); ++i)
+  {
+    ASSERT_TRUE(sameBits(single.Samples[i], doubles.Samples[i])) << "sample " << i;
+    ASSERT_EQ(single.Samples[i].valid, doubles.Samples[i].valid) << "sample " << i;
+    valid += single.Samples[i].valid ? 1 : 0;
+  }
+  EXPECT_GT(valid, static_cast<long>(single.Samples.size() * 9 / 10));
+  // One coordinate that is not a float: doubles for every point.
+  c.points[3 * 30] += 1e-9;
+  run(c, true, singleBytes, singleStored);
+  EXPECT_FALSE(singleStored);
+  EXPECT_EQ(singleBytes, doubleBytes);
 }
 
 TEST(Multiresolution, GivenPointsGetTheSamplesOfAFullRun)

@@ -30,14 +30,14 @@ struct RunPoints
   const std::uint64_t* order = nullptr;
   std::size_t count = 0;
   const std::uint64_t* slots = nullptr; ///< null: the engine's own order
-  const Vec3* sorted = nullptr;
+  StoredPoints sorted;
   std::size_t sortedCount = 0;
   const Vec3* rest = nullptr;
 
-  const Vec3& positionAt(std::size_t k) const
+  Vec3 positionAt(std::size_t k) const
   {
     const std::uint64_t slot = this->slots ? this->slots[k] : k;
-    return slot < this->sortedCount ? this->sorted[slot] : this->rest[slot - this->sortedCount];
+    return slot < this->sortedCount ? this->sorted.position(slot) : this->rest[slot - this->sortedCount];
   }
 };
 

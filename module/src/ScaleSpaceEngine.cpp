@@ -166,6 +166,7 @@ PyramidLayout ScaleSpaceEngine::pyramidLayout(
   PyramidLayout layout =
     choosePyramidLayout(m.low, m.high, m.spacing, settings.scales.front(), settings.scales.back(), m.accuracy);
   layout.linearizedDistance = m.linearizedDistance;
+  layout.singleWhereExact = m.singleWhereExact;
   return layout;
 }
 
@@ -199,14 +200,18 @@ EngineFootprint ScaleSpaceEngine::footprint(
     const double index = n * 2.0 * 8.0 + 65537.0 * 8.0;
     return { kept + n * (sizeof(Vec3) + sizeof(KeyedIndex)) + sorted + index, kept + sorted + index + n * 8.0 };
   }
-  const PyramidCounts counts = MultiresolutionCloud::count(points, admit.data(), count,
-    pyramidLayout(settings, points, count, admit.data()), resolveThreadCount(settings.parallel.threads));
+  const PyramidLayout layout = pyramidLayout(settings, points, count, admit.data());
+  const int threads = resolveThreadCount(settings.parallel.threads);
+  const PyramidCounts counts = MultiresolutionCloud::count(points, admit.data(), count, layout, threads);
+  // The coordinates as floats where they are floats exactly (StoredPoints.h).
+  const double stored =
+    n * MultiresolutionCloud::sortedBytesPerPoint(points, count, admit.data(), layout, threads);
   // The sorted ids become Order. Each level's keys and starts while the next is made; the sort's keys until the
   // finest level's are made, then the nodes and the cells with their sums.
   const double nodes = static_cast<double>(counts.nodes);
   const double levels = std::max(n * sizeof(KeyedIndex),
     nodes * sizeof(PyramidNode) + static_cast<double>(counts.cells) * sizeof(PyramidCell));
-  return { kept + n * sizeof(KeyedIndex) + sorted, kept + sorted + nodes * 2.0 * 8.0 + levels };
+  return { kept + n * sizeof(KeyedIndex) + stored, kept + stored + nodes * 2.0 * 8.0 + levels };
 }
 
 double ScaleSpaceEngine::memoryBytes() const
@@ -272,16 +277,22 @@ RunPoints ScaleSpaceEngine::pointsOfRun(
   points.order = order;
   points.count = count;
   points.slots = slots;
-  points.sorted = this->sortedPositions();
+  points.sorted = this->sortedPoints();
   points.sortedCount = this->sortedCount();
   points.rest = this->RestPositions.data();
   return points;
 }
 
-const Vec3* ScaleSpaceEngine::sortedPositions() const
+StoredPoints ScaleSpaceEngine::sortedPoints() const
 {
-  return this->Settings.evaluation == Evaluation::Multiresolution ? this->Pyramid.view().points
-                                                                   : this->Grid.view().points;
+  if (this->Settings.evaluation == Evaluation::Multiresolution)
+  {
+    return this->Pyramid.view().points;
+  }
+  StoredPoints grid;
+  grid.positions = this->Grid.view().points;
+  grid.normals = this->Grid.view().normals;
+  return grid;
 }
 
 std::size_t ScaleSpaceEngine::sortedCount() const

@@ -12,6 +12,7 @@
 #include "gls/AggregateMoments.h"
 #include "gls/Numeric.h"
 #include "gls/PointScaleSpace.h"
+#include "gls/StoredPoints.h"
 
 #include <cstdint>
 
@@ -70,7 +71,7 @@ GLS_INLINE Vec3 normalOffsetTimes(const PyramidCell& c, const Vec3& v)
 /// The sums of the points [first, last) (at least one), their centroid formed about `reference` (a point near them,
 /// such as their cube's corner, so that far coordinates lose no precision). The build stores these for the cells of
 /// its lowest summed level and the walks form them for finer cells, with the same arithmetic.
-GLS_INLINE void momentsOfPoints(const Vec3* points, const Vec3* normals, std::uint32_t first, std::uint32_t last,
+GLS_INLINE void momentsOfPoints(const StoredPoints& points, std::uint32_t first, std::uint32_t last,
   const Vec3& reference, PyramidCell& cell)
 {
   double count = 0.0;
@@ -78,8 +79,8 @@ GLS_INLINE void momentsOfPoints(const Vec3* points, const Vec3* normals, std::ui
   for (std::uint32_t i = first; i < last; ++i)
   {
     count += 1.0;
-    offset = offset + (points[i] - reference);
-    normalSum = normalSum + normals[i];
+    offset = offset + (points.position(i) - reference);
+    normalSum = normalSum + points.normal(i);
   }
   cell = PyramidCell{};
   cell.centroid = reference + (1.0 / count) * offset;
@@ -87,8 +88,8 @@ GLS_INLINE void momentsOfPoints(const Vec3* points, const Vec3* normals, std::ui
   cell.count = count;
   for (std::uint32_t i = first; i < last; ++i)
   {
-    const Vec3 y = points[i] - cell.centroid;
-    const Vec3 n = normals[i];
+    const Vec3 y = points.position(i) - cell.centroid;
+    const Vec3 n = points.normal(i);
     const double yy[6] = { y.x * y.x, y.x * y.y, y.x * y.z, y.y * y.y, y.y * y.z, y.z * y.z };
     for (int k = 0; k < 6; ++k)
     {

@@ -8,6 +8,7 @@
 #include "gls/KeySort.h"
 #include "gls/MultiresolutionFarRule.h"
 #include "gls/ParallelFor.h"
+#include "gls/StoredPoints.h"
 #include "gls/UninitializedArray.h"
 
 #include <cstddef>
@@ -42,6 +43,9 @@ struct PyramidLayout
   double accuracy = kDefaultAccuracy; ///< a cell is one sample where edge <= accuracy * distance
   int walkLevel = 0;           ///< the points of one cube of this level share a walk (MultiresolutionView)
   double linearizedDistance = kLinearizedDistance; ///< where the far parts begin (MultiresolutionView, FarRule)
+  /// Store the points as floats when every admitted coordinate is a float exactly (StoredPoints.h); false: always
+  /// as doubles (the same samples, bit for bit: the tests' reference).
+  bool singleWhereExact = true;
 };
 
 /// The edge the near cells take (takenWhole: at most kNearAccuracyShare * accuracy * smallestScale): the largest
@@ -95,10 +99,15 @@ public:
   /// Nodes of every level (PyramidNode), and the cells with stored sums (levels kFirstSummedLevel and above).
   std::size_t nodeCount() const { return this->Nodes.size(); }
   std::size_t cellCount() const { return this->Cells.size(); }
+  /// The bytes a point's sorted copies take (position, unit normal and id): 44, or 56 where its coordinates are
+  /// kept as doubles (StoredPoints.h).
+  static double sortedBytesPerPoint(
+    const double* xyz, std::size_t n, const unsigned char* admit, const PyramidLayout& layout, int threads);
   /// The bytes the pyramid's arrays hold (their capacity).
   double memoryBytes() const
   {
     return static_cast<double>(this->Points.capacity() + this->Normals.capacity()) * sizeof(Vec3) +
+      static_cast<double>(this->Points32.capacity()) * sizeof(float) +
       static_cast<double>(this->Ids.capacity() + this->TopKeys.capacity()) * 8.0 +
       static_cast<double>(this->Nodes.capacity()) * sizeof(PyramidNode) +
       static_cast<double>(this->Cells.capacity()) * sizeof(PyramidCell);
@@ -107,9 +116,11 @@ public:
 private:
   /// Empties the cloud; returns false (a build's abort).
   bool fail();
-  /// Points, Normals and Ids in the order of the sorted keys (normals normalized).
-  bool copySortedPoints(
-    const KeyedIndices& keyed, const double* xyz, const double* normals, const ParallelOptions& stage);
+  /// The points (as floats or doubles: StoredPoints.h), their unit normals and Ids in the order of the sorted keys.
+  bool copySortedPoints(const KeyedIndices& keyed, const double* xyz, const double* normals, std::size_t n,
+    const unsigned char* admit, bool singleWhereExact, const ParallelOptions& stage);
+  /// The sorted points as the walks read them.
+  StoredPoints storedPoints() const;
   /// Allocates Nodes and Cells once, for every level above these distinct finest keys up to topLevel.
   void reserveLevels(const UninitializedArray<std::uint64_t>& finestKeys, int topLevel);
   /// The counts of every level above `count` increasing finest keys key(c) (equal ones counted once) up to topLevel.
@@ -124,8 +135,9 @@ private:
   /// The view of the built levels.
   void fillView(const PyramidLayout& layout, int topLevel, const Vec3& origin);
 
-  UninitializedArray<Vec3> Points;
-  UninitializedArray<Vec3> Normals;
+  UninitializedArray<Vec3> Points;    ///< doubles, or empty when Points32 holds them
+  UninitializedArray<Vec3> Normals;   ///< unit normals
+  UninitializedArray<float> Points32; ///< 3 a point, or empty when Points holds them
   UninitializedArray<std::uint64_t> Ids;
   UninitializedArray<PyramidNode> Nodes;
   UninitializedArray<PyramidCell> Cells;

@@ -131,11 +131,11 @@ GLS_INLINE void forEachMultiresolutionTerm(
       });
     },
     [&](std::uint32_t i) {
-      const Vec3 x = v.points[i] - p;
+      const Vec3 x = v.points.position(i) - p;
       const double d2 = squaredNorm(x);
       if (d2 < r2)
       {
-        point(firstScaleHolding(b, d2), x, d2, v.normals[i]);
+        point(firstScaleHolding(b, d2), x, d2, v.points.normal(i));
       }
     });
 }

@@ -84,7 +84,7 @@ GLS_INLINE void cellMoments(const MultiresolutionView& v, std::uint32_t node, in
   }
   std::uint32_t first = 0, last = 0;
   pointRange(v.nodes, node, level, first, last);
-  momentsOfPoints(v.points, v.normals, first, last, nodeCorner(v.origin, v.nodes[node], v.levelSize[level]), cell);
+  momentsOfPoints(v.points, first, last, nodeCorner(v.origin, v.nodes[node], v.levelSize[level]), cell);
 }
 
 } // namespace gls

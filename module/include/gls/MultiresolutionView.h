@@ -9,6 +9,7 @@
 #include "gls/CellMoments.h"
 #include "gls/Evaluation.h"
 #include "gls/Numeric.h"
+#include "gls/StoredPoints.h"
 
 #include <cstdint>
 
@@ -64,8 +65,7 @@ struct MultiresolutionView
   int farLevel = 0;
   int farLevelCount = 0;
   double linearizedDistance = 0.0;
-  const Vec3* points = nullptr;        ///< the points in pyramid order (the cells' points are contiguous)
-  const Vec3* normals = nullptr;       ///< their unit normals
+  StoredPoints points;                 ///< the points and unit normals in pyramid order (a cell's are contiguous)
   std::uint64_t count = 0;
 };
 

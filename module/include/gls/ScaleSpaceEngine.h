@@ -44,6 +44,9 @@ struct MultiresolutionSettings
   double linearizedDistance = kLinearizedDistance;
   double spacing = 0.0;               ///< typical neighbour distance (length unit); 0: surfaceSpacingOfBox of the
                                       ///< admitted points
+  /// The pyramid stores its points as floats where every admitted coordinate is a float exactly (StoredPoints.h: the
+  /// same samples, 12 bytes a point less for a float32 cloud); false: as doubles always.
+  bool singleWhereExact = true;
   bool haveBounds = false;            ///< low/high given (else the admitted points' box)
   double low[3] = { 0.0, 0.0, 0.0 };
   double high[3] = { 0.0, 0.0, 0.0 };
@@ -171,7 +174,7 @@ private:
   /// read from the sorted copy and RestPositions.
   RunPoints pointsOfRun(const std::uint64_t* order, std::size_t count, const std::uint64_t* slots) const;
   /// The points of the grid or pyramid, in their sorted order: Order's first sortedCount() ids.
-  const Vec3* sortedPositions() const;
+  StoredPoints sortedPoints() const;
   std::size_t sortedCount() const;
   /// The evaluators of the settings, once the grid or pyramid is built: the CPU's, and the device's when the backend
   /// asks for one and it can run (else DeviceRefusal says why).

@@ -217,6 +217,7 @@ struct CudaScaleSpace::Device
   DeviceArray<PyramidNode> Nodes;
   DeviceArray<PyramidCell> Cells;
   DeviceArray<std::uint64_t> TopKeys;
+  DeviceArray<float> Points32; // the pyramid's points in floats, where the host stores them so (StoredPoints.h)
 };
 
 /// Chunk size: half the free memory for positions and samples (the kernels keep their moments in registers).
@@ -324,8 +325,7 @@ bool CudaScaleSpace::prepare(const MultiresolutionView& pyramid, std::size_t nod
   Device& d = *this->State;
   const std::size_t topCount = static_cast<std::size_t>(pyramid.topEnd - pyramid.topBegin);
   if (!d.Nodes.upload(pyramid.nodes, nodeCount, error) || !d.Cells.upload(pyramid.cells, cellCount, error) ||
-    !d.TopKeys.upload(pyramid.topKeys, topCount, error) ||
-    !d.Points.upload(pyramid.points, pyramid.count, error) || !d.Normals.upload(pyramid.normals, pyramid.count, error))
+    !d.TopKeys.upload(pyramid.topKeys, topCount, error))
   {
     return false;
   }
@@ -334,8 +334,19 @@ bool CudaScaleSpace::prepare(const MultiresolutionView& pyramid, std::size_t nod
   d.Pyramid.nodes = d.Nodes.get();
   d.Pyramid.cells = d.Cells.get();
   d.Pyramid.topKeys = d.TopKeys.get();
-  d.Pyramid.points = d.Points.get();
-  d.Pyramid.normals = d.Normals.get();
+  // The points as the host stores them (StoredPoints.h).
+  const StoredPoints& host = pyramid.points;
+  const std::size_t n = pyramid.count;
+  const bool single = host.positions32 != nullptr;
+  if ((n > 0 && !d.Normals.upload(host.normals, n, error)) ||
+    (n > 0 && single && !d.Points32.upload(host.positions32, 3 * n, error)) ||
+    (n > 0 && !single && !d.Points.upload(host.positions, n, error)))
+  {
+    return false;
+  }
+  d.Pyramid.points.normals = d.Normals.get();
+  d.Pyramid.points.positions = single ? nullptr : d.Points.get();
+  d.Pyramid.points.positions32 = single ? d.Points32.get() : nullptr;
   return this->prepareBinning(binning, minNeighbors, error);
 }
 

@@ -297,10 +297,13 @@ bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::
     return this->fail();
   }
   sortByKey(keyed, threads);
-  if (aborted(parallel, 0.5) || !this->copySortedPoints(keyed, xyz, normals, buildStage(parallel, 0.5, 0.55)))
+  if (aborted(parallel, 0.5) ||
+    !this->copySortedPoints(
+      keyed, xyz, normals, n, admit, layout.singleWhereExact, buildStage(parallel, 0.5, 0.55)))
   {
     return this->fail();
   }
+  this->View.points = this->storedPoints(); // the lowest summed level's sums read them
   if (inputsCopied)
   {
     inputsCopied();
@@ -347,24 +350,56 @@ bool MultiresolutionCloud::fail()
   return false;
 }
 
-bool MultiresolutionCloud::copySortedPoints(
-  const KeyedIndices& keyed, const double* xyz, const double* normals, const ParallelOptions& stage)
+bool MultiresolutionCloud::copySortedPoints(const KeyedIndices& keyed, const double* xyz, const double* normals,
+  std::size_t n, const unsigned char* admit, bool singleWhereExact, const ParallelOptions& stage)
 {
   const std::size_t m = keyed.size();
-  this->Points.resize(m);
+  const int threads = stage.threads;
+  const bool singlePoints = singleWhereExact && admittedAreFloatExact(xyz, n, admit, threads);
+  if (singlePoints)
+  {
+    this->Points32.resize(3 * m);
+  }
+  else
+  {
+    this->Points.resize(m);
+  }
   this->Normals.resize(m);
   this->Ids.resize(m);
   return parallelFor(m, stage, [&](std::size_t b, std::size_t e, int) {
     for (std::size_t k = b; k < e; ++k)
     {
       const std::uint64_t i = keyed[k].index;
-      this->Points[k] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
+      for (int a = 0; a < 3 && singlePoints; ++a)
+      {
+        this->Points32[3 * k + a] = static_cast<float>(xyz[3 * i + a]);
+      }
+      if (!singlePoints)
+      {
+        this->Points[k] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
+      }
       double u[3];
       unitNormal(normals + 3 * i, u);
       this->Normals[k] = { u[0], u[1], u[2] };
       this->Ids[k] = i;
     }
   });
+}
+
+StoredPoints MultiresolutionCloud::storedPoints() const
+{
+  StoredPoints s;
+  s.positions = this->Points.empty() ? nullptr : this->Points.data();
+  s.positions32 = this->Points32.empty() ? nullptr : this->Points32.data();
+  s.normals = this->Normals.empty() ? nullptr : this->Normals.data();
+  return s;
+}
+
+double MultiresolutionCloud::sortedBytesPerPoint(
+  const double* xyz, std::size_t n, const unsigned char* admit, const PyramidLayout& layout, int threads)
+{
+  const bool single = layout.singleWhereExact && admittedAreFloatExact(xyz, n, admit, threads);
+  return (single ? 3.0 * sizeof(float) : 1.0 * sizeof(Vec3)) + sizeof(Vec3) + sizeof(std::uint64_t);
 }
 
 template <typename Key>
@@ -454,7 +489,7 @@ bool MultiresolutionCloud::buildLevel(int level, const UninitializedArray<std::u
       {
         std::uint32_t p0 = 0, p1 = 0;
         pointRange(this->Nodes.data(), static_cast<std::uint32_t>(first + c), level, p0, p1);
-        momentsOfPoints(this->Points.data(), this->Normals.data(), p0, p1, corner, cell);
+        momentsOfPoints(this->View.points, p0, p1, corner, cell);
       }
       else
       {
@@ -495,9 +530,7 @@ void MultiresolutionCloud::fillView(const PyramidLayout& layout, int topLevel, c
   {
     ++v.farLevelCount;
   }
-  v.points = this->Points.data();
-  v.normals = this->Normals.data();
-  v.count = this->Points.size();
+  v.count = this->Ids.size();
 }
 
 } // namespace gls

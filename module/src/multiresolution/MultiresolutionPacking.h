@@ -135,12 +135,13 @@ GLS_FORCE_INLINE void packWalk(
   {
     for (std::uint32_t i = span.first; i < span.last; ++i)
     {
-      const Vec3 x = v.points[i] - o;
-      out->position = v.points[i];
-      pointSums(x, squaredNorm(x), v.normals[i], out->sums);
-      if (squaredDistanceToFarthestPoint(region, v.points[i]) < sq0)
+      const Vec3 q = v.points.position(i);
+      const Vec3 x = q - o;
+      out->position = q;
+      pointSums(x, squaredNorm(x), v.points.normal(i), out->sums);
+      if (squaredDistanceToFarthestPoint(region, q) < sq0)
       {
-        const Vec3 a = v.points[i] - anchor;
+        const Vec3 a = q - anchor;
         const double M = squaredNorm(a);
         addInnerSample(s.inner, a, M, M * M, out->sums, nullptr);
         continue;
