@@ -143,7 +143,11 @@ class DistinctPositions(unittest.TestCase):
             back = vtk_to_numpy(out.GetPoints().GetData())
             self.assertEqual(back.dtype, rows.dtype)
             np.testing.assert_array_equal(back.view(np.uint8), rows.view(np.uint8))
-            np.testing.assert_array_equal(point_array(out, 'Value'), merged.inverse)
+            _, inverse = gls_coincident.distinct_positions(rows)
+            np.testing.assert_array_equal(merged.inverse(), inverse)
+            np.testing.assert_array_equal(merged.inverse(chunk=3), inverse)  # formed a few rows at a time
+            np.testing.assert_array_equal(merged.distinct_of([len(rows) - 1, 0]), inverse[[len(rows) - 1, 0]])
+            np.testing.assert_array_equal(point_array(out, 'Value'), inverse)
 
 
 

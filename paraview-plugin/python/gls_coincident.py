@@ -5,7 +5,9 @@ same position. The main job analyses each position once and writes the results b
   merge(polydata)          -> Merged (the distinct positions, first copies first, with the cells renumbered and
                               the normals of the copies averaged), or None when no two points coincide; the input's
                               own positions are released meanwhile (a second copy of every position: 1.2 GB at
-                              10^8 float points), and only the later copies' rows are kept
+                              10^8 float points), and only the later copies' rows are kept, with their distinct
+                              positions (the map from every point to its distinct position is formed when needed:
+                              0.4 GB less held through the analysis at 10^8 points)
   Merged.scatter(result)   -> the input again (every point, cell and array of the file, its positions rebuilt bit
                               for bit), with the arrays the analysis added to `result` copied to every copy of
                               each position
@@ -17,20 +19,39 @@ import numpy as np
 
 
 class Merged:
-    """The distinct positions of a cloud (`polydata`) and the map back to the input's points (`inverse`)."""
+    """The distinct positions of a cloud (`polydata`) and the map back to the input's points (`distinct_of`,
+    `inverse`)."""
 
-    def __init__(self, source, polydata, inverse, copy_rows, copy_points):
-        """`source`'s positions are released: each point's is its distinct position's (`polydata`'s, by
-        `inverse`), but for the rows `copy_rows` (the later copies), whose own bits are `copy_points` (equal as
-        floats, they may differ in bits: -0.0 and 0.0)."""
+    def __init__(self, source, polydata, copy_rows, copy_targets, copy_points):
+        """`source`'s positions are released: each point's is its distinct position's (`polydata`'s: the k-th first
+        copy's is the k-th), but for the rows `copy_rows` (the later copies, increasing), whose distinct positions
+        are `copy_targets` and own bits `copy_points` (equal as floats, they may differ in bits: -0.0 and 0.0)."""
         self.source = source
         self.polydata = polydata
-        self.inverse = inverse
-        self.count = len(inverse)
+        self.count = source.GetNumberOfPoints()
         self.copies = self.count - polydata.GetNumberOfPoints()
         self.copy_rows = copy_rows
+        self.copy_targets = copy_targets
         self.copy_points = copy_points
         source.SetPoints(None)
+
+    def distinct_of(self, rows):
+        """The distinct position of each input point in `rows` (an array of indices): a first copy's is its rank
+        among the first copies (its index less the later copies before it)."""
+        rows = np.asarray(rows, dtype=np.int64)
+        before = np.searchsorted(self.copy_rows, rows)
+        out = rows - before
+        at = np.minimum(before, max(len(self.copy_rows) - 1, 0))
+        later = self.copy_rows[at] == rows if len(self.copy_rows) else np.zeros(len(rows), dtype=bool)
+        out[later] = self.copy_targets[at[later]]
+        return out
+
+    def inverse(self, chunk=1 << 22):
+        """distinct_of every input point (32 bits where they fit), `chunk` points at a time."""
+        out = np.empty(self.count, dtype=np.int32 if self.count < 2 ** 31 else np.int64)
+        for start in range(0, self.count, chunk):
+            out[start:start + chunk] = self.distinct_of(np.arange(start, min(start + chunk, self.count)))
+        return out
 
     def note(self):
         return ('note: %d of the %d points coincide with an earlier one; the analysis runs on the %d distinct '
@@ -41,7 +62,7 @@ class Merged:
         """The input's positions, bit for bit (vtkPoints in the input's type), rebuilt from the distinct ones."""
         from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
         from vtkmodules.vtkCommonCore import vtkPoints
-        rows = vtk_to_numpy(self.polydata.GetPoints().GetData())[self.inverse]
+        rows = vtk_to_numpy(self.polydata.GetPoints().GetData())[self.inverse()]
         rows[self.copy_rows] = self.copy_points
         points = vtkPoints()
         points.SetData(numpy_to_vtk(rows, deep=True))
@@ -57,11 +78,12 @@ class Merged:
         out.ShallowCopy(self.source)
         out.SetPoints(self.source_points())
         arrays = result.GetPointData()
+        inverse = self.inverse()
         for i in range(arrays.GetNumberOfArrays()):
             array = arrays.GetArray(i)
             if array is None or out.GetPointData().HasArray(array.GetName()):
                 continue
-            values = vtk_to_numpy(array)[self.inverse]
+            values = vtk_to_numpy(array)[inverse]
             if array.GetName() in release:  # its distinct values go once copied: one array at a time held twice
                 array.Initialize()
             copy = numpy_to_vtk(np.ascontiguousarray(values), deep=True, array_type=array.GetDataType())
@@ -115,7 +137,7 @@ def row_keys(points, chunk=1 << 20):
 
 def _distinct_hashed(points, key):
     """distinct_positions of the rows of `points` hashed by row_keys, and the rows that are later copies (each
-    row that is not its position's first copy, once)."""
+    row that is not its position's first copy, once), increasing."""
     count = len(key)
     if count == 0:
         return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int32), np.zeros(0, dtype=np.int64)
@@ -146,6 +168,8 @@ def _distinct_hashed(points, key):
         leaders = members[starts][np.cumsum(starts) - 1]  # each sorted row's group's first row
         copies = ~starts
         later_rows, leader_of_later = members[copies], leaders[copies]
+        by_row = np.argsort(later_rows)
+        later_rows, leader_of_later = later_rows[by_row], leader_of_later[by_row]
         later[later_rows] = True
     first = np.flatnonzero(~later)
     # A first copy's index among the first copies (32 bits where they fit: 0.4 GB less kept at 10^8 points).
@@ -210,4 +234,6 @@ def merge(polydata):
         averaged.SetName('Normals')
         merged.GetPointData().SetNormals(averaged)
     del points
-    return Merged(polydata, merged, inverse, copy_rows, copy_points)
+    copy_targets = inverse[copy_rows].astype(np.int64)
+    del inverse
+    return Merged(polydata, merged, copy_rows, copy_targets, copy_points)

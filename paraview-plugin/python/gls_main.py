@@ -182,7 +182,7 @@ def query_dissimilarity(args, upstream, watch, count, merged):
         return None
     if not 0 <= args.query < count:
         raise gls_io.InputError('--query %d is not a point of the input (0 to %d)' % (args.query, count - 1))
-    query = int(merged.inverse[args.query]) if merged is not None else args.query  # its distinct position
+    query = int(merged.distinct_of([args.query])[0]) if merged is not None else args.query  # its distinct position
     dissimilarity = watch.watch(gls_filter('GLSMultiScaleDissimilarity', registrationName='Dissimilarity',
                                            Input=upstream, Normals=NORMALS, QueryPointId=query,
                                            NumberOfScales=args.scales,
