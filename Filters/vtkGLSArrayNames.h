@@ -34,6 +34,7 @@ constexpr const char* StrayPoints = "GLSStrayPoints";     // field data: stray p
 constexpr const char* Stray = "GLSStray";                 // point data, when some were: 1 at the stray points
 constexpr const char* MinimumNeighbors = "GLSMinimumNeighbors"; // field data: the MinimumNeighbors a fit applied
 constexpr const char* Tiles = "GLSTiles";                 // field data: spatial tiles of a fit cut to its MemoryBudget
+constexpr const char* CompactNormals = "GLSCompactNormals"; // field data: 1 where a fit kept its normals compact
 constexpr const char* CoincidentPoints = "GLSCoincidentPoints"; // field data: input points merged into another
 constexpr const char* AutomaticArray = "(automatic)"; // an array selection that lets the filter choose
 constexpr const char* Bandwidth = "GLSBandwidth";          // adaptive bandwidth (length)

@@ -721,6 +721,13 @@ void vtkGLSFilterBase::WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd)
     tiles->InsertNextValue(static_cast<vtkIdType>(run.TilesUsed));
     fd->AddArray(tiles);
   }
+  if (run.CompactNormals)
+  {
+    vtkNew<vtkIdTypeArray> compact;
+    compact->SetName(vtkGLSArrayNames::CompactNormals);
+    compact->InsertNextValue(1);
+    fd->AddArray(compact);
+  }
   if (run.CoincidentPoints > 0)
   {
     vtkNew<vtkIdTypeArray> coincident;

@@ -65,6 +65,7 @@ struct vtkGLSRun
   double AccuracyUsed = 0.0;             ///< epsilon of a multi-resolution fit
   long long GhostPoints = -1;            ///< ghosts this rank used (-1: no exchange)
   long long TilesUsed = 0;               ///< spatial tiles of this rank's fit (0: no fit ran)
+  bool CompactNormals = false;           ///< the fit's pyramid kept its normals compact (to meet MemoryBudget)
   long long CoincidentPoints = 0;        ///< this piece's input points merged into another
   std::vector<std::uint64_t> StrayIds;   ///< stray points of this piece left out, increasing (BlankStrayPoints)
   bool AnyStray = false;                 ///< some piece left stray points out (every rank then marks GLSStray)

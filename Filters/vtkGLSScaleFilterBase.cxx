@@ -199,6 +199,12 @@ bool vtkGLSScaleFilterBase::PrepareFit(vtkGLSRun& run, const SampleRequest& requ
   const vtkGLSDistributedCloud& dist = run.Distributed;
   bool ok = this->ResolveScales(run);
   const std::size_t owned = run.Cloud.Owned;
+  if (static_cast<std::uint64_t>(run.Input->GetNumberOfPoints()) > gls::kMaxEnginePoints)
+  {
+    vtkErrorMacro("The input has " << run.Input->GetNumberOfPoints() << " points: a fit takes at most "
+                                   << gls::kMaxEnginePoints << ". Fit parts of the cloud.");
+    return this->AgreeToContinue(run, false);
+  }
   const double S = static_cast<double>(run.Scales.size());
   const double outputs = static_cast<double>(owned) * S * (request.BytesPerPointScale + CoverageBytesPerPointScale);
   const double fixed = RunBytes(run, request, outputs, S);
@@ -247,7 +253,7 @@ bool vtkGLSScaleFilterBase::PrepareFit(vtkGLSRun& run, const SampleRequest& requ
   return true;
 }
 
-bool vtkGLSScaleFilterBase::ChooseTiles(const vtkGLSRun& run, const gls::ScaleSpaceSettings& settings, double fixed,
+bool vtkGLSScaleFilterBase::ChooseTiles(vtkGLSRun& run, gls::ScaleSpaceSettings& settings, double fixed,
   const SampleRequest& request, std::unique_ptr<vtkGLSSampleSource>& tiled)
 {
   const std::size_t S = settings.scales.size();
@@ -261,11 +267,28 @@ bool vtkGLSScaleFilterBase::ChooseTiles(const vtkGLSRun& run, const gls::ScaleSp
   {
     return true;
   }
-  const gls::EngineFootprint engine = vtkGLSSampleSource::EngineBytes(run.Cloud, settings);
-  if (fixed + vtkGLSSampleSource::EngineShareBytes(engine.bytes(cloud), run.Cloud.Size(), run.Cloud.Size(), S,
-                threads) <= budget)
+  gls::EngineFootprint engine = vtkGLSSampleSource::EngineBytes(run.Cloud, settings);
+  // One engine: its build (the outputs are made once it is built), then the engine as it runs beside the outputs and
+  // the threads' scratch.
+  const auto untiled = [&](const gls::EngineFootprint& e) {
+    const std::size_t n = run.Cloud.Size();
+    return e.withOutputs(cloud, fixed + vtkGLSSampleSource::EngineShareBytes(0.0, n, n, S, threads));
+  };
+  if (untiled(engine) <= budget)
   {
     return true;
+  }
+  // The pyramid's normals kept as given (floats) and normalized when read: the same samples, 12 bytes a point less,
+  // a longer pass (StoredPoints.h). Tiles, if still needed, keep them so too.
+  if (engine.compactNormalsSaving > 0.0)
+  {
+    engine = engine.withCompactNormals();
+    settings.multiresolution.compactNormals = true;
+    run.CompactNormals = true;
+    if (untiled(engine) <= budget)
+    {
+      return true;
+    }
   }
   const double whole = engine.bytes(0.0);
   // Twice the tiles until the largest (with its ghost band) fits, while cutting still makes tiles clearly smaller.

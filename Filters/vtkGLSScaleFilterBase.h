@@ -194,10 +194,11 @@ protected:
   static constexpr double kTileShrink = 0.9;
 
   /// Whether the fit of run.Cloud is cut into spatial tiles: not (`tiled` left null) when the engine fits in the
-  /// MemoryBudget beside `fixed` bytes, else the fewest tiles (doubling) whose largest fits, planned in `tiled`. False
-  /// (with an error naming the budget) when none does.
-  bool ChooseTiles(const vtkGLSRun& run, const gls::ScaleSpaceSettings& settings, double fixed,
-    const SampleRequest& request, std::unique_ptr<vtkGLSSampleSource>& tiled);
+  /// MemoryBudget (its build, then the engine beside `fixed` bytes of outputs), with compact normals if that is what
+  /// fits (settings.multiresolution.compactNormals and run.CompactNormals set), else the fewest tiles (doubling) whose
+  /// largest fits, planned in `tiled`. False (with an error naming the budget) when none does.
+  bool ChooseTiles(vtkGLSRun& run, gls::ScaleSpaceSettings& settings, double fixed, const SampleRequest& request,
+    std::unique_ptr<vtkGLSSampleSource>& tiled);
 
   /// Sets run.Scales for a fit: by default the scale list at the run's diagonal. False (with an error) on invalid
   /// scale parameters.

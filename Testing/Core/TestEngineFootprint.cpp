@@ -1,6 +1,7 @@
 // ScaleSpaceEngine::footprint, the memory a budget counts before an engine is built, against the memory of the engine
 // then built (its arrays' capacity): never below it, and close to it, for the exact and the multi-resolution engine
-// on a scan, a sparse random cloud and a plane; and with inputs the caller frees once the sorted copies exist.
+// on a scan, a sparse random cloud and a plane (its build's peak, and what it keeps while it runs); and with inputs the
+// caller frees once the sorted copies exist.
 #include "TestClouds.h"
 #include "gls/ScaleSpaceEngine.h"
 
@@ -30,6 +31,13 @@ void expectFootprintCovers(const Cloud& c, const std::vector<double>& scales, co
     std::printf("%s, %s: footprint %.1f bytes a point, built %.1f\n", what,
       e == gls::Evaluation::Exact ? "exact" : "multi-resolution", estimate / c.size(), built / c.size());
     EXPECT_GE(estimate, built) << what;
+    // What the engine keeps while it runs (beside a filter's outputs): at least its arrays, at most its build's peak.
+    EXPECT_GE(footprint.running, built) << what;
+    EXPECT_LE(footprint.running, estimate) << what;
+    if (e == gls::Evaluation::Multiresolution)
+    {
+      EXPECT_LE(footprint.running, built + 1e3) << what; // counted from the pyramid's keys: its very arrays
+    }
     // The build's scratch (sort keys, normalized normals) on top of what stays, and no more.
     EXPECT_LE(estimate, built + c.size() * 90.0 + 1e6) << what;
     // A caller that frees its points and normals (48 bytes a point) once the engine has its sorted copies holds them

@@ -562,61 +562,103 @@ TEST(Multiresolution, ResultsAreBitwiseIdenticalForAnyThreadCount)
   }
 }
 
-TEST(Multiresolution, FloatCoordinatesAreStoredAsFloatsAndGiveTheSameSamplesBitForBit)
+namespace
 {
-  // A float32 cloud (every coordinate a float exactly; one point without a normal, one at NaN): its pyramid keeps
-  // the coordinates in 12 bytes a point, not 24, and every sample has the bits of the pyramid that keeps doubles.
+/// What a multi-resolution engine over a cloud stores and gives, with a storage setting.
+struct StorageRun
+{
+  CollectingSink samples{ 0, 0 };
+  double bytes = 0.0;
+  bool positions32 = false;
+  bool normals32 = false;
+};
+
+StorageRun runStoring(const Cloud& c, const std::vector<double>& scales, bool singleWhereExact, bool compactNormals)
+{
+  gls::ScaleSpaceSettings settings = multiresolutionSettings(scales, 0.1, 2, 6.0, kNearLinearized);
+  settings.multiresolution.singleWhereExact = singleWhereExact;
+  settings.multiresolution.compactNormals = compactNormals;
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  StorageRun r;
+  r.samples = CollectingSink(c.size(), scales.size());
+  EXPECT_TRUE(engine.run(r.samples));
+  // A few given points (the walks of a short list) get the samples of the full run.
+  const std::vector<std::uint64_t> ids = { 0, 20, 5, 10, 7 };
+  CollectingSink some(c.size(), scales.size());
+  EXPECT_TRUE(engine.run(some, &ids));
+  for (std::uint64_t id : ids)
+  {
+    for (std::size_t k = 0; k < scales.size(); ++k)
+    {
+      EXPECT_TRUE(sameBits(some.at(id, k), r.samples.at(id, k))) << id;
+    }
+  }
+  r.bytes = engine.memoryBytes();
+  r.positions32 = engine.pyramid().view().points.positions32 != nullptr;
+  r.normals32 = engine.pyramid().view().points.normals32 != nullptr;
+  const gls::EngineFootprint f =
+    gls::ScaleSpaceEngine::footprint(c.points.data(), c.normals.data(), c.size(), settings);
+  EXPECT_LE(r.bytes, f.running);
+  EXPECT_LE(f.running, f.bytes(0.0));
+  // The saving compact normals would bring: what they bring.
+  if (!compactNormals && singleWhereExact)
+  {
+    settings.multiresolution.compactNormals = true;
+    const gls::EngineFootprint compact =
+      gls::ScaleSpaceEngine::footprint(c.points.data(), c.normals.data(), c.size(), settings);
+    EXPECT_EQ(f.withCompactNormals().running, compact.running);
+    EXPECT_EQ(f.withCompactNormals().bytes(0.0), compact.bytes(0.0));
+  }
+  return r;
+}
+
+void expectTheSameSamples(const StorageRun& a, const StorageRun& b)
+{
+  long valid = 0;
+  for (std::size_t i = 0; i < a.samples.Samples.size(); ++i)
+  {
+    ASSERT_TRUE(sameBits(a.samples.Samples[i], b.samples.Samples[i])) << "sample " << i;
+    ASSERT_EQ(a.samples.Samples[i].valid, b.samples.Samples[i].valid) << "sample " << i;
+    valid += a.samples.Samples[i].valid ? 1 : 0;
+  }
+  EXPECT_GT(valid, static_cast<long>(a.samples.Samples.size() * 9 / 10));
+}
+} // namespace
+
+TEST(Multiresolution, FloatInputsAreStoredAsFloatsAndGiveTheSameSamplesBitForBit)
+{
+  // A float32 cloud (every coordinate and normal component a float exactly, the normals not of unit length; one point
+  // without a normal, one at NaN): its pyramid keeps the coordinates in 12 bytes a point, not 24, and with compact
+  // normals the normals too (normalized when read), and every sample has the bits of the pyramid that keeps doubles.
   Cloud c = paraboloid(200, 1.0, 0.7, 0.3, 0.02, 0.1, 3);
   for (double& x : c.points)
   {
     x = static_cast<float>(x + 1000.0); // far from the origin, as a scan's coordinates often are
   }
+  for (double& x : c.normals)
+  {
+    x = static_cast<float>(1.7 * x);
+  }
   c.normals[3 * 10] = c.normals[3 * 10 + 1] = c.normals[3 * 10 + 2] = 0.0;
   c.points[3 * 20 + 1] = std::nan("");
   const std::vector<double> scales = gls::sampleScales(0.05, 0.5, 8, gls::ScaleSampling::Quadratic);
-  gls::ScaleSpaceSettings settings = multiresolutionSettings(scales, 0.1, 2, 6.0, kNearLinearized);
-  const auto run = [&](const Cloud& cloud, bool single, double& bytes, bool& stored32) {
-    settings.multiresolution.singleWhereExact = single;
-    gls::ScaleSpaceEngine engine(cloud.points.data(), cloud.normals.data(), cloud.size(), settings);
-    CollectingSink sink(cloud.size(), scales.size());
-    EXPECT_TRUE(engine.run(sink));
-    const std::vector<std::uint64_t> ids = { 0, 20, 5, 10, 7 };
-    CollectingSink some(cloud.size(), scales.size());
-    EXPECT_TRUE(engine.run(some, &ids));
-    for (std::uint64_t id : ids)
-    {
-      for (std::size_t k = 0; k < scales.size(); ++k)
-      {
-        EXPECT_TRUE(sameBits(some.at(id, k), sink.at(id, k))) << id;
-      }
-    }
-    bytes = engine.memoryBytes();
-    stored32 = engine.pyramid().view().points.positions32 != nullptr;
-    EXPECT_LE(bytes, gls::ScaleSpaceEngine::footprint(cloud.points.data(), cloud.normals.data(), cloud.size(),
-      settings).bytes(0.0));
-    return sink;
-  };
-  double singleBytes = 0.0, doubleBytes = 0.0;
-  bool singleStored = false, doubleStored = true;
-  const CollectingSink single = run(c, true, singleBytes, singleStored);
-  const CollectingSink doubles = run(c, false, doubleBytes, doubleStored);
-  EXPECT_TRUE(singleStored);
-  EXPECT_FALSE(doubleStored);
+  const StorageRun doubles = runStoring(c, scales, false, false);
+  const StorageRun single = runStoring(c, scales, true, false);
+  const StorageRun compact = runStoring(c, scales, true, true);
+  EXPECT_FALSE(doubles.positions32 || doubles.normals32);
+  EXPECT_TRUE(single.positions32 && !single.normals32);
+  EXPECT_TRUE(compact.positions32 && compact.normals32);
   const double admitted = static_cast<double>(c.size() - 2);
-  EXPECT_EQ(doubleBytes - singleBytes, admitted * 12.0);
-  long valid = 0;
-  for (std::size_t i = 0; i < single.Samples.size(); ++i)
-  {
-    ASSERT_TRUE(sameBits(single.Samples[i], doubles.Samples[i])) << "sample " << i;
-    ASSERT_EQ(single.Samples[i].valid, doubles.Samples[i].valid) << "sample " << i;
-    valid += single.Samples[i].valid ? 1 : 0;
-  }
-  EXPECT_GT(valid, static_cast<long>(single.Samples.size() * 9 / 10));
-  // One coordinate that is not a float: doubles for every point.
+  EXPECT_EQ(doubles.bytes - single.bytes, admitted * 12.0);
+  EXPECT_EQ(single.bytes - compact.bytes, admitted * 12.0);
+  expectTheSameSamples(single, doubles);
+  expectTheSameSamples(compact, doubles);
+  // One coordinate, one normal component that is not a float: doubles for every point's.
   c.points[3 * 30] += 1e-9;
-  run(c, true, singleBytes, singleStored);
-  EXPECT_FALSE(singleStored);
-  EXPECT_EQ(singleBytes, doubleBytes);
+  c.normals[3 * 40] += 1e-9;
+  const StorageRun mixed = runStoring(c, scales, true, true);
+  EXPECT_FALSE(mixed.positions32 || mixed.normals32);
+  EXPECT_EQ(mixed.bytes, doubles.bytes);
 }
 
 TEST(Multiresolution, GivenPointsGetTheSamplesOfAFullRun)

@@ -10,6 +10,7 @@
 #include "vtkGLSScaleSpace.h"
 
 #include "vtkDataArray.h"
+#include "vtkPoints.h"
 #include "vtkFieldData.h"
 #include "vtkPointData.h"
 
@@ -36,6 +37,23 @@ long long tilesOf(vtkPolyData* output)
 {
   vtkDataArray* a = output->GetFieldData()->GetArray("GLSTiles");
   return a ? static_cast<long long>(a->GetTuple1(0)) : 1;
+}
+
+bool compactNormalsOf(vtkPolyData* output)
+{
+  vtkDataArray* a = output->GetFieldData()->GetArray("GLSCompactNormals");
+  return a && a->GetTuple1(0) == 1.0;
+}
+
+/// Every point array of `output` holds the bits of `expected`'s.
+void expectTheSameArrays(vtkPolyData* output, vtkPolyData* expected)
+{
+  ASSERT_EQ(output->GetPointData()->GetNumberOfArrays(), expected->GetPointData()->GetNumberOfArrays());
+  for (int a = 0; a < expected->GetPointData()->GetNumberOfArrays(); ++a)
+  {
+    const char* array = expected->GetPointData()->GetArrayName(a);
+    EXPECT_TRUE(identical(pointArray(output, array), pointArray(expected, array))) << array;
+  }
 }
 
 /// The filters that tile, each as a user would set it up (the features with their scale summary and relative sigma,
@@ -124,6 +142,9 @@ TEST(TiledFilters, EveryScaleFilterTiledUnderATightBudgetWritesTheUntiledArraysB
       }
       ASSERT_TRUE(tiled);
       EXPECT_GE(tilesOf(tiled), 4);
+      // The bunny's normals are vtkPolyDataNormals' float32: a pyramid's tiles keep them compact (its coordinates,
+      // doubles read from the OBJ file, not).
+      EXPECT_EQ(compactNormalsOf(tiled), multiresolution);
       vtkPointData* expected = whole->GetPointData();
       ASSERT_EQ(tiled->GetPointData()->GetNumberOfArrays(), expected->GetNumberOfArrays());
       for (int a = 0; a < expected->GetNumberOfArrays(); ++a)
@@ -140,6 +161,67 @@ TEST(TiledFilters, EveryScaleFilterTiledUnderATightBudgetWritesTheUntiledArraysB
         }
       }
     }
+  }
+}
+
+TEST(TiledFilters, ABudgetBelowTheEnginesNeedKeepsFloatNormalsCompactWithTheSameArrays)
+{
+  // The bunny in float32 (its normals are vtkPolyDataNormals', float32): under a budget the multi-resolution engine
+  // with unit normals in doubles does not meet, the filter keeps them as given (field data GLSCompactNormals) before
+  // it cuts tiles, and writes the arrays of the unconstrained run bit for bit.
+  const auto bunny = vtkSmartPointer<vtkPolyData>::New();
+  bunny->DeepCopy(bunnyMeshWithNormals());
+  vtkNew<vtkPoints> single;
+  single->SetDataTypeToFloat();
+  single->DeepCopy(bunny->GetPoints());
+  bunny->SetPoints(single);
+  ASSERT_EQ(bunny->GetPointData()->GetNormals()->GetDataType(), VTK_FLOAT);
+  ASSERT_EQ(bunny->GetPoints()->GetDataType(), VTK_FLOAT);
+  for (const auto& [name, make] : tilingFilters())
+  {
+    if (name != "ContinuousFeatures" && name != "ScaleSpace")
+    {
+      continue;
+    }
+    SCOPED_TRACE(name);
+    const auto whole = runWithBudget(make, bunny, true, 0.0);
+    ASSERT_GT(whole->GetNumberOfPoints(), 0);
+    EXPECT_FALSE(compactNormalsOf(whole));
+    // The smallest budget of the engine as it is (bisected to 0.1%): just below it the normals are compact.
+    const auto asItIs = [&](double budget) {
+      int errors = 0;
+      const auto output = runWithBudget(make, bunny, true, budget, &errors);
+      return errors == 0 && !compactNormalsOf(output) && tilesOf(output) == 1;
+    };
+    double met = 64.0, missed = 1.0;
+    ASSERT_TRUE(asItIs(met));
+    ASSERT_FALSE(asItIs(missed));
+    while (met > 1.001 * missed)
+    {
+      const double budget = std::sqrt(met * missed);
+      (asItIs(budget) ? met : missed) = budget;
+    }
+    int errors = 0;
+    const auto compact = runWithBudget(make, bunny, true, missed, &errors);
+    ASSERT_EQ(errors, 0);
+    EXPECT_TRUE(compactNormalsOf(compact));
+    EXPECT_EQ(tilesOf(compact), 1);
+    expectTheSameArrays(compact, whole);
+    // Lower still, the normals stay compact (in tiles where the fit is cut: EveryScaleFilterTiled...) until the
+    // budget is refused.
+    int refused = 0;
+    for (double share = 0.95; share > 0.2; share -= 0.05)
+    {
+      const auto lower = runWithBudget(make, bunny, true, share * missed, &errors);
+      if (errors == 0)
+      {
+        EXPECT_EQ(refused, 0) << share;
+        EXPECT_TRUE(compactNormalsOf(lower));
+        expectTheSameArrays(lower, whole);
+      }
+      refused += errors > 0 ? 1 : 0;
+    }
+    EXPECT_GT(refused, 0);
   }
 }
 

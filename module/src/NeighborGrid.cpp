@@ -22,7 +22,7 @@ bool finitePoint(const double* p)
 /// |m| where m can be normalized (its length is finite and positive), else 0.
 double normalizableLength(const double* m)
 {
-  const double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+  const double len = std::sqrt(roundedSquaredLength(m[0], m[1], m[2])); // as StoredPoints::normal
   return len > 0.0 && isFinite(len) ? len : 0.0;
 }
 

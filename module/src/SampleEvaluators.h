@@ -27,7 +27,7 @@ class ScaleSampleSink;
 /// from the positions of the points left out of the grid or pyramid.
 struct RunPoints
 {
-  const std::uint64_t* order = nullptr;
+  const std::uint32_t* order = nullptr;
   std::size_t count = 0;
   const std::uint64_t* slots = nullptr; ///< null: the engine's own order
   StoredPoints sorted;

@@ -60,6 +60,11 @@ ScaleSpaceEngine::ScaleSpaceEngine(const double* points, const double* normals, 
     this->SquaredScales.push_back(t * t);
   }
   this->BinTable = makeBinningTable(this->SquaredScales);
+  if (count > kMaxEnginePoints)
+  {
+    this->BuildAborted = true;
+    return;
+  }
   // Points whose normal cannot be normalized stay out of every neighbourhood. (The large arrays are written whole by
   // parallel loops: their pages are first touched on every thread.)
   const int threads = this->Settings.parallel.threads;
@@ -115,6 +120,7 @@ ScaleSpaceEngine::ScaleSpaceEngine(const double* points, const double* normals, 
     const GridView& g = this->Grid.view();
     this->Order.assign(g.ids, g.ids + g.count);
   }
+  this->Order.reserve(this->Order.size() + rest.size()); // exactly: an insertion's growth would double it
   this->Order.insert(this->Order.end(), rest.begin(), rest.end());
   this->chooseEvaluators();
 }
@@ -167,6 +173,7 @@ PyramidLayout ScaleSpaceEngine::pyramidLayout(
     choosePyramidLayout(m.low, m.high, m.spacing, settings.scales.front(), settings.scales.back(), m.accuracy);
   layout.linearizedDistance = m.linearizedDistance;
   layout.singleWhereExact = m.singleWhereExact;
+  layout.compactNormals = m.compactNormals;
   return layout;
 }
 
@@ -198,25 +205,35 @@ EngineFootprint ScaleSpaceEngine::footprint(
     // The normalized normals the grid is built from; the grid's cell index, dense up to about 2 cells a point
     // (NeighborGrid::indexOccupiedCells), else smaller; Order, a copy of the grid's ids.
     const double index = n * 2.0 * 8.0 + 65537.0 * 8.0;
-    return { kept + n * (sizeof(Vec3) + sizeof(KeyedIndex)) + sorted + index, kept + sorted + index + n * 8.0 };
+    const double built = kept + sorted + index + n * 8.0;
+    return { kept + n * (sizeof(Vec3) + sizeof(KeyedIndex)) + sorted + index, built, built };
   }
   const PyramidLayout layout = pyramidLayout(settings, points, count, admit.data());
   const int threads = resolveThreadCount(settings.parallel.threads);
   const PyramidCounts counts = MultiresolutionCloud::count(points, admit.data(), count, layout, threads);
-  // The coordinates as floats where they are floats exactly (StoredPoints.h).
+  // The coordinates (and compact normals) as floats where they are floats exactly (StoredPoints.h).
   const double stored =
-    n * MultiresolutionCloud::sortedBytesPerPoint(points, count, admit.data(), layout, threads);
+    n * MultiresolutionCloud::sortedBytesPerPoint(points, normals, count, admit.data(), layout, threads);
   // The sorted ids become Order. Each level's keys and starts while the next is made; the sort's keys until the
   // finest level's are made, then the nodes and the cells with their sums.
   const double nodes = static_cast<double>(counts.nodes);
   const double levels = std::max(n * sizeof(KeyedIndex),
     nodes * sizeof(PyramidNode) + static_cast<double>(counts.cells) * sizeof(PyramidCell));
-  return { kept + n * sizeof(KeyedIndex) + stored, kept + stored + nodes * 2.0 * 8.0 + levels };
+  // Running: the admit flags and the levels' scratch gone.
+  const double cells = nodes * sizeof(PyramidNode) + static_cast<double>(counts.cells) * sizeof(PyramidCell) +
+    static_cast<double>(counts.top) * 8.0;
+  PyramidLayout compact = layout;
+  compact.compactNormals = true;
+  const double saving =
+    stored - n * MultiresolutionCloud::sortedBytesPerPoint(points, normals, count, admit.data(), compact, threads);
+  return { kept + n * sizeof(KeyedIndex) + stored, kept + stored + nodes * 2.0 * 8.0 + levels,
+    kept - n + stored + cells, saving };
 }
 
 double ScaleSpaceEngine::memoryBytes() const
 {
-  return this->RestPositions.capacity() * sizeof(Vec3) + this->Order.capacity() * 8.0 + this->Grid.memoryBytes() +
+  return this->RestPositions.capacity() * sizeof(Vec3) + this->Order.capacity() * sizeof(std::uint32_t) +
+    this->Grid.memoryBytes() +
     this->Pyramid.memoryBytes();
 }
 
@@ -240,7 +257,8 @@ bool ScaleSpaceEngine::run(
     return false;
   }
   const ParallelOptions& options = parallel ? *parallel : this->Settings.parallel;
-  UninitializedArray<std::uint64_t> givenOrder, givenSlots;
+  UninitializedArray<std::uint32_t> givenOrder;
+  UninitializedArray<std::uint64_t> givenSlots;
   if (ids)
   {
     this->orderGivenIds(*ids, options.threads, givenOrder, givenSlots);
@@ -271,7 +289,7 @@ bool ScaleSpaceEngine::run(
 }
 
 RunPoints ScaleSpaceEngine::pointsOfRun(
-  const std::uint64_t* order, std::size_t count, const std::uint64_t* slots) const
+  const std::uint32_t* order, std::size_t count, const std::uint64_t* slots) const
 {
   RunPoints points;
   points.order = order;
@@ -348,7 +366,7 @@ UninitializedArray<std::uint64_t> ScaleSpaceEngine::slotsOf(const std::vector<st
 }
 
 void ScaleSpaceEngine::orderGivenIds(const std::vector<std::uint64_t>& ids, int threads,
-  UninitializedArray<std::uint64_t>& order, UninitializedArray<std::uint64_t>& slots) const
+  UninitializedArray<std::uint32_t>& order, UninitializedArray<std::uint64_t>& slots) const
 {
   UninitializedArray<std::uint64_t> given = this->slotsOf(ids, threads);
   const bool multiresolution = this->Settings.evaluation == Evaluation::Multiresolution;
@@ -361,7 +379,8 @@ void ScaleSpaceEngine::orderGivenIds(const std::vector<std::uint64_t>& ids, int 
   // A sample of the points in pyramid order, so that consecutive walks find their cells in cache: the relative
   // sigma's 20,000 scattered points of a 10M-point cloud (2 threads) took 1.09 s in input order, 0.85 s in this
   // one. (Longer lists come in that order already: the owned points of a distributed piece.)
-  const RunPoints points = this->pointsOfRun(ids.data(), ids.size(), given.data());
+  const UninitializedArray<std::uint32_t> narrow(ids.begin(), ids.end()); // ids below Count
+  const RunPoints points = this->pointsOfRun(narrow.data(), ids.size(), given.data());
   KeyedIndices byKey(ids.size());
   for (std::size_t k = 0; k < ids.size(); ++k)
   {

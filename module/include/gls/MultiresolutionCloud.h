@@ -46,6 +46,9 @@ struct PyramidLayout
   /// Store the points as floats when every admitted coordinate is a float exactly (StoredPoints.h); false: always
   /// as doubles (the same samples, bit for bit: the tests' reference).
   bool singleWhereExact = true;
+  /// Store the normals as given, in floats, when every admitted one is a float exactly, and normalize them when read
+  /// (StoredPoints.h: the same samples, 12 bytes a point less, a longer pass); false: their unit normals in doubles.
+  bool compactNormals = false;
 };
 
 /// The edge the near cells take (takenWhole: at most kNearAccuracyShare * accuracy * smallestScale): the largest
@@ -71,6 +74,7 @@ struct PyramidCounts
 {
   std::size_t nodes = 0;
   std::size_t cells = 0;
+  std::size_t top = 0; ///< the top level's nodes (whose keys the pyramid keeps too)
 };
 
 class MultiresolutionCloud
@@ -92,23 +96,24 @@ public:
   const MultiresolutionView& view() const { return this->View; }
   /// Moves out the original indices of the points in pyramid order (a locality-preserving evaluation order); the
   /// cloud holds none afterwards.
-  UninitializedArray<std::uint64_t> takeIds() { return std::move(this->Ids); }
+  UninitializedArray<std::uint32_t> takeIds() { return std::move(this->Ids); }
   /// The key of position p on the finest lattice: the pyramid lists its points by increasing key. A position outside
   /// the lattice takes the key of the nearest cell; a non-finite coordinate counts as the lattice's lowest.
   std::uint64_t finestKey(const Vec3& p) const;
   /// Nodes of every level (PyramidNode), and the cells with stored sums (levels kFirstSummedLevel and above).
   std::size_t nodeCount() const { return this->Nodes.size(); }
   std::size_t cellCount() const { return this->Cells.size(); }
-  /// The bytes a point's sorted copies take (position, unit normal and id): 44, or 56 where its coordinates are
-  /// kept as doubles (StoredPoints.h).
-  static double sortedBytesPerPoint(
-    const double* xyz, std::size_t n, const unsigned char* admit, const PyramidLayout& layout, int threads);
+  /// The bytes a point's sorted copies take (position, normal and id): 28 to 52, as these inputs will be stored
+  /// (StoredPoints.h).
+  static double sortedBytesPerPoint(const double* xyz, const double* normals, std::size_t n,
+    const unsigned char* admit, const PyramidLayout& layout, int threads);
   /// The bytes the pyramid's arrays hold (their capacity).
   double memoryBytes() const
   {
     return static_cast<double>(this->Points.capacity() + this->Normals.capacity()) * sizeof(Vec3) +
-      static_cast<double>(this->Points32.capacity()) * sizeof(float) +
-      static_cast<double>(this->Ids.capacity() + this->TopKeys.capacity()) * 8.0 +
+      static_cast<double>(this->Points32.capacity() + this->Normals32.capacity()) * sizeof(float) +
+      static_cast<double>(this->Ids.capacity()) * sizeof(std::uint32_t) +
+      static_cast<double>(this->TopKeys.capacity()) * sizeof(std::uint64_t) +
       static_cast<double>(this->Nodes.capacity()) * sizeof(PyramidNode) +
       static_cast<double>(this->Cells.capacity()) * sizeof(PyramidCell);
   }
@@ -116,9 +121,9 @@ public:
 private:
   /// Empties the cloud; returns false (a build's abort).
   bool fail();
-  /// The points (as floats or doubles: StoredPoints.h), their unit normals and Ids in the order of the sorted keys.
+  /// The points and normals (as floats or doubles: StoredPoints.h) and Ids in the order of the sorted keys.
   bool copySortedPoints(const KeyedIndices& keyed, const double* xyz, const double* normals, std::size_t n,
-    const unsigned char* admit, bool singleWhereExact, const ParallelOptions& stage);
+    const unsigned char* admit, const PyramidLayout& layout, const ParallelOptions& stage);
   /// The sorted points as the walks read them.
   StoredPoints storedPoints() const;
   /// Allocates Nodes and Cells once, for every level above these distinct finest keys up to topLevel.
@@ -136,9 +141,10 @@ private:
   void fillView(const PyramidLayout& layout, int topLevel, const Vec3& origin);
 
   UninitializedArray<Vec3> Points;    ///< doubles, or empty when Points32 holds them
-  UninitializedArray<Vec3> Normals;   ///< unit normals
-  UninitializedArray<float> Points32; ///< 3 a point, or empty when Points holds them
-  UninitializedArray<std::uint64_t> Ids;
+  UninitializedArray<Vec3> Normals;    ///< unit normals, or empty when Normals32 holds them
+  UninitializedArray<float> Points32;  ///< 3 a point, or empty when Points holds them
+  UninitializedArray<float> Normals32; ///< the normals as given, 3 a point (compactNormals)
+  UninitializedArray<std::uint32_t> Ids; ///< original indices (below kMaxEnginePoints, as the nodes' point ranges)
   UninitializedArray<PyramidNode> Nodes;
   UninitializedArray<PyramidCell> Cells;
   std::vector<std::uint64_t> TopKeys;

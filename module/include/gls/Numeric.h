@@ -26,6 +26,19 @@ GLS_INLINE T squareRoot(T v)
   return sqrt(v);
 }
 
+/// x x + y y + z z with each product and each sum rounded once, left to right (never a fused multiply-add, whatever
+/// the compiler contracts around it: the CPU kernels' AVX2+FMA builds, the device): the squared length every unit
+/// normal is formed from, so that a normal normalized once and one normalized when read are the same bits.
+GLS_INLINE double roundedSquaredLength(double x, double y, double z)
+{
+#if defined(__CUDA_ARCH__)
+  return __dadd_rn(__dadd_rn(__dmul_rn(x, x), __dmul_rn(y, y)), __dmul_rn(z, z));
+#else
+  volatile double xx = x * x, yy = y * y, zz = z * z; // each product stored, so none is fused into the sums
+  return xx + yy + zz;
+#endif
+}
+
 /// The largest integer at or below v (as a T).
 template <typename T>
 GLS_INLINE T roundDown(T v)

@@ -25,6 +25,10 @@
 namespace gls
 {
 
+/// The most points an engine takes (its evaluation order and its pyramid's point ranges are 32-bit indices); over it,
+/// the engine is left empty (buildAborted(): run() returns false at once).
+constexpr std::uint64_t kMaxEnginePoints = 0xffffffffULL;
+
 /// Receives the samples of one point at all scales. Called concurrently from several threads, each call with a
 /// distinct pointId: an implementation writes only that point's outputs (or thread-local state).
 class ScaleSampleSink
@@ -47,6 +51,9 @@ struct MultiresolutionSettings
   /// The pyramid stores its points as floats where every admitted coordinate is a float exactly (StoredPoints.h: the
   /// same samples, 12 bytes a point less for a float32 cloud); false: as doubles always.
   bool singleWhereExact = true;
+  /// The pyramid stores the normals as given in floats where every admitted one is a float exactly, normalized when
+  /// read (StoredPoints.h: the same samples, 12 bytes a point less, a longer pass); false: unit normals in doubles.
+  bool compactNormals = false;
   bool haveBounds = false;            ///< low/high given (else the admitted points' box)
   double low[3] = { 0.0, 0.0, 0.0 };
   double high[3] = { 0.0, 0.0, 0.0 };
@@ -84,14 +91,31 @@ void resolvePyramidFrame(
   MultiresolutionSettings& m, const double* points, std::size_t count, const unsigned char* admit);
 
 /// The most memory (bytes) an engine's build holds at once, in its two phases: while it makes its sorted copies of the
-/// points and normals (reading its inputs), and after that (its cells built, the engine as it stays).
+/// points and normals (reading its inputs), and after that (its cells built, with the scratch of the levels); and what
+/// the built engine keeps while it runs.
 struct EngineFootprint
 {
   double copying = 0.0;
   double built = 0.0;
-  /// The peak with `inputBytes` that the caller holds for the inputs and frees when the engine calls inputsCopied
-  /// (0 when it keeps them: then its own count): counted while the copies are made, not once the cells are.
+  double running = 0.0;
+  /// The bytes that compact normals (MultiresolutionSettings::compactNormals) would save in each phase: 12 a point
+  /// where a multi-resolution engine's normals are floats exactly and it keeps them as unit doubles, else 0.
+  double compactNormalsSaving = 0.0;
+  /// The peak of the build with `inputBytes` that the caller holds for the inputs and frees when the engine calls
+  /// inputsCopied (0 when it keeps them: then its own count): counted while the copies are made, not once the cells
+  /// are.
   double bytes(double inputBytes) const { return std::max(inputBytes + this->copying, this->built); }
+  /// The peak of a run whose caller allocates `outputs` bytes once the engine is built (a filter's arrays).
+  double withOutputs(double inputBytes, double outputs) const
+  {
+    return std::max(this->bytes(inputBytes), this->running + outputs);
+  }
+  /// The footprint of the same engine with compact normals.
+  EngineFootprint withCompactNormals() const
+  {
+    const double s = this->compactNormalsSaving;
+    return { this->copying - s, this->built - s, this->running - s, 0.0 };
+  }
 };
 
 /// What a run did: the backend that computed the samples and, when a CUDA run fell back to the CPU, why.
@@ -141,7 +165,7 @@ public:
   /// The order a run without ids evaluates the points in (grid order first, for locality; then the points left out
   /// of the grid). A caller that evaluates a subset (e.g. the owned points of a distributed piece, not its ghosts)
   /// keeps locality by filtering this order.
-  const UninitializedArray<std::uint64_t>& evaluationOrder() const { return this->Order; }
+  const UninitializedArray<std::uint32_t>& evaluationOrder() const { return this->Order; }
 
   /// Evaluates the given points (all when ids is null) and feeds the sink, in an order of the engine's choosing (a
   /// multi-resolution engine takes a few given points, under a quarter of them, in pyramid order), with the
@@ -168,11 +192,11 @@ private:
   UninitializedArray<std::uint64_t> slotsOf(const std::vector<std::uint64_t>& ids, int threads) const;
   /// The given ids (and their slots) in the order a run takes them: a multi-resolution run given a sample (under
   /// 1 / kSampleFraction of the points) takes it in pyramid order, any other run as given.
-  void orderGivenIds(const std::vector<std::uint64_t>& ids, int threads, UninitializedArray<std::uint64_t>& order,
+  void orderGivenIds(const std::vector<std::uint64_t>& ids, int threads, UninitializedArray<std::uint32_t>& order,
     UninitializedArray<std::uint64_t>& slots) const;
   /// The points of a run (their ids, and the slots of a caller's order: null for the engine's own), their positions
   /// read from the sorted copy and RestPositions.
-  RunPoints pointsOfRun(const std::uint64_t* order, std::size_t count, const std::uint64_t* slots) const;
+  RunPoints pointsOfRun(const std::uint32_t* order, std::size_t count, const std::uint64_t* slots) const;
   /// The points of the grid or pyramid, in their sorted order: Order's first sortedCount() ids.
   StoredPoints sortedPoints() const;
   std::size_t sortedCount() const;
@@ -184,7 +208,7 @@ private:
   std::vector<double> SquaredScales;
   BinningTable BinTable;
   std::size_t Count = 0;                ///< the points given (evaluated ids are below it)
-  UninitializedArray<std::uint64_t> Order; ///< evaluation order: grid order first (locality), then the rest
+  UninitializedArray<std::uint32_t> Order; ///< evaluation order: grid order first (locality), then the rest
   /// The positions of the rest (Order's ids from sortedCount() on: the points left out of the grid or pyramid, NaN
   /// allowed); the others' positions are the sorted copy's (no copy of every position is kept: 24 bytes a point).
   UninitializedArray<Vec3> RestPositions;

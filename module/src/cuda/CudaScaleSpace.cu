@@ -217,7 +217,7 @@ struct CudaScaleSpace::Device
   DeviceArray<PyramidNode> Nodes;
   DeviceArray<PyramidCell> Cells;
   DeviceArray<std::uint64_t> TopKeys;
-  DeviceArray<float> Points32; // the pyramid's points in floats, where the host stores them so (StoredPoints.h)
+  DeviceArray<float> Points32, Normals32; // the pyramid's points in floats, where the host stores them so
 };
 
 /// Chunk size: half the free memory for positions and samples (the kernels keep their moments in registers).
@@ -338,15 +338,18 @@ bool CudaScaleSpace::prepare(const MultiresolutionView& pyramid, std::size_t nod
   const StoredPoints& host = pyramid.points;
   const std::size_t n = pyramid.count;
   const bool single = host.positions32 != nullptr;
-  if ((n > 0 && !d.Normals.upload(host.normals, n, error)) ||
-    (n > 0 && single && !d.Points32.upload(host.positions32, 3 * n, error)) ||
-    (n > 0 && !single && !d.Points.upload(host.positions, n, error)))
+  const bool singleNormals = host.normals32 != nullptr;
+  if ((n > 0 && single && !d.Points32.upload(host.positions32, 3 * n, error)) ||
+    (n > 0 && !single && !d.Points.upload(host.positions, n, error)) ||
+    (n > 0 && singleNormals && !d.Normals32.upload(host.normals32, 3 * n, error)) ||
+    (n > 0 && !singleNormals && !d.Normals.upload(host.normals, n, error)))
   {
     return false;
   }
-  d.Pyramid.points.normals = d.Normals.get();
   d.Pyramid.points.positions = single ? nullptr : d.Points.get();
   d.Pyramid.points.positions32 = single ? d.Points32.get() : nullptr;
+  d.Pyramid.points.normals = singleNormals ? nullptr : d.Normals.get();
+  d.Pyramid.points.normals32 = singleNormals ? d.Normals32.get() : nullptr;
   return this->prepareBinning(binning, minNeighbors, error);
 }
 

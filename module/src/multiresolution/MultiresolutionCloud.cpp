@@ -299,7 +299,7 @@ bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::
   sortByKey(keyed, threads);
   if (aborted(parallel, 0.5) ||
     !this->copySortedPoints(
-      keyed, xyz, normals, n, admit, layout.singleWhereExact, buildStage(parallel, 0.5, 0.55)))
+      keyed, xyz, normals, n, admit, layout, buildStage(parallel, 0.5, 0.55)))
   {
     return this->fail();
   }
@@ -351,11 +351,12 @@ bool MultiresolutionCloud::fail()
 }
 
 bool MultiresolutionCloud::copySortedPoints(const KeyedIndices& keyed, const double* xyz, const double* normals,
-  std::size_t n, const unsigned char* admit, bool singleWhereExact, const ParallelOptions& stage)
+  std::size_t n, const unsigned char* admit, const PyramidLayout& layout, const ParallelOptions& stage)
 {
   const std::size_t m = keyed.size();
   const int threads = stage.threads;
-  const bool singlePoints = singleWhereExact && admittedAreFloatExact(xyz, n, admit, threads);
+  const bool singlePoints = layout.singleWhereExact && admittedAreFloatExact(xyz, n, admit, threads);
+  const bool singleNormals = layout.compactNormals && admittedAreFloatExact(normals, n, admit, threads);
   if (singlePoints)
   {
     this->Points32.resize(3 * m);
@@ -364,7 +365,14 @@ bool MultiresolutionCloud::copySortedPoints(const KeyedIndices& keyed, const dou
   {
     this->Points.resize(m);
   }
-  this->Normals.resize(m);
+  if (singleNormals)
+  {
+    this->Normals32.resize(3 * m);
+  }
+  else
+  {
+    this->Normals.resize(m);
+  }
   this->Ids.resize(m);
   return parallelFor(m, stage, [&](std::size_t b, std::size_t e, int) {
     for (std::size_t k = b; k < e; ++k)
@@ -378,10 +386,17 @@ bool MultiresolutionCloud::copySortedPoints(const KeyedIndices& keyed, const dou
       {
         this->Points[k] = { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] };
       }
-      double u[3];
-      unitNormal(normals + 3 * i, u);
-      this->Normals[k] = { u[0], u[1], u[2] };
-      this->Ids[k] = i;
+      for (int a = 0; a < 3 && singleNormals; ++a)
+      {
+        this->Normals32[3 * k + a] = static_cast<float>(normals[3 * i + a]); // normalized when read
+      }
+      if (!singleNormals)
+      {
+        double u[3];
+        unitNormal(normals + 3 * i, u);
+        this->Normals[k] = { u[0], u[1], u[2] };
+      }
+      this->Ids[k] = static_cast<std::uint32_t>(i);
     }
   });
 }
@@ -392,14 +407,17 @@ StoredPoints MultiresolutionCloud::storedPoints() const
   s.positions = this->Points.empty() ? nullptr : this->Points.data();
   s.positions32 = this->Points32.empty() ? nullptr : this->Points32.data();
   s.normals = this->Normals.empty() ? nullptr : this->Normals.data();
+  s.normals32 = this->Normals32.empty() ? nullptr : this->Normals32.data();
   return s;
 }
 
-double MultiresolutionCloud::sortedBytesPerPoint(
-  const double* xyz, std::size_t n, const unsigned char* admit, const PyramidLayout& layout, int threads)
+double MultiresolutionCloud::sortedBytesPerPoint(const double* xyz, const double* normals, std::size_t n,
+  const unsigned char* admit, const PyramidLayout& layout, int threads)
 {
-  const bool single = layout.singleWhereExact && admittedAreFloatExact(xyz, n, admit, threads);
-  return (single ? 3.0 * sizeof(float) : 1.0 * sizeof(Vec3)) + sizeof(Vec3) + sizeof(std::uint64_t);
+  const auto bytes = [&](bool asked, const double* values) {
+    return asked && admittedAreFloatExact(values, n, admit, threads) ? 3.0 * sizeof(float) : 1.0 * sizeof(Vec3);
+  };
+  return bytes(layout.singleWhereExact, xyz) + bytes(layout.compactNormals, normals) + sizeof(std::uint32_t);
 }
 
 template <typename Key>
@@ -423,6 +441,7 @@ PyramidCounts MultiresolutionCloud::countLevels(std::size_t count, const Key& ke
     levelCount[static_cast<std::size_t>(level - 1)] += levelCount[static_cast<std::size_t>(level)];
   }
   PyramidCounts counts;
+  counts.top = levelCount[static_cast<std::size_t>(topLevel)];
   for (int level = 0; level <= topLevel; ++level)
   {
     counts.nodes += levelCount[static_cast<std::size_t>(level)];
