@@ -77,7 +77,7 @@ public:
   /// spatial tiles, one after the other, when its fitting engine alone would not fit: each tile with the points
   /// within reach of its largest scale, results bit for bit those of one engine (the output field data GLSTiles says
   /// how many). Before tiles, a multi-resolution fit of float32 normals keeps them as given, normalized when read
-  /// (12 bytes a point less, the same results bit for bit, a pass about 10% longer: field data GLSCompactNormals).
+  /// (12 bytes a point less, the same results bit for bit, a pass about 3% longer: field data GLSCompactNormals).
   vtkSetMacro(MemoryBudget, double);
   vtkGetMacro(MemoryBudget, double);
   ///@}

@@ -24,19 +24,35 @@
 namespace
 {
 
-/// Every how many points the coverage keeps one row of neighbour counts, and what the rows cost with their copy
-/// gathered for the median (bytes per point and scale).
+/// The coverage keeps one row of neighbour counts every kCoverageStride points, or fewer: at most about kCoverageRows
+/// rows (a deterministic sample of the ids, for a median; at 10^8 points every 61st point's rows took 262 MB, held
+/// three times over at the end of the pass: the rows, their concatenation and its gathered copy).
 constexpr std::uint64_t kCoverageStride = 61;
-constexpr double CoverageBytesPerPointScale = 2.0 * sizeof(double) / kCoverageStride;
+constexpr double kCoverageRows = 20000.0;
 
-/// Forwards the samples and keeps, per scale, how many were valid, and the neighbour counts of every 61st point
-/// (a deterministic sample, for a median).
+/// The ids whose rows the coverage of a run of `points` points keeps: the multiples of this.
+std::uint64_t CoverageStride(std::size_t points)
+{
+  return std::max(kCoverageStride, static_cast<std::uint64_t>(std::ceil(static_cast<double>(points) / kCoverageRows)));
+}
+
+/// What the rows of a run of `points` points cost at most (bytes per scale): the threads' rows and their concatenation
+/// (each at most doubled by their vectors' growth), and its gathered copy.
+double CoverageBytesPerScale(std::size_t points)
+{
+  const double rows = std::ceil(static_cast<double>(points) / static_cast<double>(CoverageStride(points))) + 1.0;
+  return 5.0 * sizeof(double) * rows;
+}
+
+/// Forwards the samples and keeps, per scale, how many were valid, and the neighbour counts of the points whose id is
+/// a multiple of the stride (a deterministic sample, for a median).
 class CoverageSink : public gls::ScaleSampleSink
 {
 public:
-  CoverageSink(gls::ScaleSampleSink& inner, std::size_t scales, int threads)
+  CoverageSink(gls::ScaleSampleSink& inner, std::size_t scales, int threads, std::uint64_t stride)
     : Inner(inner)
     , S(scales)
+    , Stride(stride)
     , Valid(static_cast<std::size_t>(threads), std::vector<double>(scales, 0.0))
     , Points(static_cast<std::size_t>(threads), 0.0)
     , Neighbors(static_cast<std::size_t>(threads))
@@ -51,7 +67,7 @@ public:
     {
       this->Valid[t][k] += s[k].valid ? 1.0 : 0.0;
     }
-    if (id % kCoverageStride == 0)
+    if (id % this->Stride == 0)
     {
       for (std::size_t k = 0; k < this->S; ++k)
       {
@@ -62,6 +78,7 @@ public:
 
   gls::ScaleSampleSink& Inner;
   std::size_t S;
+  std::uint64_t Stride;
   std::vector<std::vector<double>> Valid;
   std::vector<double> Points;
   std::vector<std::vector<double>> Neighbors; ///< rows of S counts
@@ -206,7 +223,8 @@ bool vtkGLSScaleFilterBase::PrepareFit(vtkGLSRun& run, const SampleRequest& requ
     return this->AgreeToContinue(run, false);
   }
   const double S = static_cast<double>(run.Scales.size());
-  const double outputs = static_cast<double>(owned) * S * (request.BytesPerPointScale + CoverageBytesPerPointScale);
+  const double outputs = static_cast<double>(owned) * S * request.BytesPerPointScale +
+    S * CoverageBytesPerScale(static_cast<std::size_t>(run.Input->GetNumberOfPoints()));
   const double fixed = RunBytes(run, request, outputs, S);
   ok = ok && this->CheckMemoryBudget(fixed, request.What, request.Advice) && this->GatherFitCloud(run);
   if (!this->AgreeToContinue(run, ok))
@@ -378,7 +396,8 @@ bool vtkGLSScaleFilterBase::FeedSamples(vtkGLSRun& run, gls::ScaleSampleSink& si
   gls::RunReport report;
   const int threads = gls::resolveThreadCount(this->NumberOfThreads);
   const bool diagnose = !ids && run.Samples->RunsFits(); // every point of a fit: say when most fits are NaN
-  CoverageSink coverage(sink, run.Scales.size(), threads);
+  CoverageSink coverage(
+    sink, run.Scales.size(), threads, CoverageStride(static_cast<std::size_t>(run.Input->GetNumberOfPoints())));
   const bool completed = run.Samples->Feed(
     diagnose ? coverage : sink, ids, parallel, report);
   if (!ids && completed)

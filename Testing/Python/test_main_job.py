@@ -212,14 +212,14 @@ class MainJob(unittest.TestCase):
         out = os.path.join(WORK, 'refused')
         result = run('--output-dir', out, '--per-scale', '--memory-budget', '0.9')
         self.assertEqual(result.returncode, 2, failure_text(result))
-        # 0.9 GiB: the fixed part and the summaries fit, every scale's arrays do not, 7 scales of them would.
+        # 0.9 GiB: the fixed part and the summaries fit, every scale's arrays do not, 8 scales of them would.
         per_point = gls_memory.default_bytes_per_point(35947)
         fitting = int(((0.9 * gls_memory.GIB - gls_memory.FIXED_BYTES) / 35947 - per_point)
                       // gls_memory.PER_SCALE_BYTES_PER_POINT_SCALE)
-        self.assertEqual(fitting, 7)
+        self.assertEqual(fitting, 8)
         self.assertIn('gls-analyze: storing every scale (--per-scale) of 35947 points at 20 scales needs about 1.0 '
                       'GiB, above the 0.9 GiB --memory-budget: drop --per-scale (the per-point summaries need about '
-                      '0.8 GiB), or keep it with --scales 7', result.stderr)
+                      '0.8 GiB), or keep it with --scales 8', result.stderr)
         self.assertNotIn('%', result.stderr)  # no stage reported progress
         self.assertEqual(os.listdir(out), [])
         # Below what the summaries need too: no advice to drop --per-scale.

@@ -7,21 +7,24 @@ the fused features and summaries, the compact output) and, with --per-scale, eve
 import math
 
 # The default path's peak resident memory, whatever the number of scales: FIXED_BYTES plus default_bytes_per_point(N)
-# a point, what the job's largest ask comes to: the fused pass's own check (ScaleFilterBase) asks for its outputs (37
-# bytes a point) and its engine's footprint (114.5 bytes a point at 10^7 points of the bunny sampled by area, 137.3 at
-# 10^8: the pyramid holds 1.04 and 1.32 nodes a point, 16 bytes each since the ninth session; 131 and 158 before)
-# within FILTER_SHARE of what the job leaves, beside what the job holds then (the float32 positions, the coincident
-# points' map, the normals and their quality and neighbour counts: 36 bytes a point): 196 bytes a point at 10^7
-# points, 220 at 10^8, DENSITY_BYTES_PER_POINT more for each tenfold beyond 10^7. The normal estimation asks for less
-# (141 bytes a point within FILTER_SHARE, beside 16). Measured (ninth session, 2026-12-07, VmHWM of each stage): at
-# 10^8 points (3 coincident) the job ran in 717 s with an 18.2 GiB peak (the fused pass; the normals 14.5 GiB, the
-# compact copy 14.3 GiB), where the estimate is 21.3 GiB; at 10^7, 2.1 GiB against 2.6. The fused pass's fit cannot
-# be cut into smaller tiles at the job's default scales (to 8% of the diagonal: each tile's band of neighbours holds
-# most of the cloud), so the estimate is its untiled ask: a cloud a filter of the job would refuse is refused before
-# any stage runs. On a 24 GB machine (22.0 GiB available) that is up to about 103M points.
+# a point, the larger of its two fits' asks, each within FILTER_SHARE of what the job leaves, beside what the job holds
+# then. The normal estimation asks for 141 bytes a point (gls::normalEstimationBytes) beside the float32 positions: 12 +
+# 141 / 0.95 = 161 (NORMALS_BYTES_PER_POINT). The fused pass (ScaleFilterBase) holds its engine while it is built, then
+# the engine beside its outputs (32 bytes a point), which it makes once the engine is built: it asks for the larger.
+# Its engine at its least, with compact normals (the pyramid keeps float32 normals as given; the filter turns them on
+# when its budget asks for it): 109 bytes a point while built and 87 running at 10^8 points of the bunny sampled by
+# area, 86.5 and 68.9 at 10^7 (the pyramid holds 1.32 and 1.04 nodes a point; ScaleSpaceEngine::footprint), with the
+# filter's copy of the cloud (48 bytes a point) until the sorted one exists: 93 and 109 while built. Beside it the job
+# holds the float32 positions, normals, normal quality and neighbour counts (32 bytes a point; the coincident points'
+# map is kept as its later copies only): 32 + 100.9 / 0.95 = 139 bytes a point at 10^7 points (FUSED_BYTES_PER_POINT),
+# 32 + 119.1 / 0.95 = 158 at 10^8 (DENSITY_BYTES_PER_POINT more for each tenfold beyond 10^7). The fused pass's fit
+# cannot be cut into smaller tiles at the job's default scales (to 8% of the diagonal: each tile's band of neighbours
+# holds most of the cloud), so the estimate is its untiled ask: a cloud a filter of the job would refuse is refused
+# before any stage runs. Measured: docs/main-job.md, "Memory, checked first".
 FIXED_BYTES = 850.0 * 1024.0 ** 2
-DEFAULT_BYTES_PER_POINT = 196.0
-DENSITY_BYTES_PER_POINT = 24.0
+NORMALS_BYTES_PER_POINT = 161.0
+FUSED_BYTES_PER_POINT = 139.0
+DENSITY_BYTES_PER_POINT = 19.0
 # With --per-scale: bytes per point and scale on top (the scale space, nu, and their copy in the written file).
 PER_SCALE_BYTES_PER_POINT_SCALE = 240.0
 GIB = 1024.0 ** 3
@@ -77,9 +80,11 @@ def filter_budget_mib(budget):
 
 
 def default_bytes_per_point(points):
-    """The default path's bytes a point for a cloud of `points` points: DEFAULT_BYTES_PER_POINT up to 10^7 points,
-    DENSITY_BYTES_PER_POINT more for each tenfold beyond (a denser cloud's pyramid holds more nodes a point)."""
-    return DEFAULT_BYTES_PER_POINT + DENSITY_BYTES_PER_POINT * max(0.0, math.log10(max(points, 1) / 1e7))
+    """The default path's bytes a point for a cloud of `points` points: the normals' NORMALS_BYTES_PER_POINT, or the
+    fused pass's FUSED_BYTES_PER_POINT up to 10^7 points and DENSITY_BYTES_PER_POINT more for each tenfold beyond (a
+    denser cloud's pyramid holds more nodes a point), whichever is larger."""
+    fused = FUSED_BYTES_PER_POINT + DENSITY_BYTES_PER_POINT * max(0.0, math.log10(max(points, 1) / 1e7))
+    return max(NORMALS_BYTES_PER_POINT, fused)
 
 
 def needed_bytes(points, scales, per_scale):
