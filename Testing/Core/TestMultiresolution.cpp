@@ -625,6 +625,19 @@ void expectTheSameSamples(const StorageRun& a, const StorageRun& b)
 }
 } // namespace
 
+TEST(Multiresolution, FloatExactValuesAreTheFloatsAndNothingElse)
+{
+  for (double v : { 0.5, -0.0, 1000.25, 3.4028234663852886e38, 1.401298464324817e-45, -16777216.0 })
+  {
+    EXPECT_TRUE(gls::isFloatExact(v)) << v;
+  }
+  // Not floats: more bits, out of the floats' range (not converted: undefined in C++), NaN, infinities.
+  for (double v : { 0.1, 16777217.0, 1e300, -3.5e38, std::nan(""), HUGE_VAL, -HUGE_VAL, 1e-46 })
+  {
+    EXPECT_FALSE(gls::isFloatExact(v)) << v;
+  }
+}
+
 TEST(Multiresolution, FloatInputsAreStoredAsFloatsAndGiveTheSameSamplesBitForBit)
 {
   // A float32 cloud (every coordinate and normal component a float exactly, the normals not of unit length; one point

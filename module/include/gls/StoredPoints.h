@@ -17,10 +17,12 @@
 namespace gls
 {
 
-/// Whether v is a float exactly (converting it to float and back gives v; never so for NaN).
+/// Whether v is a float exactly (within the floats' range, and converting it to float and back gives v; never so for
+/// NaN or an infinity; no value out of range is converted, which C++ leaves undefined).
 GLS_INLINE bool isFloatExact(double v)
 {
-  return static_cast<double>(static_cast<float>(v)) == v;
+  constexpr double largest = 3.4028234663852886e38; // FLT_MAX
+  return v >= -largest && v <= largest && static_cast<double>(static_cast<float>(v)) == v;
 }
 
 /// Whether every admitted point's 3 values (admit[i] != 0) are floats exactly: the test for storing them as floats.
