@@ -212,8 +212,9 @@ EngineFootprint ScaleSpaceEngine::footprint(
   const int threads = resolveThreadCount(settings.parallel.threads);
   const PyramidCounts counts = MultiresolutionCloud::count(points, admit.data(), count, layout, threads);
   // The coordinates (and compact normals) as floats where they are floats exactly (StoredPoints.h).
-  const double stored =
-    n * MultiresolutionCloud::sortedBytesPerPoint(points, normals, count, admit.data(), layout, threads);
+  const SortedStorage storage =
+    MultiresolutionCloud::sortedStorage(points, normals, count, admit.data(), layout, threads, true);
+  const double stored = n * storage.bytesPerPoint();
   // The sorted ids become Order. Each level's keys and starts while the next is made; the sort's keys until the
   // finest level's are made, then the nodes and the cells with their sums.
   const double nodes = static_cast<double>(counts.nodes);
@@ -222,12 +223,8 @@ EngineFootprint ScaleSpaceEngine::footprint(
   // Running: the admit flags and the levels' scratch gone.
   const double cells = nodes * sizeof(PyramidNode) + static_cast<double>(counts.cells) * sizeof(PyramidCell) +
     static_cast<double>(counts.top) * 8.0;
-  PyramidLayout compact = layout;
-  compact.compactNormals = true;
-  const double saving =
-    stored - n * MultiresolutionCloud::sortedBytesPerPoint(points, normals, count, admit.data(), compact, threads);
   return { kept + n * sizeof(KeyedIndex) + stored, kept + stored + nodes * 2.0 * 8.0 + levels,
-    kept - n + stored + cells, saving };
+    kept - n + stored + cells, n * storage.compactNormalsSaving() };
 }
 
 double ScaleSpaceEngine::memoryBytes() const

@@ -58,11 +58,12 @@ class Merged:
                 'positions and writes the results back to every copy'
                 % (self.copies, self.count, self.polydata.GetNumberOfPoints()))
 
-    def source_points(self):
-        """The input's positions, bit for bit (vtkPoints in the input's type), rebuilt from the distinct ones."""
+    def source_points(self, inverse=None):
+        """The input's positions, bit for bit (vtkPoints in the input's type), rebuilt from the distinct ones
+        (`inverse`: the map of inverse(), when the caller has formed it already)."""
         from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
         from vtkmodules.vtkCommonCore import vtkPoints
-        rows = vtk_to_numpy(self.polydata.GetPoints().GetData())[self.inverse()]
+        rows = vtk_to_numpy(self.polydata.GetPoints().GetData())[self.inverse() if inverse is None else inverse]
         rows[self.copy_rows] = self.copy_points
         points = vtkPoints()
         points.SetData(numpy_to_vtk(rows, deep=True))
@@ -76,9 +77,9 @@ class Merged:
         from vtkmodules.vtkCommonDataModel import vtkPolyData
         out = vtkPolyData()
         out.ShallowCopy(self.source)
-        out.SetPoints(self.source_points())
+        inverse = self.inverse()  # formed once, for the positions and every array
+        out.SetPoints(self.source_points(inverse))
         arrays = result.GetPointData()
-        inverse = self.inverse()
         for i in range(arrays.GetNumberOfArrays()):
             array = arrays.GetArray(i)
             if array is None or out.GetPointData().HasArray(array.GetName()):

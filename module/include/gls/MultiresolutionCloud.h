@@ -68,6 +68,28 @@ double nearCellEdge(double accuracy, double smallestScale);
 PyramidLayout choosePyramidLayout(const double low[3], const double high[3], double spacing, double smallestScale,
   double largestScale, double accuracy);
 
+/// How a pyramid stores its sorted points (StoredPoints.h), decided once from its inputs and its layout: the
+/// coordinates as floats where asked (singleWhereExact) and every admitted one is a float exactly; the normals as given,
+/// in floats, where asked (compactNormals) and every admitted one is a float exactly.
+struct SortedStorage
+{
+  bool singlePoints = false;
+  bool singleNormals = false;
+  /// Every admitted normal is a float exactly (known when asked for compact normals, or for the saving).
+  bool normalsAreFloats = false;
+  /// The bytes a point's sorted copies take (position, normal and id): 28 to 52.
+  double bytesPerPoint() const
+  {
+    return (this->singlePoints ? 3.0 * sizeof(float) : 1.0 * sizeof(Vec3)) +
+      (this->singleNormals ? 3.0 * sizeof(float) : 1.0 * sizeof(Vec3)) + sizeof(std::uint32_t);
+  }
+  /// What compact normals would save a point where they are not asked for: 12 bytes, or 0.
+  double compactNormalsSaving() const
+  {
+    return this->normalsAreFloats && !this->singleNormals ? 3.0 * sizeof(float) : 0.0;
+  }
+};
+
 /// How many nodes (PyramidNode) and cells with stored sums (PyramidCell, levels kFirstSummedLevel and above) a
 /// pyramid has: what its memory grows with.
 struct PyramidCounts
@@ -103,10 +125,10 @@ public:
   /// Nodes of every level (PyramidNode), and the cells with stored sums (levels kFirstSummedLevel and above).
   std::size_t nodeCount() const { return this->Nodes.size(); }
   std::size_t cellCount() const { return this->Cells.size(); }
-  /// The bytes a point's sorted copies take (position, normal and id): 28 to 52, as these inputs will be stored
-  /// (StoredPoints.h).
-  static double sortedBytesPerPoint(const double* xyz, const double* normals, std::size_t n,
-    const unsigned char* admit, const PyramidLayout& layout, int threads);
+  /// How build() will store these inputs' sorted points; `savingToo`: also whether the normals are floats where
+  /// compact normals are not asked for (a scan of the normals the build itself does not need).
+  static SortedStorage sortedStorage(const double* xyz, const double* normals, std::size_t n,
+    const unsigned char* admit, const PyramidLayout& layout, int threads, bool savingToo = false);
   /// The bytes the pyramid's arrays hold (their capacity).
   double memoryBytes() const
   {
@@ -122,8 +144,8 @@ private:
   /// Empties the cloud; returns false (a build's abort).
   bool fail();
   /// The points and normals (as floats or doubles: StoredPoints.h) and Ids in the order of the sorted keys.
-  bool copySortedPoints(const KeyedIndices& keyed, const double* xyz, const double* normals, std::size_t n,
-    const unsigned char* admit, const PyramidLayout& layout, const ParallelOptions& stage);
+  bool copySortedPoints(const KeyedIndices& keyed, const double* xyz, const double* normals,
+    const SortedStorage& storage, const ParallelOptions& stage);
   /// The sorted points as the walks read them.
   StoredPoints storedPoints() const;
   /// Allocates Nodes and Cells once, for every level above these distinct finest keys up to topLevel.

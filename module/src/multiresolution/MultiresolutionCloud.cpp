@@ -298,8 +298,8 @@ bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::
   }
   sortByKey(keyed, threads);
   if (aborted(parallel, 0.5) ||
-    !this->copySortedPoints(
-      keyed, xyz, normals, n, admit, layout, buildStage(parallel, 0.5, 0.55)))
+    !this->copySortedPoints(keyed, xyz, normals, sortedStorage(xyz, normals, n, admit, layout, threads),
+      buildStage(parallel, 0.5, 0.55)))
   {
     return this->fail();
   }
@@ -351,12 +351,11 @@ bool MultiresolutionCloud::fail()
 }
 
 bool MultiresolutionCloud::copySortedPoints(const KeyedIndices& keyed, const double* xyz, const double* normals,
-  std::size_t n, const unsigned char* admit, const PyramidLayout& layout, const ParallelOptions& stage)
+  const SortedStorage& storage, const ParallelOptions& stage)
 {
   const std::size_t m = keyed.size();
-  const int threads = stage.threads;
-  const bool singlePoints = layout.singleWhereExact && admittedAreFloatExact(xyz, n, admit, threads);
-  const bool singleNormals = layout.compactNormals && admittedAreFloatExact(normals, n, admit, threads);
+  const bool singlePoints = storage.singlePoints;
+  const bool singleNormals = storage.singleNormals;
   if (singlePoints)
   {
     this->Points32.resize(3 * m);
@@ -411,13 +410,14 @@ StoredPoints MultiresolutionCloud::storedPoints() const
   return s;
 }
 
-double MultiresolutionCloud::sortedBytesPerPoint(const double* xyz, const double* normals, std::size_t n,
-  const unsigned char* admit, const PyramidLayout& layout, int threads)
+SortedStorage MultiresolutionCloud::sortedStorage(const double* xyz, const double* normals, std::size_t n,
+  const unsigned char* admit, const PyramidLayout& layout, int threads, bool savingToo)
 {
-  const auto bytes = [&](bool asked, const double* values) {
-    return asked && admittedAreFloatExact(values, n, admit, threads) ? 3.0 * sizeof(float) : 1.0 * sizeof(Vec3);
-  };
-  return bytes(layout.singleWhereExact, xyz) + bytes(layout.compactNormals, normals) + sizeof(std::uint32_t);
+  SortedStorage s;
+  s.singlePoints = layout.singleWhereExact && admittedAreFloatExact(xyz, n, admit, threads);
+  s.normalsAreFloats = (layout.compactNormals || savingToo) && admittedAreFloatExact(normals, n, admit, threads);
+  s.singleNormals = layout.compactNormals && s.normalsAreFloats;
+  return s;
 }
 
 template <typename Key>
