@@ -17,21 +17,15 @@ using kernel::store4;
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-/// addToMoments (MomentBins.h) with the eight values f = (1, x, n, x.n) held as two vectors of four: the same
-/// products and sums, element by element (fused into multiply-adds in the AVX2 build).
+/// addToMoments (MomentBins.h) with the values f four at a time (for the oriented sphere's eight, two vectors of
+/// four): the same products and sums, element by element (fused into multiply-adds in the AVX2 build).
 GLS_FORCE_INLINE void addToMomentsVectorized(Moments& a, const Vec3& x, double d2, const Vec3& n)
 {
+  double f[kFitValues];
+  pointValues(x, d2, n, f);
   const double d4 = d2 * d2;
-  const Double4 f0 = { 1.0, x.x, x.y, x.z };
-  const Double4 f1 = { n.x, n.y, n.z, dot(x, n) };
-  double* m = a.m;
-  store4(m, load4(m) + f0);
-  store4(m + 4, load4(m + 4) + f1);
-  store4(m + 8, load4(m + 8) + d2 * f0);
-  store4(m + 12, load4(m + 12) + d2 * f1);
-  store4(m + 16, load4(m + 16) + d4 * f0);
-  store4(m + 20, load4(m + 20) + d4 * f1);
-  m[24] += d4 * d2;
+  kernel::addTimesPowers(a.m, f, kMomentValues, kMomentValues, true, d2, d4);
+  a.m[3 * kMomentValues] += d4 * d2;
 }
 
 #pragma GCC diagnostic pop

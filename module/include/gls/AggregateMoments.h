@@ -1,26 +1,25 @@
 // The moments of the multi-resolution pass (docs/math.md, "Multi-resolution evaluation"): the exact pass's
 // A_k = sum d^(2k) f for k = 0, 1, 2, where a sample is either one point or a whole cell of points (CellMoments.h:
 // its points weighted by a linear field across the cell and binned by a spread of squared distances). Because
-// |x|^2 of a cell's points is no longer its weight's d^2, the nine values f = (1, x, n, x.n, |x|^2) are all stored
-// (27 sums).
+// |x|^2 of a cell's points is no longer its weight's d^2, every fitted value f of the moment set (MomentSet.h) is
+// stored.
 #pragma once
 
 #include "gls/MomentBins.h"
+#include "gls/MomentSet.h"
 
 namespace gls
 {
 
-constexpr int kAggregateValues = 9; ///< f = 1, x (3), n (3), x.n, |x|^2
-
-/// m[k * 9 + j] = sum over the samples of d^(2k) f_j (k = 0, 1, 2). Padded to whole 64-byte lines.
+/// m[k * kFitValues + j] = sum over the samples of d^(2k) f_j (k = 0, 1, 2). Padded to whole 64-byte lines.
 struct alignas(64) AggregateMoments
 {
-  double m[3 * kAggregateValues + 5];
+  double m[wholeCacheLines(3 * kFitValues)];
 };
 
 GLS_INLINE void clearMoments(AggregateMoments& a)
 {
-  for (int i = 0; i < 3 * kAggregateValues; ++i)
+  for (int i = 0; i < 3 * kFitValues; ++i)
   {
     a.m[i] = 0.0;
   }
@@ -28,7 +27,7 @@ GLS_INLINE void clearMoments(AggregateMoments& a)
 
 GLS_INLINE void addMoments(AggregateMoments& a, const AggregateMoments& b)
 {
-  for (int i = 0; i < 3 * kAggregateValues; ++i)
+  for (int i = 0; i < 3 * kFitValues; ++i)
   {
     a.m[i] += b.m[i];
   }
@@ -40,37 +39,23 @@ GLS_INLINE double neighborCount(const AggregateMoments& a)
   return a.m[0];
 }
 
-/// The sums f = (1, x, n, x.n, |x|^2) of one point at local position x (d2 = |x|^2) with normal n.
-GLS_INLINE void pointSums(const Vec3& x, double d2, const Vec3& n, double* f)
-{
-  f[0] = 1.0;
-  f[1] = x.x;
-  f[2] = x.y;
-  f[3] = x.z;
-  f[4] = n.x;
-  f[5] = n.y;
-  f[6] = n.z;
-  f[7] = dot(x, n);
-  f[8] = d2;
-}
-
-/// Adds the sums f = (1, x, n, x.n, |x|^2) of a sample whose points all sit at squared distance d2.
+/// Adds the values f (MomentSet.h) of a sample whose points all sit at squared distance d2.
 GLS_INLINE void addSampleSums(AggregateMoments& a, const double* f, double d2)
 {
   const double d4 = d2 * d2;
-  for (int j = 0; j < kAggregateValues; ++j)
+  for (int j = 0; j < kFitValues; ++j)
   {
     a.m[j] += f[j];
-    a.m[kAggregateValues + j] += d2 * f[j];
-    a.m[2 * kAggregateValues + j] += d4 * f[j];
+    a.m[kFitValues + j] += d2 * f[j];
+    a.m[2 * kFitValues + j] += d4 * f[j];
   }
 }
 
 /// Adds one point with local position x (d2 = |x|^2) and normal n: exactly what the exact pass adds.
 GLS_INLINE void addPoint(AggregateMoments& a, const Vec3& x, double d2, const Vec3& n)
 {
-  double f[kAggregateValues];
-  pointSums(x, d2, n, f);
+  double f[kFitValues];
+  pointValues(x, d2, n, f);
   addSampleSums(a, f, d2);
 }
 
@@ -78,15 +63,15 @@ GLS_INLINE void addPoint(AggregateMoments& a, const Vec3& x, double d2, const Ve
 GLS_INLINE void weightedSumsFromMoments(const AggregateMoments& a, double t, WeightedSums& s, WeightedSums& ds)
 {
   const WeightPolynomial w = weightPolynomial(t);
-  double v[kAggregateValues];
-  double dv[kAggregateValues];
-  for (int j = 0; j < kAggregateValues; ++j)
+  double v[kFitValues];
+  double dv[kFitValues];
+  for (int j = 0; j < kFitValues; ++j)
   {
-    const double a0 = a.m[j], a1 = a.m[kAggregateValues + j], a2 = a.m[2 * kAggregateValues + j];
+    const double a0 = a.m[j], a1 = a.m[kFitValues + j], a2 = a.m[2 * kFitValues + j];
     v[j] = a0 + w.c1 * a1 + w.c2 * a2;
     dv[j] = w.e1 * a1 + w.e2 * a2;
   }
-  assignWeightedSums(v, dv, s, ds);
+  toWeightedSums(v, dv, s, ds);
 }
 
 } // namespace gls

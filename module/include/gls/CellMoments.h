@@ -1,8 +1,8 @@
 // What a cell of the multi-resolution pyramid keeps of its points, and the sample it makes for an evaluation point
 // (docs/math.md, "Multi-resolution evaluation"), host/device.
 //
-// A cell keeps the exact sums of its points q_i (unit normals n_i) about their centroid c, y_i = q_i - c: up to
-// the second order in y. The sample of a cell for an evaluation point p weights its points with a linear field
+// A cell keeps the exact sums of its points q_i (unit normals n_i) about their centroid c, y_i = q_i - c, that the
+// moment set asks for (PyramidCell in MomentSet.h, which also says how they form the sums of every fitted value). The sample of a cell for an evaluation point p weights its points with a linear field
 // W + g . y_i, the first-order expansion of the GLS weight across the cell, and spreads their squared distances
 // |q_i - p|^2 uniformly over an interval of the right mean and variance when it bins them into the scale shells.
 // Every sum the sample adds is an exact sum over the cell's points with one weight per point, the same for every
@@ -10,6 +10,7 @@
 #pragma once
 
 #include "gls/AggregateMoments.h"
+#include "gls/MomentSet.h"
 #include "gls/Numeric.h"
 #include "gls/PointScaleSpace.h"
 #include "gls/StoredPoints.h"
@@ -18,55 +19,6 @@
 
 namespace gls
 {
-
-/// The exact sums of a cell's m points q_i with unit normals n_i, about their centroid c (y_i = q_i - c). An empty
-/// cell (count 0) has no centroid and is never sampled.
-struct PyramidCell
-{
-  Vec3 centroid;                 ///< c, the mean position (length)
-  Vec3 normalSum;                ///< sum n_i
-  double count;                  ///< m
-  double offsetOffset[6];        ///< sum y y^T as xx, xy, xz, yy, yz, zz (length^2); its trace is sum |y|^2
-  double offsetNormal[9];        ///< sum y n^T, [3 a + b] = sum y_a n_b (length); its trace is sum y . n
-  Vec3 offsetOffsetDotNormal;    ///< sum y (y . n) (length^2)
-  Vec3 offsetSquaredOffset;      ///< sum y |y|^2 (length^3)
-};
-
-/// sum |y|^2 over the cell's points (length^2).
-GLS_INLINE double spreadOf(const PyramidCell& c)
-{
-  return c.offsetOffset[0] + c.offsetOffset[3] + c.offsetOffset[5];
-}
-
-/// sum y . n over the cell's points (length).
-GLS_INLINE double offsetDotNormalOf(const PyramidCell& c)
-{
-  return c.offsetNormal[0] + c.offsetNormal[4] + c.offsetNormal[8];
-}
-
-/// (sum y y^T) v.
-GLS_INLINE Vec3 offsetOffsetTimes(const PyramidCell& c, const Vec3& v)
-{
-  const double* s = c.offsetOffset;
-  return { s[0] * v.x + s[1] * v.y + s[2] * v.z, s[1] * v.x + s[3] * v.y + s[4] * v.z,
-    s[2] * v.x + s[4] * v.y + s[5] * v.z };
-}
-
-/// (sum y n^T) v = sum y (n . v).
-GLS_INLINE Vec3 offsetNormalTimes(const PyramidCell& c, const Vec3& v)
-{
-  const double* s = c.offsetNormal;
-  return { s[0] * v.x + s[1] * v.y + s[2] * v.z, s[3] * v.x + s[4] * v.y + s[5] * v.z,
-    s[6] * v.x + s[7] * v.y + s[8] * v.z };
-}
-
-/// (sum y n^T)^T v = sum n (y . v).
-GLS_INLINE Vec3 normalOffsetTimes(const PyramidCell& c, const Vec3& v)
-{
-  const double* s = c.offsetNormal;
-  return { s[0] * v.x + s[3] * v.y + s[6] * v.z, s[1] * v.x + s[4] * v.y + s[7] * v.z,
-    s[2] * v.x + s[5] * v.y + s[8] * v.z };
-}
 
 /// The sums of the points [first, last) (at least one), their centroid formed about `reference` (a point near them,
 /// such as their cube's corner, so that far coordinates lose no precision). The build stores these for the cells of
@@ -88,23 +40,7 @@ GLS_INLINE void momentsOfPoints(const StoredPoints& points, std::uint32_t first,
   cell.count = count;
   for (std::uint32_t i = first; i < last; ++i)
   {
-    const Vec3 y = points.position(i) - cell.centroid;
-    const Vec3 n = points.normal(i);
-    const double yy[6] = { y.x * y.x, y.x * y.y, y.x * y.z, y.y * y.y, y.y * y.z, y.z * y.z };
-    for (int k = 0; k < 6; ++k)
-    {
-      cell.offsetOffset[k] += yy[k];
-    }
-    const double yv[3] = { y.x, y.y, y.z }, nv[3] = { n.x, n.y, n.z };
-    for (int a = 0; a < 3; ++a)
-    {
-      for (int b = 0; b < 3; ++b)
-      {
-        cell.offsetNormal[3 * a + b] += yv[a] * nv[b];
-      }
-    }
-    cell.offsetOffsetDotNormal = cell.offsetOffsetDotNormal + dot(y, n) * y;
-    cell.offsetSquaredOffset = cell.offsetSquaredOffset + squaredNorm(y) * y;
+    addPointToCell(cell, points.position(i) - cell.centroid, points.normal(i));
   }
 }
 
@@ -112,12 +48,12 @@ GLS_INLINE void momentsOfPoints(const StoredPoints& points, std::uint32_t first,
 /// o = p; the CPU kernel: o = the corner of p's walk region, its bins moved to p afterwards).
 struct CellSample
 {
-  /// F: the exact sums of f = (1, x, n, x . n, |x|^2) over the cell's points, x = q - o.
-  double sums[kAggregateValues];
+  /// F: the exact sums of the fitted values f (MomentSet.h) over the cell's points, x = q - o.
+  double sums[kFitValues];
   /// H: sum (a . y_i) f_i, with a = c - (the walk region's centre): what the sums gain when each point is weighted
   /// in proportion to a . y_i, the first-order variation of |q_i - p|^2 across the cell (a stands for c - p for
   /// every point of the region). H[0] = 0: the field moves weight within the cell, it adds none.
-  double gradient[kAggregateValues];
+  double gradient[kFitValues];
   /// sum |y|^2 / m: the mean of |q_i - p|^2 exceeds |c - p|^2 by this (length^2).
   double spreadPerPoint;
   /// sqrt(3 V), V = 4 a^T (sum y y^T) a / m: the half-width of the uniform distribution with the variance of
@@ -136,29 +72,8 @@ GLS_INLINE double spreadHalfWidth(const PyramidCell& cell, const Vec3& direction
 /// The sample of `cell` in coordinates about `origin`, with `direction` a = c - (the walk region's centre).
 GLS_INLINE void makeCellSample(const PyramidCell& cell, const Vec3& origin, const Vec3& direction, CellSample& s)
 {
-  const Vec3 x = cell.centroid - origin;
-  const double m = cell.count;
-  const Vec3 Ca = offsetOffsetTimes(cell, direction);
-  const Vec3 Na = normalOffsetTimes(cell, direction);
-  s.sums[0] = m;
-  s.sums[1] = m * x.x;
-  s.sums[2] = m * x.y;
-  s.sums[3] = m * x.z;
-  s.sums[4] = cell.normalSum.x;
-  s.sums[5] = cell.normalSum.y;
-  s.sums[6] = cell.normalSum.z;
-  s.sums[7] = offsetDotNormalOf(cell) + dot(x, cell.normalSum);
-  s.sums[8] = spreadOf(cell) + m * squaredNorm(x);
-  s.gradient[0] = 0.0;
-  s.gradient[1] = Ca.x;
-  s.gradient[2] = Ca.y;
-  s.gradient[3] = Ca.z;
-  s.gradient[4] = Na.x;
-  s.gradient[5] = Na.y;
-  s.gradient[6] = Na.z;
-  s.gradient[7] = dot(x, Na) + dot(direction, cell.offsetOffsetDotNormal);
-  s.gradient[8] = 2.0 * dot(x, Ca) + dot(direction, cell.offsetSquaredOffset);
-  s.spreadPerPoint = spreadOf(cell) / m;
+  cellValues(cell, cell.centroid - origin, direction, s.sums, s.gradient);
+  s.spreadPerPoint = spreadOf(cell) / cell.count;
   s.halfWidth = spreadHalfWidth(cell, direction);
 }
 
@@ -372,11 +287,11 @@ GLS_INLINE ShellShare movedShare(const ShellShareExpansion& e, double delta, dou
 /// Adds a cell's share of one shell: A_j += m_j F + c_j H (docs/math.md).
 GLS_INLINE void addCellShare(AggregateMoments& a, const CellSample& s, const ShellShare& share)
 {
-  for (int j = 0; j < kAggregateValues; ++j)
+  for (int j = 0; j < kFitValues; ++j)
   {
     a.m[j] += share.m[0] * s.sums[j] + share.c[0] * s.gradient[j];
-    a.m[kAggregateValues + j] += share.m[1] * s.sums[j] + share.c[1] * s.gradient[j];
-    a.m[2 * kAggregateValues + j] += share.m[2] * s.sums[j] + share.c[2] * s.gradient[j];
+    a.m[kFitValues + j] += share.m[1] * s.sums[j] + share.c[1] * s.gradient[j];
+    a.m[2 * kFitValues + j] += share.m[2] * s.sums[j] + share.c[2] * s.gradient[j];
   }
 }
 

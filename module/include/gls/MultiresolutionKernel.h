@@ -54,9 +54,9 @@ struct LinearizedBins
 struct InnerSums
 {
   /// Of F: 1, M, a (3), M^2 + V, M a (3), a a^T (6: xx, xy, xz, yy, yz, zz), in that order.
-  double f[15][kAggregateValues];
+  double f[15][kFitValues];
   /// Of H: 1, M, a (3).
-  double h[5][kAggregateValues];
+  double h[5][kFitValues];
   std::size_t samples = 0; ///< how many samples they hold (0: nothing to add)
 };
 
@@ -67,11 +67,11 @@ struct PointSpan
 };
 
 /// A point of a walk as every point of its region reads it (packWalk in src/multiresolution/MultiresolutionPacking.h):
-/// its position and its nine sums (1, x, n, x.n, |x|^2) about the region's corner.
+/// its position and its fitted values f (MomentSet.h) about the region's corner.
 struct PackedPoint
 {
   Vec3 position;
-  double sums[kAggregateValues];
+  double sums[kFitValues];
 };
 
 /// A cell of a walk as every point of its region reads it once the cell is classified (its placement and spread are

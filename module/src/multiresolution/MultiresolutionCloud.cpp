@@ -90,10 +90,8 @@ void runsOfEqualKeys(std::size_t n, const KeyOf& keyOf, int threads, Uninitializ
   runStarts[first[slices]] = n;
 }
 
-/// The sums of a parent cell from those of its `count` children (in order), about its new centroid c: with
-/// d = c_k - c for child k, sum y y^T gains C_k + m_k d d^T; sum y n^T gains N_k + d (sum n)_k^T;
-/// sum y (y . n) gains T_k + N_k d + d tr(N_k) + d (d . (sum n)_k); sum y |y|^2 gains
-/// Q_k + 2 C_k d + tr(C_k) d + m_k |d|^2 d (y = y_k + d for the child's points, sum y_k = 0).
+/// The sums of a parent cell from those of its `count` children (in order), about its new centroid c
+/// (addChildToCell in MomentSet.h for each child, d = c_k - c).
 void mergeChildren(const PyramidCell* children, std::uint32_t count, const Vec3& reference, PyramidCell& cell)
 {
   double m = 0.0;
@@ -110,29 +108,7 @@ void mergeChildren(const PyramidCell* children, std::uint32_t count, const Vec3&
   cell.count = m;
   for (std::uint32_t k = 0; k < count; ++k)
   {
-    const PyramidCell& child = children[k];
-    const Vec3 d = child.centroid - cell.centroid;
-    const double mk = child.count;
-    const double dd[6] = { d.x * d.x, d.x * d.y, d.x * d.z, d.y * d.y, d.y * d.z, d.z * d.z };
-    for (int i = 0; i < 6; ++i)
-    {
-      cell.offsetOffset[i] += child.offsetOffset[i] + mk * dd[i];
-    }
-    const double dv[3] = { d.x, d.y, d.z };
-    const double nv[3] = { child.normalSum.x, child.normalSum.y, child.normalSum.z };
-    for (int a = 0; a < 3; ++a)
-    {
-      for (int b = 0; b < 3; ++b)
-      {
-        cell.offsetNormal[3 * a + b] += child.offsetNormal[3 * a + b] + dv[a] * nv[b];
-      }
-    }
-    const Vec3 Nd = offsetNormalTimes(child, d);
-    cell.offsetOffsetDotNormal = cell.offsetOffsetDotNormal + child.offsetOffsetDotNormal + Nd +
-      (offsetDotNormalOf(child) + dot(d, child.normalSum)) * d;
-    const Vec3 Cd = offsetOffsetTimes(child, d);
-    cell.offsetSquaredOffset = cell.offsetSquaredOffset + child.offsetSquaredOffset + 2.0 * Cd +
-      (spreadOf(child) + mk * squaredNorm(d)) * d;
+    addChildToCell(cell, children[k], children[k].centroid - cell.centroid);
   }
 }
 

@@ -15,10 +15,10 @@ namespace gls
 namespace kernel
 {
 
-/// sum += c * x over the 27 moments.
+/// sum += c * x over every moment.
 GLS_FORCE_INLINE void addScaled(AggregateMoments& sum, double c, const AggregateMoments& x)
 {
-  for (int j = 0; j < 3 * kAggregateValues; ++j)
+  for (int j = 0; j < 3 * kFitValues; ++j)
   {
     sum.m[j] += c * x.m[j];
   }
@@ -125,13 +125,13 @@ GLS_FORCE_INLINE void addLinearizedCells(const LinearizedBins& far, const Vec3& 
     };
     int j = 0;
 #if GLS_KERNEL_VECTORS
-    for (; j + 4 <= 3 * kAggregateValues; j += 4)
+    for (; j + 4 <= 3 * kFitValues; j += 4)
     {
       const auto four = [j](const double* set) GLS_INLINE_LAMBDA { return load4(set + j); };
       store4(m + j, load4(m + j) + moved(four));
     }
 #endif
-    for (; j < 3 * kAggregateValues; ++j)
+    for (; j < 3 * kFitValues; ++j)
     {
       m[j] += moved([j](const double* set) GLS_INLINE_LAMBDA { return set[j]; });
     }

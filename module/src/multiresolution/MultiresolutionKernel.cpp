@@ -112,21 +112,13 @@ GLS_FORCE_INLINE void addPackedSamples(const Vec3& p, const ScaleBinning& b, dou
     [&](std::size_t i, double d2, int k) { kernel::addPackedSums(bins[k], points[i].sums, d2); });
 }
 
-/// Moves sums from coordinates about o to coordinates about p (x_p = x_o + u, u = o - p): sum x gains u sum 1, sum
-/// x.n gains u . sum n, sum |x|^2 gains 2 u . sum x + |u|^2 sum 1; the weights d^(2k) stay p's.
+/// Moves the moments from coordinates about o to coordinates about p (u = o - p; shiftValues for each power: the
+/// weights d^(2k) stay p's).
 GLS_FORCE_INLINE void shiftMoments(const Vec3& u, double uu, AggregateMoments& a)
 {
   for (int j = 0; j < 3; ++j)
   {
-    double* f = a.m + j * kAggregateValues;
-    const double W = f[0];
-    const Vec3 P{ f[1], f[2], f[3] };
-    const Vec3 N{ f[4], f[5], f[6] };
-    f[1] += u.x * W;
-    f[2] += u.y * W;
-    f[3] += u.z * W;
-    f[7] += dot(u, N);
-    f[8] += 2.0 * dot(u, P) + uu * W;
+    shiftValues(u, uu, a.m + j * kFitValues);
   }
 }
 

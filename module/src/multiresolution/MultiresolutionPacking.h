@@ -34,26 +34,31 @@ GLS_FORCE_INLINE void addInnerSample(
 {
   const double weights[15] = { 1.0, M, a.x, a.y, a.z, K, M * a.x, M * a.y, M * a.z, a.x * a.x, a.x * a.y, a.x * a.z,
     a.y * a.y, a.y * a.z, a.z * a.z };
-  // inner.x[i] += weights[i] * X, nine values at a time (two four-double vectors and one, in the vector builds).
-  const auto add = [&weights](double(*sums)[kAggregateValues], int count, const double* X) GLS_INLINE_LAMBDA {
+  // inner.x[i] += weights[i] * X, every value of a row at a time (four-double vectors while four remain, in the
+  // vector builds).
+  const auto add = [&weights](double(*sums)[kFitValues], int count, const double* X) GLS_INLINE_LAMBDA {
 #if GLS_KERNEL_VECTORS
-    const Double4 x0 = load4(X), x1 = load4(X + 4);
+    Double4 x4[kFitValues / 4];
+    for (int v = 0; v < kFitValues / 4; ++v)
+    {
+      x4[v] = load4(X + 4 * v);
+    }
+#endif
     for (int i = 0; i < count; ++i)
     {
       double* row = sums[i];
-      store4(row, load4(row) + weights[i] * x0);
-      store4(row + 4, load4(row + 4) + weights[i] * x1);
-      row[8] += weights[i] * X[8];
-    }
-#else
-    for (int i = 0; i < count; ++i)
-    {
-      for (int j = 0; j < kAggregateValues; ++j)
+      int j = 0;
+#if GLS_KERNEL_VECTORS
+      for (; j + 4 <= kFitValues; j += 4)
       {
-        sums[i][j] += weights[i] * X[j];
+        store4(row + j, load4(row + j) + weights[i] * x4[j / 4]);
+      }
+#endif
+      for (; j < kFitValues; ++j)
+      {
+        row[j] += weights[i] * X[j];
       }
     }
-#endif
   };
   add(inner.f, 15, F);
   if (H)
@@ -73,7 +78,7 @@ GLS_FORCE_INLINE void addInnerSums(const InnerSums& inner, const Vec3& u, Aggreg
   }
   const double uu = squaredNorm(u);
   const double q[6] = { u.x * u.x, 2.0 * u.x * u.y, 2.0 * u.x * u.z, u.y * u.y, 2.0 * u.y * u.z, u.z * u.z };
-  for (int j = 0; j < kAggregateValues; ++j)
+  for (int j = 0; j < kFitValues; ++j)
   {
     const double F = inner.f[0][j], MF = inner.f[1][j], KF = inner.f[5][j];
     const double uaF = u.x * inner.f[2][j] + u.y * inner.f[3][j] + u.z * inner.f[4][j];
@@ -86,13 +91,13 @@ GLS_FORCE_INLINE void addInnerSums(const InnerSums& inner, const Vec3& u, Aggreg
     // mean^2 = M^2 - 4 M a.u + 2 M |u|^2 + 4 (a.u)^2 - 4 (a.u) |u|^2 + |u|^4
     const double squareF = KF - 4.0 * uMaF + 2.0 * uu * MF + 4.0 * uaauF - 4.0 * uu * uaF + uu * uu * F;
     bin.m[j] += F;
-    bin.m[kAggregateValues + j] += meanF + 2.0 * inner.h[0][j];
-    bin.m[2 * kAggregateValues + j] += squareF + 4.0 * meanH;
+    bin.m[kFitValues + j] += meanF + 2.0 * inner.h[0][j];
+    bin.m[2 * kFitValues + j] += squareF + 4.0 * meanH;
   }
 }
 
 /// The samples of a walk, packed once for every point of its region, about an origin o near it (the corner of its far
-/// region, or its own; x = q - o): the points with their nine sums f = (1, x, n, x.n, |x|^2), the cells with their
+/// region, or its own; x = q - o): the points with their fitted values f (MomentSet.h), the cells with their
 /// CellSample (direction from the region's centre), so that a point adds them as they are and moves its sums from o
 /// to itself once per scale (fitAllScalesAboutOrigin) instead of forming them for every sample. The samples inside
 /// the first shell's sphere for every point of the region (below sq0 = scales[0]^2) go to s.inner instead
@@ -138,7 +143,7 @@ GLS_FORCE_INLINE void packWalk(
       const Vec3 q = v.points.position(i);
       const Vec3 x = q - o;
       out->position = q;
-      pointSums(x, squaredNorm(x), v.points.normal(i), out->sums);
+      pointValues(x, squaredNorm(x), v.points.normal(i), out->sums);
       if (squaredDistanceToFarthestPoint(region, q) < sq0)
       {
         const Vec3 a = q - anchor;

@@ -1,0 +1,202 @@
+// The moment set (MomentSet.h): every rule a fitted value declares, checked for every value against its point rule
+// summed over the points one by one. A value added to the set is checked here with no new test: its move of origin,
+// its sums over a cell and their gradient, the merge of its cell statistics, and its moments in the one pass's and
+// the multi-resolution layouts.
+#include "gls/AggregateMoments.h"
+#include "gls/CellMoments.h"
+#include "gls/MomentBins.h"
+#include "gls/MomentSet.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace
+{
+
+using Values = std::array<double, gls::kFitValues>;
+
+struct Points
+{
+  std::vector<gls::Vec3> positions, normals;
+};
+
+/// n points in a cube of edge h at `centre`, with unit normals near +z (a patch of a surface).
+Points cubeOfPoints(std::size_t n, const gls::Vec3& centre, double h, unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  Points p;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    p.positions.push_back(centre + gls::Vec3{ h * u(rng), h * u(rng), h * u(rng) });
+    const gls::Vec3 n0{ 0.4 * u(rng), 0.4 * u(rng), 1.0 };
+    p.normals.push_back((1.0 / std::sqrt(gls::squaredNorm(n0))) * n0);
+  }
+  return p;
+}
+
+/// sum over the points of weight(i) f(q_i - o, n_i).
+template <typename Weight>
+Values summedValues(const Points& p, const gls::Vec3& o, Weight&& weight)
+{
+  Values sum{};
+  for (std::size_t i = 0; i < p.positions.size(); ++i)
+  {
+    const gls::Vec3 x = p.positions[i] - o;
+    double f[gls::kFitValues];
+    gls::pointValues(x, gls::squaredNorm(x), p.normals[i], f);
+    for (int j = 0; j < gls::kFitValues; ++j)
+    {
+      sum[j] += weight(i) * f[j];
+    }
+  }
+  return sum;
+}
+
+/// The cell statistics of the points, formed point by point (addPointToCell) about their centroid.
+gls::PyramidCell cellOf(const Points& p)
+{
+  gls::PyramidCell cell{};
+  for (std::size_t i = 0; i < p.positions.size(); ++i)
+  {
+    cell.count += 1.0;
+    cell.centroid = cell.centroid + p.positions[i];
+    cell.normalSum = cell.normalSum + p.normals[i];
+  }
+  cell.centroid = (1.0 / cell.count) * cell.centroid;
+  for (std::size_t i = 0; i < p.positions.size(); ++i)
+  {
+    gls::addPointToCell(cell, p.positions[i] - cell.centroid, p.normals[i]);
+  }
+  return cell;
+}
+
+void expectValuesNear(const Values& got, const Values& want, double tolerance, const char* what)
+{
+  for (int j = 0; j < gls::kFitValues; ++j)
+  {
+    EXPECT_NEAR(got[j], want[j], tolerance * (1.0 + std::abs(want[j]))) << what << ", value " << j;
+  }
+}
+
+const gls::Vec3 kCentre{ 0.3, -0.2, 0.5 };
+const gls::Vec3 kOrigin{ -0.1, 0.25, 0.05 };
+
+} // namespace
+
+TEST(MomentSet, ShiftMovesEveryValuesSumsToAnotherOrigin)
+{
+  // Sums about o, weighted (any weight per point, the same for its values), moved to p: the sums about p.
+  const Points pts = cubeOfPoints(200, kCentre, 0.4, 1);
+  const auto weight = [](std::size_t i) { return 0.5 + 0.01 * static_cast<double>(i % 17); };
+  const gls::Vec3 p{ 0.7, 0.1, -0.3 };
+  Values moved = summedValues(pts, kOrigin, weight);
+  const gls::Vec3 u = kOrigin - p;
+  gls::shiftValues(u, gls::squaredNorm(u), moved.data());
+  expectValuesNear(moved, summedValues(pts, p, weight), 1e-12, "shiftValues");
+}
+
+TEST(MomentSet, CellValuesAreTheSumsOfTheCellsPointsAndTheirGradient)
+{
+  // F = sum f(q_i - o, n_i) and H = sum (a . y_i) f(q_i - o, n_i) from the cell's statistics alone.
+  const Points pts = cubeOfPoints(300, kCentre, 0.2, 2);
+  const gls::PyramidCell cell = cellOf(pts);
+  const gls::Vec3 a{ 0.6, -0.8, 0.3 };
+  Values F{}, H{};
+  gls::cellValues(cell, cell.centroid - kOrigin, a, F.data(), H.data());
+  expectValuesNear(F, summedValues(pts, kOrigin, [](std::size_t) { return 1.0; }), 1e-12, "F");
+  const auto along = [&](std::size_t i) { return gls::dot(a, pts.positions[i] - cell.centroid); };
+  expectValuesNear(H, summedValues(pts, kOrigin, along), 1e-12, "H");
+  EXPECT_EQ(H[gls::kOne], 0.0);
+}
+
+TEST(MomentSet, MergedCellStatisticsGiveTheSameValuesAsThePoints)
+{
+  // A parent formed from two children (addChildToCell) gives every value's F and H of all their points.
+  const Points left = cubeOfPoints(150, kCentre, 0.1, 3);
+  const Points right = cubeOfPoints(90, kCentre + gls::Vec3{ 0.1, 0.02, -0.03 }, 0.1, 4);
+  Points both = left;
+  both.positions.insert(both.positions.end(), right.positions.begin(), right.positions.end());
+  both.normals.insert(both.normals.end(), right.normals.begin(), right.normals.end());
+  const gls::PyramidCell children[2] = { cellOf(left), cellOf(right) };
+  gls::PyramidCell parent{};
+  parent.count = children[0].count + children[1].count;
+  parent.centroid = (1.0 / parent.count) * (children[0].count * children[0].centroid +
+    children[1].count * children[1].centroid);
+  parent.normalSum = children[0].normalSum + children[1].normalSum;
+  for (const gls::PyramidCell& child : children)
+  {
+    gls::addChildToCell(parent, child, child.centroid - parent.centroid);
+  }
+  const gls::PyramidCell direct = cellOf(both);
+  const gls::Vec3 a{ -0.2, 0.5, 0.9 };
+  Values Fm{}, Hm{}, Fd{}, Hd{};
+  gls::cellValues(parent, parent.centroid - kOrigin, a, Fm.data(), Hm.data());
+  gls::cellValues(direct, direct.centroid - kOrigin, a, Fd.data(), Hd.data());
+  expectValuesNear(Fm, Fd, 1e-12, "merged F");
+  expectValuesNear(Hm, Hd, 1e-12, "merged H");
+}
+
+TEST(MomentSet, OnePassAndMultiresolutionMomentsGiveTheSameWeightedSums)
+{
+  // The one pass stores every value but |x|^2 (its moments are those of d^2); the multi-resolution layout stores all.
+  // Both give the weighted sums and their t-derivatives of the points, as the weights summed point by point do.
+  const Points pts = cubeOfPoints(400, gls::Vec3{ 0.0, 0.0, 0.0 }, 0.8, 5);
+  const gls::Vec3 p{ 0.05, -0.02, 0.01 };
+  const double t = 0.5;
+  gls::Moments onePass;
+  gls::AggregateMoments aggregate;
+  gls::clearMoments(onePass);
+  gls::clearMoments(aggregate);
+  std::vector<double> w(pts.positions.size()), dw(pts.positions.size());
+  for (std::size_t i = 0; i < pts.positions.size(); ++i)
+  {
+    const gls::Vec3 x = pts.positions[i] - p;
+    const double d2 = gls::squaredNorm(x);
+    w[i] = gls::weightAt(d2, t);
+    dw[i] = gls::weightDerivativeAt(d2, t);
+    if (d2 < t * t)
+    {
+      gls::addToMoments(onePass, x, d2, pts.normals[i]);
+      gls::addPoint(aggregate, x, d2, pts.normals[i]);
+    }
+  }
+  ASSERT_GT(gls::neighborCount(onePass), 50.0);
+  EXPECT_EQ(gls::neighborCount(onePass), gls::neighborCount(aggregate));
+  const Values sums = summedValues(pts, p, [&](std::size_t i) { return w[i]; });
+  const Values derivatives = summedValues(pts, p, [&](std::size_t i) { return dw[i]; });
+  gls::WeightedSums want, wantD;
+  gls::toWeightedSums(sums.data(), derivatives.data(), want, wantD);
+  for (int layout = 0; layout < 2; ++layout)
+  {
+    gls::WeightedSums s, ds;
+    if (layout == 0)
+    {
+      gls::weightedSumsFromMoments(onePass, t, s, ds);
+    }
+    else
+    {
+      gls::weightedSumsFromMoments(aggregate, t, s, ds);
+    }
+    const double scales[2] = { want.W, wantD.W };
+    const gls::WeightedSums* got[2] = { &s, &ds };
+    const gls::WeightedSums* ref[2] = { &want, &wantD };
+    for (int k = 0; k < 2; ++k)
+    {
+      const double tol = 1e-11 * std::abs(scales[k]);
+      EXPECT_NEAR(got[k]->W, ref[k]->W, tol) << "layout " << layout << " derivative " << k;
+      EXPECT_NEAR(got[k]->P.x, ref[k]->P.x, tol);
+      EXPECT_NEAR(got[k]->P.y, ref[k]->P.y, tol);
+      EXPECT_NEAR(got[k]->P.z, ref[k]->P.z, tol);
+      EXPECT_NEAR(got[k]->N.x, ref[k]->N.x, tol);
+      EXPECT_NEAR(got[k]->N.y, ref[k]->N.y, tol);
+      EXPECT_NEAR(got[k]->N.z, ref[k]->N.z, tol);
+      EXPECT_NEAR(got[k]->PN, ref[k]->PN, tol);
+      EXPECT_NEAR(got[k]->PP, ref[k]->PP, tol);
+    }
+  }
+}
