@@ -1,7 +1,7 @@
-// The moment set (MomentSet.h): every rule a fitted value declares, checked for every value against its point rule
-// summed over the points one by one. A value added to the set is checked here with no new test: its move of origin,
-// its sums over a cell and their gradient, the merge of its cell statistics, and its moments in the one pass's and
-// the multi-resolution layouts.
+// The moment set the filters run (OrientedSphereMoments, MomentSet.h): every rule a fitted value declares, checked for
+// every value against its point rule summed over the points one by one. A value added to the set is checked here with
+// no new test: its move of origin, its sums over a cell and their gradient, the merge of its cell statistics, and its
+// moments in the one pass's and the multi-resolution layouts.
 #include "gls/AggregateMoments.h"
 #include "gls/CellMoments.h"
 #include "gls/MomentBins.h"
@@ -17,7 +17,9 @@
 namespace
 {
 
-using Values = std::array<double, gls::kFitValues>;
+/// The set under test: the one the filters run.
+using Set = gls::OrientedSphereMoments;
+using Values = std::array<double, Set::kValues>;
 
 struct Points
 {
@@ -47,9 +49,9 @@ Values summedValues(const Points& p, const gls::Vec3& o, Weight&& weight)
   for (std::size_t i = 0; i < p.positions.size(); ++i)
   {
     const gls::Vec3 x = p.positions[i] - o;
-    double f[gls::kFitValues];
-    gls::pointValues(x, gls::squaredNorm(x), p.normals[i], f);
-    for (int j = 0; j < gls::kFitValues; ++j)
+    double f[Set::kValues];
+    Set::pointValues(x, gls::squaredNorm(x), p.normals[i], f);
+    for (int j = 0; j < Set::kValues; ++j)
     {
       sum[j] += weight(i) * f[j];
     }
@@ -58,9 +60,9 @@ Values summedValues(const Points& p, const gls::Vec3& o, Weight&& weight)
 }
 
 /// The cell statistics of the points, formed point by point (addPointToCell) about their centroid.
-gls::PyramidCell cellOf(const Points& p)
+Set::Cell cellOf(const Points& p)
 {
-  gls::PyramidCell cell{};
+  Set::Cell cell{};
   for (std::size_t i = 0; i < p.positions.size(); ++i)
   {
     cell.count += 1.0;
@@ -70,14 +72,14 @@ gls::PyramidCell cellOf(const Points& p)
   cell.centroid = (1.0 / cell.count) * cell.centroid;
   for (std::size_t i = 0; i < p.positions.size(); ++i)
   {
-    gls::addPointToCell(cell, p.positions[i] - cell.centroid, p.normals[i]);
+    Set::addPointToCell(cell, p.positions[i] - cell.centroid, p.normals[i]);
   }
   return cell;
 }
 
 void expectValuesNear(const Values& got, const Values& want, double tolerance, const char* what)
 {
-  for (int j = 0; j < gls::kFitValues; ++j)
+  for (int j = 0; j < Set::kValues; ++j)
   {
     EXPECT_NEAR(got[j], want[j], tolerance * (1.0 + std::abs(want[j]))) << what << ", value " << j;
   }
@@ -96,7 +98,7 @@ TEST(MomentSet, ShiftMovesEveryValuesSumsToAnotherOrigin)
   const gls::Vec3 p{ 0.7, 0.1, -0.3 };
   Values moved = summedValues(pts, kOrigin, weight);
   const gls::Vec3 u = kOrigin - p;
-  gls::shiftValues(u, gls::squaredNorm(u), moved.data());
+  Set::shiftValues(u, gls::squaredNorm(u), moved.data());
   expectValuesNear(moved, summedValues(pts, p, weight), 1e-12, "shiftValues");
 }
 
@@ -104,10 +106,10 @@ TEST(MomentSet, CellValuesAreTheSumsOfTheCellsPointsAndTheirGradient)
 {
   // F = sum f(q_i - o, n_i) and H = sum (a . y_i) f(q_i - o, n_i) from the cell's statistics alone.
   const Points pts = cubeOfPoints(300, kCentre, 0.2, 2);
-  const gls::PyramidCell cell = cellOf(pts);
+  const Set::Cell cell = cellOf(pts);
   const gls::Vec3 a{ 0.6, -0.8, 0.3 };
   Values F{}, H{};
-  gls::cellValues(cell, cell.centroid - kOrigin, a, F.data(), H.data());
+  Set::cellValues(cell, cell.centroid - kOrigin, a, F.data(), H.data());
   expectValuesNear(F, summedValues(pts, kOrigin, [](std::size_t) { return 1.0; }), 1e-12, "F");
   const auto along = [&](std::size_t i) { return gls::dot(a, pts.positions[i] - cell.centroid); };
   expectValuesNear(H, summedValues(pts, kOrigin, along), 1e-12, "H");
@@ -122,21 +124,21 @@ TEST(MomentSet, MergedCellStatisticsGiveTheSameValuesAsThePoints)
   Points both = left;
   both.positions.insert(both.positions.end(), right.positions.begin(), right.positions.end());
   both.normals.insert(both.normals.end(), right.normals.begin(), right.normals.end());
-  const gls::PyramidCell children[2] = { cellOf(left), cellOf(right) };
-  gls::PyramidCell parent{};
+  const Set::Cell children[2] = { cellOf(left), cellOf(right) };
+  Set::Cell parent{};
   parent.count = children[0].count + children[1].count;
   parent.centroid = (1.0 / parent.count) * (children[0].count * children[0].centroid +
     children[1].count * children[1].centroid);
   parent.normalSum = children[0].normalSum + children[1].normalSum;
-  for (const gls::PyramidCell& child : children)
+  for (const Set::Cell& child : children)
   {
-    gls::addChildToCell(parent, child, child.centroid - parent.centroid);
+    Set::addChildToCell(parent, child, child.centroid - parent.centroid);
   }
-  const gls::PyramidCell direct = cellOf(both);
+  const Set::Cell direct = cellOf(both);
   const gls::Vec3 a{ -0.2, 0.5, 0.9 };
   Values Fm{}, Hm{}, Fd{}, Hd{};
-  gls::cellValues(parent, parent.centroid - kOrigin, a, Fm.data(), Hm.data());
-  gls::cellValues(direct, direct.centroid - kOrigin, a, Fd.data(), Hd.data());
+  Set::cellValues(parent, parent.centroid - kOrigin, a, Fm.data(), Hm.data());
+  Set::cellValues(direct, direct.centroid - kOrigin, a, Fd.data(), Hd.data());
   expectValuesNear(Fm, Fd, 1e-12, "merged F");
   expectValuesNear(Hm, Hd, 1e-12, "merged H");
 }

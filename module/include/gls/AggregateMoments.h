@@ -11,66 +11,86 @@
 namespace gls
 {
 
-/// m[k * kFitValues + j] = sum over the samples of d^(2k) f_j (k = 0, 1, 2). Padded to whole 64-byte lines.
-struct alignas(64) AggregateMoments
+/// m[k * kValues + j] = sum over the samples of d^(2k) f_j (k = 0, 1, 2) for every value of the moment set S.
+/// Padded to whole 64-byte lines.
+template <typename S>
+struct alignas(64) AggregateMomentsT
 {
-  double m[wholeCacheLines(3 * kFitValues)];
+  using Set = S;
+  static constexpr int kValues = S::kValues;
+  double m[wholeCacheLines(3 * kValues)];
 };
 
-GLS_INLINE void clearMoments(AggregateMoments& a)
+/// The oriented sphere's multi-resolution moments.
+using AggregateMoments = AggregateMomentsT<OrientedSphereMoments>;
+
+template <typename S>
+GLS_INLINE void clearMoments(AggregateMomentsT<S>& a)
 {
-  for (int i = 0; i < 3 * kFitValues; ++i)
+  for (int i = 0; i < 3 * S::kValues; ++i)
   {
     a.m[i] = 0.0;
   }
 }
 
-GLS_INLINE void addMoments(AggregateMoments& a, const AggregateMoments& b)
+template <typename S>
+GLS_INLINE void addMoments(AggregateMomentsT<S>& a, const AggregateMomentsT<S>& b)
 {
-  for (int i = 0; i < 3 * kFitValues; ++i)
+  for (int i = 0; i < 3 * S::kValues; ++i)
   {
     a.m[i] += b.m[i];
   }
 }
 
 /// Number of points in the ball the moments describe (cells count all their points).
-GLS_INLINE double neighborCount(const AggregateMoments& a)
+template <typename S>
+GLS_INLINE double neighborCount(const AggregateMomentsT<S>& a)
 {
   return a.m[0];
 }
 
 /// Adds the values f (MomentSet.h) of a sample whose points all sit at squared distance d2.
-GLS_INLINE void addSampleSums(AggregateMoments& a, const double* f, double d2)
+template <typename S>
+GLS_INLINE void addSampleSums(AggregateMomentsT<S>& a, const double* f, double d2)
 {
+  constexpr int V = S::kValues;
   const double d4 = d2 * d2;
-  for (int j = 0; j < kFitValues; ++j)
+  for (int j = 0; j < V; ++j)
   {
     a.m[j] += f[j];
-    a.m[kFitValues + j] += d2 * f[j];
-    a.m[2 * kFitValues + j] += d4 * f[j];
+    a.m[V + j] += d2 * f[j];
+    a.m[2 * V + j] += d4 * f[j];
   }
 }
 
 /// Adds one point with local position x (d2 = |x|^2) and normal n: exactly what the exact pass adds.
-GLS_INLINE void addPoint(AggregateMoments& a, const Vec3& x, double d2, const Vec3& n)
+template <typename S>
+GLS_INLINE void addPoint(AggregateMomentsT<S>& a, const Vec3& x, double d2, const Vec3& n)
 {
-  double f[kFitValues];
-  pointValues(x, d2, n, f);
+  double f[S::kValues];
+  S::pointValues(x, d2, n, f);
   addSampleSums(a, f, d2);
 }
 
-/// Weighted sums at scale t (s) and their t-derivatives (ds) from the moments of the ball of radius t.
-GLS_INLINE void weightedSumsFromMoments(const AggregateMoments& a, double t, WeightedSums& s, WeightedSums& ds)
+/// Every value's sum weighted by w at scale t (v) and by dw/dt (dv), from the moments of the ball of radius t.
+template <typename S>
+GLS_INLINE void weightedValues(const AggregateMomentsT<S>& a, double t, double* v, double* dv)
 {
+  constexpr int V = S::kValues;
   const WeightPolynomial w = weightPolynomial(t);
-  double v[kFitValues];
-  double dv[kFitValues];
-  for (int j = 0; j < kFitValues; ++j)
+  for (int j = 0; j < V; ++j)
   {
-    const double a0 = a.m[j], a1 = a.m[kFitValues + j], a2 = a.m[2 * kFitValues + j];
+    const double a0 = a.m[j], a1 = a.m[V + j], a2 = a.m[2 * V + j];
     v[j] = a0 + w.c1 * a1 + w.c2 * a2;
     dv[j] = w.e1 * a1 + w.e2 * a2;
   }
+}
+
+/// The oriented sphere's weighted sums at scale t (s) and their t-derivatives (ds) from the moments of the ball.
+GLS_INLINE void weightedSumsFromMoments(const AggregateMoments& a, double t, WeightedSums& s, WeightedSums& ds)
+{
+  double v[kFitValues], dv[kFitValues];
+  weightedValues(a, t, v, dv);
   toWeightedSums(v, dv, s, ds);
 }
 

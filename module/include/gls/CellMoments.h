@@ -2,11 +2,12 @@
 // (docs/math.md, "Multi-resolution evaluation"), host/device.
 //
 // A cell keeps the exact sums of its points q_i (unit normals n_i) about their centroid c, y_i = q_i - c, that the
-// moment set asks for (PyramidCell in MomentSet.h, which also says how they form the sums of every fitted value). The sample of a cell for an evaluation point p weights its points with a linear field
-// W + g . y_i, the first-order expansion of the GLS weight across the cell, and spreads their squared distances
-// |q_i - p|^2 uniformly over an interval of the right mean and variance when it bins them into the scale shells.
-// Every sum the sample adds is an exact sum over the cell's points with one weight per point, the same for every
-// summed value, so the oriented sphere fit still recovers a sphere or a plane exactly.
+// moment set asks for (PyramidCell in MomentSet.h, which also says how they form the sums of every fitted value). The
+// sample of a cell for an evaluation point p weights its points with a linear field W + g . y_i, the first-order
+// expansion of the GLS weight across the cell, and spreads their squared distances |q_i - p|^2 uniformly over an
+// interval of the right mean and variance when it bins them into the scale shells. Every sum the sample adds is an
+// exact sum over the cell's points with one weight per point, the same for every summed value, so the oriented sphere
+// fit still recovers a sphere or a plane exactly.
 #pragma once
 
 #include "gls/AggregateMoments.h"
@@ -40,7 +41,7 @@ GLS_INLINE void momentsOfPoints(const StoredPoints& points, std::uint32_t first,
   cell.count = count;
   for (std::uint32_t i = first; i < last; ++i)
   {
-    addPointToCell(cell, points.position(i) - cell.centroid, points.normal(i));
+    OrientedSphereMoments::addPointToCell(cell, points.position(i) - cell.centroid, points.normal(i));
   }
 }
 
@@ -72,7 +73,7 @@ GLS_INLINE double spreadHalfWidth(const PyramidCell& cell, const Vec3& direction
 /// The sample of `cell` in coordinates about `origin`, with `direction` a = c - (the walk region's centre).
 GLS_INLINE void makeCellSample(const PyramidCell& cell, const Vec3& origin, const Vec3& direction, CellSample& s)
 {
-  cellValues(cell, cell.centroid - origin, direction, s.sums, s.gradient);
+  OrientedSphereMoments::cellValues(cell, cell.centroid - origin, direction, s.sums, s.gradient);
   s.spreadPerPoint = spreadOf(cell) / cell.count;
   s.halfWidth = spreadHalfWidth(cell, direction);
 }

@@ -1,9 +1,9 @@
-// The one-pass moment formulation (docs/math.md, "All scales in one pass"). Inside the ball,
-// w = 1 - 2 d^2/t^2 + d^4/t^4 and dw/dt = 4 d^2/t^3 - 4 d^4/t^5, so every weighted sum at scale t is a combination
-// of the un-weighted moments A_k(t) = sum_{d_i < t} d_i^(2k) f_i, k = 0, 1, 2, of the fitted values f_i (MomentSet.h).
-// The last value, |x_i|^2, is d_i^2 for a point, so its moments are those of the others' d^2 and d^4 plus sum d^6:
-// 25 distinct sums for the oriented sphere's nine values. A neighbour is added once, into the bin of the first scale
-// whose open ball holds it; a running sum over the bins gives A_k at every scale.
+// The one-pass moment formulation (docs/math.md, "All scales in one pass"). Inside the ball, w = 1 - 2 d^2/t^2 +
+// d^4/t^4 and dw/dt = 4 d^2/t^3 - 4 d^4/t^5, so every weighted sum at scale t is a combination of the un-weighted
+// moments A_k(t) = sum_{d_i < t} d_i^(2k) f_i, k = 0, 1, 2, of the fitted values f_i (MomentSet.h). The last value,
+// |x_i|^2, is d_i^2 for a point, so its moments are those of the others' d^2 and d^4 plus sum d^6: 25 distinct sums for
+// the oriented sphere's nine values (a moment set's last value is always |x|^2). A neighbour is added once, into the
+// bin of the first scale whose open ball holds it; a running sum over the bins gives A_k at every scale.
 #pragma once
 
 #include "gls/MomentSet.h"
@@ -11,53 +11,61 @@
 namespace gls
 {
 
-static_assert(kSquaredPosition == kFitValues - 1, "the one pass stores every value but the last, |x|^2 = d^2");
-constexpr int kMomentValues = kFitValues - 1;           ///< every fitted value but |x|^2
-constexpr int kMomentCount = 3 * kMomentValues + 1;     ///< k = 0, 1, 2, and sum d^6 (= sum d^4 |x|^2)
-
-/// The moments of one bin (or, after the prefix sum, of one ball): m[k * kMomentValues + j] = sum d^(2k) f_j, and
-/// m[3 kMomentValues] = sum d^6. The sums of |x|^2 d^(2k) are m[kMomentValues], m[2 kMomentValues] and
-/// m[3 kMomentValues] (|x|^2 = d^2), so they are not stored twice. For the oriented sphere, eight values per power:
-/// one 512-bit or two 256-bit vectors.
-struct alignas(64) Moments
+/// The moments of one bin (or, after the prefix sum, of one ball) of a moment set S (MomentSet.h): m[k * kValues + j]
+/// = sum d^(2k) f_j for every value but the last, |x|^2, and m[3 kValues] = sum d^6. The sums of |x|^2 d^(2k) are
+/// m[kValues], m[2 kValues] and m[3 kValues] (|x|^2 = d^2), so they are not stored twice. For the oriented sphere,
+/// eight values per power: one 512-bit or two 256-bit vectors.
+template <typename S>
+struct alignas(64) MomentsT
 {
-  double m[wholeCacheLines(kMomentCount)];
+  using Set = S;
+  static constexpr int kValues = S::kValues - 1;  ///< the values stored per power: every one but |x|^2
+  static constexpr int kCount = 3 * kValues + 1;  ///< k = 0, 1, 2, and sum d^6 (= sum d^4 |x|^2)
+  double m[wholeCacheLines(kCount)];
 };
 
-GLS_INLINE void clearMoments(Moments& a)
+/// The oriented sphere's one-pass moments.
+using Moments = MomentsT<OrientedSphereMoments>;
+
+template <typename S>
+GLS_INLINE void clearMoments(MomentsT<S>& a)
 {
-  for (int i = 0; i < kMomentCount; ++i)
+  for (int i = 0; i < MomentsT<S>::kCount; ++i)
   {
     a.m[i] = 0.0;
   }
 }
 
 /// Adds one neighbour with local position x, squared distance d2 = |x|^2 and normal n.
-GLS_INLINE void addToMoments(Moments& a, const Vec3& x, double d2, const Vec3& n)
+template <typename S>
+GLS_INLINE void addToMoments(MomentsT<S>& a, const Vec3& x, double d2, const Vec3& n)
 {
-  double f[kFitValues];
-  pointValues(x, d2, n, f);
+  constexpr int V = MomentsT<S>::kValues;
+  double f[S::kValues];
+  S::pointValues(x, d2, n, f);
   const double d4 = d2 * d2;
-  for (int j = 0; j < kMomentValues; ++j)
+  for (int j = 0; j < V; ++j)
   {
     a.m[j] += f[j];
-    a.m[kMomentValues + j] += d2 * f[j];
-    a.m[2 * kMomentValues + j] += d4 * f[j];
+    a.m[V + j] += d2 * f[j];
+    a.m[2 * V + j] += d4 * f[j];
   }
-  a.m[3 * kMomentValues] += d4 * d2;
+  a.m[3 * V] += d4 * d2;
 }
 
 /// a += b (used by the running sum over scale bins).
-GLS_INLINE void addMoments(Moments& a, const Moments& b)
+template <typename S>
+GLS_INLINE void addMoments(MomentsT<S>& a, const MomentsT<S>& b)
 {
-  for (int i = 0; i < kMomentCount; ++i)
+  for (int i = 0; i < MomentsT<S>::kCount; ++i)
   {
     a.m[i] += b.m[i];
   }
 }
 
 /// Number of neighbours in the ball the moments describe.
-GLS_INLINE double neighborCount(const Moments& a)
+template <typename S>
+GLS_INLINE double neighborCount(const MomentsT<S>& a)
 {
   return a.m[0];
 }
@@ -76,23 +84,30 @@ GLS_INLINE WeightPolynomial weightPolynomial(double t)
   return { -2.0 * it2, it4, 4.0 * it2 / t, -4.0 * it4 / t };
 }
 
-/// Weighted sums at scale t (s) and their t-derivatives (ds) from the moments of the ball of radius t.
-GLS_INLINE void weightedSumsFromMoments(const Moments& a, double t, WeightedSums& s, WeightedSums& ds)
+/// Every value's sum weighted by w at scale t (v) and by dw/dt (dv), from the moments of the ball of radius t.
+template <typename S>
+GLS_INLINE void weightedValues(const MomentsT<S>& a, double t, double* v, double* dv)
 {
+  constexpr int V = MomentsT<S>::kValues;
   const WeightPolynomial w = weightPolynomial(t);
   const double c0 = 1.0;
-  double v[kFitValues];
-  double dv[kFitValues];
-  for (int j = 0; j < kMomentValues; ++j)
+  for (int j = 0; j < V; ++j)
   {
-    const double a0 = a.m[j], a1 = a.m[kMomentValues + j], a2 = a.m[2 * kMomentValues + j];
+    const double a0 = a.m[j], a1 = a.m[V + j], a2 = a.m[2 * V + j];
     v[j] = c0 * a0 + w.c1 * a1 + w.c2 * a2;
     dv[j] = w.e1 * a1 + w.e2 * a2;
   }
   // |x|^2 = d^2: its moments are sum d^2, sum d^4 and sum d^6.
-  const double p0 = a.m[kMomentValues], p1 = a.m[2 * kMomentValues], p2 = a.m[3 * kMomentValues];
-  v[kMomentValues] = c0 * p0 + w.c1 * p1 + w.c2 * p2;
-  dv[kMomentValues] = w.e1 * p1 + w.e2 * p2;
+  const double p0 = a.m[V], p1 = a.m[2 * V], p2 = a.m[3 * V];
+  v[V] = c0 * p0 + w.c1 * p1 + w.c2 * p2;
+  dv[V] = w.e1 * p1 + w.e2 * p2;
+}
+
+/// The oriented sphere's weighted sums at scale t (s) and their t-derivatives (ds) from the moments of the ball.
+GLS_INLINE void weightedSumsFromMoments(const Moments& a, double t, WeightedSums& s, WeightedSums& ds)
+{
+  double v[kFitValues], dv[kFitValues];
+  weightedValues(a, t, v, dv);
   toWeightedSums(v, dv, s, ds);
 }
 

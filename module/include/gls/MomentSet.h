@@ -1,16 +1,20 @@
-// The moment set: the values f whose weighted sums sum w_i f_i the oriented sphere fit consumes, declared once with
-// every rule the engine needs to sum them (docs/architecture.md, "Adding a fitted value"). Host/device.
-//
-// Every layout of sums is derived from this list: the one pass's bins (MomentBins.h: the powers d^(2k) of every value
-// but |x|^2, which is d^2 for a point), the multi-resolution moments (AggregateMoments.h) that the reference walk, the
-// CPU kernel and the CUDA windows add, the statistics a pyramid cell keeps and their merge (PyramidCell below), a
-// cell's sample (CellMoments.h), and the CPU kernel's vector adds and move of origin (src/multiresolution/). Adding a
-// value is: its index in FitValue, its rule for one point (pointValues), its move to another origin (shiftValues),
-// its sums over a cell and their gradient (cellValues, with the statistics PyramidCell keeps for them: their rules
-// for one point, addPointToCell, and for a child cell, addChildToCell), and where the fit reads it (toWeightedSums).
+// A moment set: the values f whose weighted sums sum w_i f_i a fit consumes, declared once with every rule the engine
+// needs to sum them, and the fit of one scale from those sums (docs/architecture.md, "How to add a fit"). Host/device.
+// OrientedSphereMoments is the one the filters run. A set is a type with:
+// - kValues, its values (the last one always |x|^2, which the one pass keeps as the moments of d^2), pointValues (a
+//   point's values), Sample and fit (the fit of one scale from the values weighted by w and by dw/dt): all the exact
+//   evaluation needs. Its kernels take the set as a template parameter and derive their bins, vector adds and fits
+//   from it (MomentBins.h, PointScaleSpace.h, src/OnePassKernelBody.h); Testing/Core/TestFitWithAnExtraSum.cpp runs a
+//   test-only set with one more value through them.
+// - shiftValues (a move of origin, closed over its values), Cell (what a pyramid cell keeps) with addPointToCell and
+//   addChildToCell (its rules for one point and for a child cell), and cellValues (a cell's sums of every value and
+//   their gradient): what the multi-resolution evaluation needs. Its pyramid, walks and kernels run
+//   OrientedSphereMoments (the multi-resolution moments, AggregateMoments.h, are a layout of any set; the pyramid is
+//   not yet a template). Testing/Core/TestMomentSet.cpp checks every rule of every value against pointValues.
 #pragma once
 
 #include "gls/Numeric.h"
+#include "gls/SphereFit.h"
 #include "gls/WeightedSums.h"
 
 namespace gls
@@ -35,35 +39,6 @@ enum FitValue : int
 constexpr int wholeCacheLines(int doubles)
 {
   return (doubles + 7) / 8 * 8;
-}
-
-/// The values f of one point at local position x (d2 = |x|^2) with normal n.
-GLS_INLINE void pointValues(const Vec3& x, double d2, const Vec3& n, double* f)
-{
-  f[kOne] = 1.0;
-  f[kPositionX] = x.x;
-  f[kPositionY] = x.y;
-  f[kPositionZ] = x.z;
-  f[kNormalX] = n.x;
-  f[kNormalY] = n.y;
-  f[kNormalZ] = n.z;
-  f[kPositionDotNormal] = dot(x, n);
-  f[kSquaredPosition] = d2;
-}
-
-/// Moves sums of f from coordinates about o to coordinates about p (x_p = x_o + u, u = o - p, uu = |u|^2): sum x
-/// gains u sum 1, sum x.n gains u . sum n, sum |x|^2 gains 2 u . sum x + |u|^2 sum 1. Exact algebra, whatever
-/// weights the sums carry (they are the same for every value of a point).
-GLS_INLINE void shiftValues(const Vec3& u, double uu, double* f)
-{
-  const double W = f[kOne];
-  const Vec3 P{ f[kPositionX], f[kPositionY], f[kPositionZ] };
-  const Vec3 N{ f[kNormalX], f[kNormalY], f[kNormalZ] };
-  f[kPositionX] += u.x * W;
-  f[kPositionY] += u.y * W;
-  f[kPositionZ] += u.z * W;
-  f[kPositionDotNormal] += dot(u, N);
-  f[kSquaredPosition] += 2.0 * dot(u, P) + uu * W;
 }
 
 /// Where the fit reads each value: the sums weighted by w (v) into s, and by dw/dt (dv) into ds.
@@ -132,81 +107,127 @@ GLS_INLINE Vec3 normalOffsetTimes(const PyramidCell& c, const Vec3& v)
     s[2] * v.x + s[5] * v.y + s[8] * v.z };
 }
 
-/// Adds one point at offset y from the cell's centroid, with normal n, to the cell's centred sums (the count, the
-/// centroid and sum n are the cell's geometry: its caller forms them first).
-GLS_INLINE void addPointToCell(PyramidCell& cell, const Vec3& y, const Vec3& n)
+/// The oriented sphere's moment set (the fit the filters run, SphereFit.h): its values (FitValue) and their rules.
+/// The kernels take a set as a template parameter and use these members; a set of another fit declares the same.
+struct OrientedSphereMoments
 {
-  const double yy[6] = { y.x * y.x, y.x * y.y, y.x * y.z, y.y * y.y, y.y * y.z, y.z * y.z };
-  for (int k = 0; k < 6; ++k)
-  {
-    cell.offsetOffset[k] += yy[k];
-  }
-  const double yv[3] = { y.x, y.y, y.z }, nv[3] = { n.x, n.y, n.z };
-  for (int a = 0; a < 3; ++a)
-  {
-    for (int b = 0; b < 3; ++b)
-    {
-      cell.offsetNormal[3 * a + b] += yv[a] * nv[b];
-    }
-  }
-  cell.offsetOffsetDotNormal = cell.offsetOffsetDotNormal + dot(y, n) * y;
-  cell.offsetSquaredOffset = cell.offsetSquaredOffset + squaredNorm(y) * y;
-}
+  static constexpr int kValues = kFitValues; ///< how many values; the last is |x|^2 (d^2 for a point)
+  using Cell = PyramidCell;                  ///< what a pyramid cell keeps for the values' cell rules
+  using Sample = ScaleSample;                ///< what the fit gives at one scale
 
-/// Adds a child cell whose centroid is at d from the cell's to the cell's centred sums (y = y_k + d for the child's
-/// points, sum y_k = 0): sum y y^T gains C_k + m_k d d^T; sum y n^T gains N_k + d (sum n)_k^T; sum y (y . n) gains
-/// T_k + N_k d + d tr(N_k) + d (d . (sum n)_k); sum y |y|^2 gains Q_k + 2 C_k d + tr(C_k) d + m_k |d|^2 d.
-GLS_INLINE void addChildToCell(PyramidCell& cell, const PyramidCell& child, const Vec3& d)
-{
-  const double mk = child.count;
-  const double dd[6] = { d.x * d.x, d.x * d.y, d.x * d.z, d.y * d.y, d.y * d.z, d.z * d.z };
-  for (int i = 0; i < 6; ++i)
+  /// The values f of one point at local position x (d2 = |x|^2) with normal n.
+  GLS_INLINE static void pointValues(const Vec3& x, double d2, const Vec3& n, double* f)
   {
-    cell.offsetOffset[i] += child.offsetOffset[i] + mk * dd[i];
+    f[kOne] = 1.0;
+    f[kPositionX] = x.x;
+    f[kPositionY] = x.y;
+    f[kPositionZ] = x.z;
+    f[kNormalX] = n.x;
+    f[kNormalY] = n.y;
+    f[kNormalZ] = n.z;
+    f[kPositionDotNormal] = dot(x, n);
+    f[kSquaredPosition] = d2;
   }
-  const double dv[3] = { d.x, d.y, d.z };
-  const double nv[3] = { child.normalSum.x, child.normalSum.y, child.normalSum.z };
-  for (int a = 0; a < 3; ++a)
-  {
-    for (int b = 0; b < 3; ++b)
-    {
-      cell.offsetNormal[3 * a + b] += child.offsetNormal[3 * a + b] + dv[a] * nv[b];
-    }
-  }
-  const Vec3 Nd = offsetNormalTimes(child, d);
-  cell.offsetOffsetDotNormal = cell.offsetOffsetDotNormal + child.offsetOffsetDotNormal + Nd +
-    (offsetDotNormalOf(child) + dot(d, child.normalSum)) * d;
-  const Vec3 Cd = offsetOffsetTimes(child, d);
-  cell.offsetSquaredOffset = cell.offsetSquaredOffset + child.offsetSquaredOffset + 2.0 * Cd +
-    (spreadOf(child) + mk * squaredNorm(d)) * d;
-}
 
-/// A cell's sums of every value over its points, in coordinates about an origin at -x from its centroid (x = c - o):
-/// F = sum f(x + y_i, n_i); and their gradient along a (length): H = sum (a . y_i) f(x + y_i, n_i). H[kOne] = 0,
-/// since sum y_i = 0.
-GLS_INLINE void cellValues(const PyramidCell& cell, const Vec3& x, const Vec3& a, double* F, double* H)
-{
-  const double m = cell.count;
-  const Vec3 Ca = offsetOffsetTimes(cell, a);
-  const Vec3 Na = normalOffsetTimes(cell, a);
-  F[kOne] = m;
-  F[kPositionX] = m * x.x;
-  F[kPositionY] = m * x.y;
-  F[kPositionZ] = m * x.z;
-  F[kNormalX] = cell.normalSum.x;
-  F[kNormalY] = cell.normalSum.y;
-  F[kNormalZ] = cell.normalSum.z;
-  F[kPositionDotNormal] = offsetDotNormalOf(cell) + dot(x, cell.normalSum);
-  F[kSquaredPosition] = spreadOf(cell) + m * squaredNorm(x);
-  H[kOne] = 0.0;
-  H[kPositionX] = Ca.x;
-  H[kPositionY] = Ca.y;
-  H[kPositionZ] = Ca.z;
-  H[kNormalX] = Na.x;
-  H[kNormalY] = Na.y;
-  H[kNormalZ] = Na.z;
-  H[kPositionDotNormal] = dot(x, Na) + dot(a, cell.offsetOffsetDotNormal);
-  H[kSquaredPosition] = 2.0 * dot(x, Ca) + dot(a, cell.offsetSquaredOffset);
-}
+  /// Moves sums of f from coordinates about o to coordinates about p (x_p = x_o + u, u = o - p, uu = |u|^2): sum x
+  /// gains u sum 1, sum x.n gains u . sum n, sum |x|^2 gains 2 u . sum x + |u|^2 sum 1. Exact algebra, whatever
+  /// weights the sums carry (they are the same for every value of a point).
+  GLS_INLINE static void shiftValues(const Vec3& u, double uu, double* f)
+  {
+    const double W = f[kOne];
+    const Vec3 P{ f[kPositionX], f[kPositionY], f[kPositionZ] };
+    const Vec3 N{ f[kNormalX], f[kNormalY], f[kNormalZ] };
+    f[kPositionX] += u.x * W;
+    f[kPositionY] += u.y * W;
+    f[kPositionZ] += u.z * W;
+    f[kPositionDotNormal] += dot(u, N);
+    f[kSquaredPosition] += 2.0 * dot(u, P) + uu * W;
+  }
+
+  /// Adds one point at offset y from the cell's centroid, with normal n, to the cell's centred sums (the count, the
+  /// centroid and sum n are the cell's geometry: its caller forms them first).
+  GLS_INLINE static void addPointToCell(PyramidCell& cell, const Vec3& y, const Vec3& n)
+  {
+    const double yy[6] = { y.x * y.x, y.x * y.y, y.x * y.z, y.y * y.y, y.y * y.z, y.z * y.z };
+    for (int k = 0; k < 6; ++k)
+    {
+      cell.offsetOffset[k] += yy[k];
+    }
+    const double yv[3] = { y.x, y.y, y.z }, nv[3] = { n.x, n.y, n.z };
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        cell.offsetNormal[3 * a + b] += yv[a] * nv[b];
+      }
+    }
+    cell.offsetOffsetDotNormal = cell.offsetOffsetDotNormal + dot(y, n) * y;
+    cell.offsetSquaredOffset = cell.offsetSquaredOffset + squaredNorm(y) * y;
+  }
+
+  /// Adds a child cell whose centroid is at d from the cell's to the cell's centred sums (y = y_k + d for the child's
+  /// points, sum y_k = 0): sum y y^T gains C_k + m_k d d^T; sum y n^T gains N_k + d (sum n)_k^T; sum y (y . n) gains
+  /// T_k + N_k d + d tr(N_k) + d (d . (sum n)_k); sum y |y|^2 gains Q_k + 2 C_k d + tr(C_k) d + m_k |d|^2 d.
+  GLS_INLINE static void addChildToCell(PyramidCell& cell, const PyramidCell& child, const Vec3& d)
+  {
+    const double mk = child.count;
+    const double dd[6] = { d.x * d.x, d.x * d.y, d.x * d.z, d.y * d.y, d.y * d.z, d.z * d.z };
+    for (int i = 0; i < 6; ++i)
+    {
+      cell.offsetOffset[i] += child.offsetOffset[i] + mk * dd[i];
+    }
+    const double dv[3] = { d.x, d.y, d.z };
+    const double nv[3] = { child.normalSum.x, child.normalSum.y, child.normalSum.z };
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        cell.offsetNormal[3 * a + b] += child.offsetNormal[3 * a + b] + dv[a] * nv[b];
+      }
+    }
+    const Vec3 Nd = offsetNormalTimes(child, d);
+    cell.offsetOffsetDotNormal = cell.offsetOffsetDotNormal + child.offsetOffsetDotNormal + Nd +
+      (offsetDotNormalOf(child) + dot(d, child.normalSum)) * d;
+    const Vec3 Cd = offsetOffsetTimes(child, d);
+    cell.offsetSquaredOffset = cell.offsetSquaredOffset + child.offsetSquaredOffset + 2.0 * Cd +
+      (spreadOf(child) + mk * squaredNorm(d)) * d;
+  }
+
+  /// A cell's sums of every value over its points, in coordinates about an origin at -x from its centroid (x = c - o):
+  /// F = sum f(x + y_i, n_i); and their gradient along a (length): H = sum (a . y_i) f(x + y_i, n_i). H[kOne] = 0,
+  /// since sum y_i = 0.
+  GLS_INLINE static void cellValues(const PyramidCell& cell, const Vec3& x, const Vec3& a, double* F, double* H)
+  {
+    const double m = cell.count;
+    const Vec3 Ca = offsetOffsetTimes(cell, a);
+    const Vec3 Na = normalOffsetTimes(cell, a);
+    F[kOne] = m;
+    F[kPositionX] = m * x.x;
+    F[kPositionY] = m * x.y;
+    F[kPositionZ] = m * x.z;
+    F[kNormalX] = cell.normalSum.x;
+    F[kNormalY] = cell.normalSum.y;
+    F[kNormalZ] = cell.normalSum.z;
+    F[kPositionDotNormal] = offsetDotNormalOf(cell) + dot(x, cell.normalSum);
+    F[kSquaredPosition] = spreadOf(cell) + m * squaredNorm(x);
+    H[kOne] = 0.0;
+    H[kPositionX] = Ca.x;
+    H[kPositionY] = Ca.y;
+    H[kPositionZ] = Ca.z;
+    H[kNormalX] = Na.x;
+    H[kNormalY] = Na.y;
+    H[kNormalZ] = Na.z;
+    H[kPositionDotNormal] = dot(x, Na) + dot(a, cell.offsetOffsetDotNormal);
+    H[kSquaredPosition] = 2.0 * dot(x, Ca) + dot(a, cell.offsetSquaredOffset);
+  }
+
+  /// The fit of one scale from the values weighted by w (v) and by dw/dt (dv), over `neighbors` points.
+  GLS_INLINE static Sample fit(const double* v, const double* dv, double neighbors, double minNeighbors)
+  {
+    WeightedSums s, ds;
+    toWeightedSums(v, dv, s, ds);
+    return fitOrientedSphere(s, ds, neighbors, minNeighbors);
+  }
+};
 
 } // namespace gls

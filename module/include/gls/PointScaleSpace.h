@@ -71,32 +71,38 @@ GLS_INLINE int firstScaleHolding(const ScaleBinning& b, double d2)
   return k < b.count - 1 ? k : b.count - 1;
 }
 
-/// The fit of the ball of scale t from its moments (about the evaluation point).
-template <typename MomentSet>
-GLS_INLINE ScaleSample fitBall(const MomentSet& ball, double t, double minNeighbors)
+/// The sample a layout's fit gives (Moments or AggregateMoments of a moment set S: S::Sample).
+template <typename Layout>
+using SampleOf = typename Layout::Set::Sample;
+
+/// The fit of the ball of scale t from its moments (about the evaluation point): the moment set's fit of its
+/// weighted values.
+template <typename Layout>
+GLS_INLINE SampleOf<Layout> fitBall(const Layout& ball, double t, double minNeighbors)
 {
-  WeightedSums s, ds;
-  weightedSumsFromMoments(ball, t, s, ds);
-  return fitOrientedSphere(s, ds, neighborCount(ball), minNeighbors);
+  using S = typename Layout::Set;
+  double v[S::kValues], dv[S::kValues];
+  weightedValues(ball, t, v, dv);
+  return S::fit(v, dv, neighborCount(ball), minNeighbors);
 }
 
 /// One step of the running sum over the bins: ball += bin, the ball of scale t, and its fit.
-template <typename MomentSet>
-GLS_INLINE ScaleSample addBinAndFit(MomentSet& ball, const MomentSet& bin, double t, double minNeighbors)
+template <typename Layout>
+GLS_INLINE SampleOf<Layout> addBinAndFit(Layout& ball, const Layout& bin, double t, double minNeighbors)
 {
   addMoments(ball, bin);
   return fitBall(ball, t, minNeighbors);
 }
 
 /// Turns the S bins of one evaluation point into its S samples: a running sum over the bins gives the moments of
-/// the ball of each scales[k] (the bins are left as they are), and one fit per scale. MomentSet is Moments (the
-/// exact pass) or AggregateMoments (the multi-resolution pass): both give clearMoments, addMoments,
-/// weightedSumsFromMoments and neighborCount.
-template <typename MomentSet>
+/// the ball of each scales[k] (the bins are left as they are), and one fit per scale. Layout is MomentsT (the exact
+/// pass) or AggregateMomentsT (the multi-resolution pass) of a moment set: both give clearMoments, addMoments,
+/// weightedValues and neighborCount.
+template <typename Layout>
 GLS_INLINE void fitAllScalesFromBins(
-  const ScaleBinning& b, double minNeighbors, const MomentSet* bins, ScaleSample* out)
+  const ScaleBinning& b, double minNeighbors, const Layout* bins, SampleOf<Layout>* out)
 {
-  MomentSet ball;
+  Layout ball;
   clearMoments(ball);
   for (int k = 0; k < b.count; ++k)
   {
@@ -106,8 +112,8 @@ GLS_INLINE void fitAllScalesFromBins(
 
 /// Calls add(window[slot]) when 0 <= slot < G: a window's bins are indexed by constants only, so that a GPU keeps
 /// them in registers (an index known at run time would put them in local memory).
-template <int G, typename MomentSet, typename Add>
-GLS_INLINE void addToWindowSlot(MomentSet* window, int slot, Add&& add)
+template <int G, typename Layout, typename Add>
+GLS_INLINE void addToWindowSlot(Layout* window, int slot, Add&& add)
 {
 #if defined(__CUDACC__)
 #pragma unroll
@@ -126,15 +132,16 @@ GLS_INLINE void addToWindowSlot(MomentSet* window, int slot, Add&& add)
 /// same terms in the same order), and the window's scales are fitted from the running sum before the next window.
 /// The samples are bitwise those of fitAllScalesFromBins. The CUDA kernels' form: a GPU thread has no room for S
 /// bins in registers, and S bins per thread in global memory are read and written scattered (docs/performance.md).
-template <int G, typename MomentSet, typename Gather>
-GLS_INLINE void fitAllScalesByWindows(const ScaleBinning& b, double minNeighbors, Gather&& gather, ScaleSample* out)
+template <int G, typename Layout, typename Gather>
+GLS_INLINE void fitAllScalesByWindows(
+  const ScaleBinning& b, double minNeighbors, Gather&& gather, SampleOf<Layout>* out)
 {
-  MomentSet ball;
+  Layout ball;
   clearMoments(ball);
   for (int k0 = 0; k0 < b.count; k0 += G)
   {
     const int top = (k0 + G < b.count ? k0 + G : b.count) - 1;
-    MomentSet window[G];
+    Layout window[G];
 #if defined(__CUDACC__)
 #pragma unroll
 #endif
@@ -162,22 +169,23 @@ GLS_INLINE void fitAllScalesByWindows(const ScaleBinning& b, double minNeighbors
 /// smaller radius is walked in the same order (rows by z, then y, points in grid order), so each bin receives the
 /// same neighbours in the same order. About sum_k (t_k / t_max)^2 / G times the neighbours of one largest ball are
 /// visited (each a distance test), against one ball with S bins in memory. No scratch: the CUDA kernel's loop.
-template <int G>
+/// Set: the moment set (MomentSet.h).
+template <int G, typename Set = OrientedSphereMoments>
 GLS_INLINE void evaluateAllScalesByWindows(
-  const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors, ScaleSample* out)
+  const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors, typename Set::Sample* out)
 {
   if (b.count <= 0)
   {
     return;
   }
-  fitAllScalesByWindows<G, Moments>(b, minNeighbors,
-    [&](int k0, int top, Moments* window) {
+  fitAllScalesByWindows<G, MomentsT<Set>>(b, minNeighbors,
+    [&](int k0, int top, MomentsT<Set>* window) {
       const double below = k0 > 0 ? b.squaredScales[k0 - 1] : 0.0; // nearer neighbours are an earlier window's
       forEachInBall(g, p, b.scales[top], [&](std::uint64_t i, const Vec3& x, double d2) {
         if (d2 >= below)
         {
           addToWindowSlot<G>(window, firstScaleHolding(b, d2) - k0,
-            [&](Moments& m) { addToMoments(m, x, d2, g.normals[i]); });
+            [&](MomentsT<Set>& m) { addToMoments(m, x, d2, g.normals[i]); });
         }
       });
     },
@@ -187,9 +195,11 @@ GLS_INLINE void evaluateAllScalesByWindows(
 /// Fits every scale of the evaluation point p (any position; normally a data point) in one pass.
 /// b: the S increasing scales and their binning table; bins: S scratch moment sets; out: S samples.
 /// The reference host/device loop: the CUDA kernel runs its windowed form (evaluateAllScalesByWindows, bitwise the
-/// same samples); the CPU engine runs the batched form of the same arithmetic (OnePassKernel.h).
-GLS_INLINE void evaluateAllScales(
-  const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors, Moments* bins, ScaleSample* out)
+/// same samples); the CPU engine runs the batched form of the same arithmetic (OnePassKernel.h). Set: the moment set
+/// (MomentSet.h), the oriented sphere's for Moments.
+template <typename Set>
+GLS_INLINE void evaluateAllScales(const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors,
+  MomentsT<Set>* bins, typename Set::Sample* out)
 {
   if (b.count <= 0)
   {

@@ -108,7 +108,7 @@ void mergeChildren(const PyramidCell* children, std::uint32_t count, const Vec3&
   cell.count = m;
   for (std::uint32_t k = 0; k < count; ++k)
   {
-    addChildToCell(cell, children[k], children[k].centroid - cell.centroid);
+    OrientedSphereMoments::addChildToCell(cell, children[k], children[k].centroid - cell.centroid);
   }
 }
 

@@ -118,7 +118,7 @@ GLS_FORCE_INLINE void shiftMoments(const Vec3& u, double uu, AggregateMoments& a
 {
   for (int j = 0; j < 3; ++j)
   {
-    shiftValues(u, uu, a.m + j * kFitValues);
+    OrientedSphereMoments::shiftValues(u, uu, a.m + j * kFitValues);
   }
 }
 

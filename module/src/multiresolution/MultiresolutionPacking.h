@@ -143,7 +143,7 @@ GLS_FORCE_INLINE void packWalk(
       const Vec3 q = v.points.position(i);
       const Vec3 x = q - o;
       out->position = q;
-      pointValues(x, squaredNorm(x), v.points.normal(i), out->sums);
+      OrientedSphereMoments::pointValues(x, squaredNorm(x), v.points.normal(i), out->sums);
       if (squaredDistanceToFarthestPoint(region, q) < sq0)
       {
         const Vec3 a = q - anchor;

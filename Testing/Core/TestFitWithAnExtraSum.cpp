@@ -1,0 +1,165 @@
+// A test-only fit that needs one sum the oriented sphere does not: the recipe of docs/architecture.md ("How to add a
+// fit"), done. Its moment set is the oriented sphere's nine values plus z^2 (the local height squared), and its fit
+// gives the sphere's sample and the standard deviation of the neighbours' heights, sqrt(sum w z^2 / W - (sum w z /
+// W)^2), at every scale. It runs through the exact evaluation's kernels unchanged: the host/device loop, its windowed
+// form (the CUDA kernel's loop) and the CPU kernel in both builds. Checked against the heights summed point by point,
+// and the sphere's samples against the oriented sphere's own run, bit for bit.
+#include "TestBinning.h"
+#include "TestClouds.h"
+
+#include "OnePassKernelBody.h" // the CPU kernel for any moment set (private to the core)
+
+#include "gls/MomentSet.h"
+#include "gls/NeighborGrid.h"
+#include "gls/NormalEstimation.h"
+#include "gls/OnePassKernel.h"
+#include "gls/ScaleSampling.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+using namespace glstest;
+
+namespace
+{
+
+/// The moment set of the test-only fit: the oriented sphere's values, then z^2, then |x|^2 (always the last value).
+struct HeightSpreadMoments
+{
+  using Sphere = gls::OrientedSphereMoments;
+  static constexpr int kHeightSquared = Sphere::kValues - 1; ///< the one new value: z^2 (length^2)
+  static constexpr int kValues = Sphere::kValues + 1;
+
+  /// The sphere's sample and the heights' standard deviation (length; NaN where the fit is undefined).
+  struct Sample
+  {
+    gls::ScaleSample sphere;
+    double heightSpread;
+  };
+
+  /// The sphere's values of the point, then z^2 before |x|^2.
+  GLS_INLINE static void pointValues(const gls::Vec3& x, double d2, const gls::Vec3& n, double* f)
+  {
+    Sphere::pointValues(x, d2, n, f);
+    f[kValues - 1] = f[kHeightSquared];
+    f[kHeightSquared] = x.z * x.z;
+  }
+
+  /// The sphere's fit of its own values, and the spread from sum w z (the sphere's kPositionZ) and sum w z^2.
+  GLS_INLINE static Sample fit(const double* v, const double* dv, double neighbors, double minNeighbors)
+  {
+    double sphere[Sphere::kValues], sphereDerivative[Sphere::kValues];
+    for (int j = 0; j < kHeightSquared; ++j)
+    {
+      sphere[j] = v[j];
+      sphereDerivative[j] = dv[j];
+    }
+    sphere[Sphere::kValues - 1] = v[kValues - 1];
+    sphereDerivative[Sphere::kValues - 1] = dv[kValues - 1];
+    Sample s;
+    s.sphere = Sphere::fit(sphere, sphereDerivative, neighbors, minNeighbors);
+    const double W = v[gls::kOne];
+    const double mean = v[gls::kPositionZ] / W;
+    s.heightSpread =
+      s.sphere.valid ? std::sqrt(std::max(0.0, v[kHeightSquared] / W - mean * mean)) : gls::quietNaN<double>();
+    return s;
+  }
+};
+
+/// The heights' standard deviation at scale t around p, summed point by point with the GLS weight.
+double heightSpreadByHand(const Cloud& c, const gls::Vec3& p, double t)
+{
+  double W = 0.0, Z = 0.0, ZZ = 0.0;
+  for (std::size_t i = 0; i < c.size(); ++i)
+  {
+    const gls::Vec3 x = gls::Vec3{ c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] } - p;
+    const double w = gls::weightAt(gls::squaredNorm(x), t);
+    W += w;
+    Z += w * x.z;
+    ZZ += w * x.z * x.z;
+  }
+  return std::sqrt(std::max(0.0, ZZ / W - (Z / W) * (Z / W)));
+}
+
+/// Every value of the two samples has the same bits (NaN included).
+bool sameBits(const gls::ScaleSample& a, const gls::ScaleSample& b)
+{
+  const double u[] = { a.tau, a.kappa, a.phi, a.dtau, a.dkappa, a.eta.x, a.eta.y, a.eta.z, a.deta.x, a.deta.y,
+    a.deta.z, a.neighbors };
+  const double v[] = { b.tau, b.kappa, b.phi, b.dtau, b.dkappa, b.eta.x, b.eta.y, b.eta.z, b.deta.x, b.deta.y,
+    b.deta.z, b.neighbors };
+  return std::memcmp(u, v, sizeof(u)) == 0 && a.valid == b.valid;
+}
+
+} // namespace
+
+TEST(FitWithAnExtraSum, RunsThroughTheExactKernelsAndAddsOnlyItsOwnSum)
+{
+  const Cloud c = paraboloid(60, 1.0, 0.7, 0.3, 0.02, 0.1, 5);
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 12, gls::ScaleSampling::Quadratic);
+  const TestBinning binning(scales);
+  const gls::ScaleBinning& b = binning.View;
+  std::vector<double> unitNormals;
+  std::vector<unsigned char> admit;
+  gls::normalizeAndAdmit(c.points.data(), c.normals.data(), c.size(), unitNormals, admit);
+  gls::NeighborGrid grid;
+  grid.build(c.points.data(), unitNormals.data(), c.size(), 0.25 * scales.back(), admit.data());
+  const std::size_t S = scales.size();
+  std::vector<gls::MomentsT<HeightSpreadMoments>> bins(S);
+  std::vector<gls::Moments> sphereBins(S);
+  std::vector<HeightSpreadMoments::Sample> loop(S), windows(S), portable(S), fastest(S);
+  std::vector<gls::ScaleSample> sphereLoop(S), spherePortable(S), sphereFastest(S);
+  int checked = 0;
+  double worstFastest = 0.0;
+  for (std::size_t i = 0; i < c.size(); i += 11)
+  {
+    const gls::Vec3 p = { c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] };
+    gls::evaluateAllScales(grid.view(), p, b, 6.0, bins.data(), loop.data());
+    gls::evaluateAllScalesByWindows<4, HeightSpreadMoments>(grid.view(), p, b, 6.0, windows.data());
+    gls::onepass::evaluateAllScalesOnCpuFor<HeightSpreadMoments>(
+      grid.view(), p, b, 6.0, bins.data(), portable.data(), gls::CpuKernelBuild::Portable);
+    gls::onepass::evaluateAllScalesOnCpuFor<HeightSpreadMoments>(
+      grid.view(), p, b, 6.0, bins.data(), fastest.data(), gls::CpuKernelBuild::Fastest);
+    gls::evaluateAllScales(grid.view(), p, b, 6.0, sphereBins.data(), sphereLoop.data());
+    gls::evaluateAllScalesOnCpu(grid.view(), p, b, 6.0, sphereBins.data(), spherePortable.data(),
+      gls::CpuKernelBuild::Portable);
+    gls::evaluateAllScalesOnCpu(grid.view(), p, b, 6.0, sphereBins.data(), sphereFastest.data(),
+      gls::CpuKernelBuild::Fastest);
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      // The extra sum changes none of the sphere's: each kernel's sphere samples are its own run's, bit for bit where
+      // no multiply-add is fused (the AVX2 build fuses them where its compiler finds them, which depends on the code
+      // around: there the samples agree to rounding).
+      ASSERT_TRUE(sameBits(loop[k].sphere, sphereLoop[k])) << "point " << i << " scale " << k;
+      ASSERT_TRUE(sameBits(windows[k].sphere, sphereLoop[k])) << "point " << i << " scale " << k;
+      ASSERT_TRUE(sameBits(portable[k].sphere, spherePortable[k])) << "point " << i << " scale " << k;
+      ASSERT_EQ(fastest[k].sphere.neighbors, sphereFastest[k].neighbors);
+      if (sphereFastest[k].valid)
+      {
+        worstFastest = std::max(worstFastest, std::abs(fastest[k].sphere.kappa - sphereFastest[k].kappa) * scales[k]);
+        worstFastest = std::max(worstFastest, std::abs(fastest[k].sphere.tau - sphereFastest[k].tau) / scales[k]);
+        worstFastest = std::max(worstFastest, std::abs(fastest[k].sphere.phi - sphereFastest[k].phi));
+      }
+      EXPECT_EQ(std::isnan(loop[k].heightSpread), !sphereLoop[k].valid);
+      if (!sphereLoop[k].valid)
+      {
+        continue;
+      }
+      const double want = heightSpreadByHand(c, p, scales[k]);
+      const double tolerance = 1e-9 * scales[k];
+      EXPECT_NEAR(loop[k].heightSpread, want, tolerance) << "point " << i << " scale " << k;
+      EXPECT_EQ(windows[k].heightSpread, loop[k].heightSpread);
+      EXPECT_NEAR(portable[k].heightSpread, want, tolerance);
+      EXPECT_NEAR(fastest[k].heightSpread, want, tolerance);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100);
+  EXPECT_LT(worstFastest, 1e-12);
+  std::printf("AVX2 build, sphere with and without the extra sum: largest difference %.3g\n", worstFastest);
+}
