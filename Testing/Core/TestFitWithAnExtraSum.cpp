@@ -10,10 +10,12 @@
 #include "OnePassKernelBody.h" // the CPU kernel for any moment set (private to the core)
 
 #include "gls/MomentSet.h"
+#include "gls/MultiresolutionReferenceWalk.h"
 #include "gls/NeighborGrid.h"
 #include "gls/NormalEstimation.h"
 #include "gls/OnePassKernel.h"
 #include "gls/ScaleSampling.h"
+#include "gls/ScaleSpaceEngine.h"
 
 #include <gtest/gtest.h>
 
@@ -48,6 +50,37 @@ struct HeightSpreadMoments
     Sphere::pointValues(x, d2, n, f);
     f[kValues - 1] = f[kHeightSquared];
     f[kHeightSquared] = x.z * x.z;
+  }
+
+  /// What a pyramid cell keeps: the sphere's statistics and sum y y_z^2 (length^3), which z^2's gradient needs.
+  struct Cell : gls::PyramidCell
+  {
+    gls::Vec3 offsetHeightSquared;
+  };
+
+  GLS_INLINE static void addPointToCell(Cell& cell, const gls::Vec3& y, const gls::Vec3& n)
+  {
+    Sphere::addPointToCell(cell, y, n);
+    cell.offsetHeightSquared = cell.offsetHeightSquared + (y.z * y.z) * y;
+  }
+
+  /// sum y y_z^2 of a child at d gains T_k + 2 d_z C_k e_z + (sum y_z^2)_k d + m_k d_z^2 d (y = y_k + d, sum y_k = 0).
+  GLS_INLINE static void addChildToCell(Cell& cell, const Cell& child, const gls::Vec3& d)
+  {
+    Sphere::addChildToCell(cell, child, d);
+    const gls::Vec3 Cz = gls::offsetOffsetTimes(child, gls::Vec3{ 0.0, 0.0, 1.0 });
+    cell.offsetHeightSquared = cell.offsetHeightSquared + child.offsetHeightSquared + (2.0 * d.z) * Cz +
+      (child.offsetOffset[5] + child.count * d.z * d.z) * d;
+  }
+
+  /// The sphere's F and H, and z^2's: F = m x_z^2 + sum y_z^2, H = 2 x_z (C a)_z + a . sum y y_z^2.
+  GLS_INLINE static void cellValues(const Cell& cell, const gls::Vec3& x, const gls::Vec3& a, double* F, double* H)
+  {
+    Sphere::cellValues(cell, x, a, F, H);
+    F[kValues - 1] = F[kHeightSquared];
+    H[kValues - 1] = H[kHeightSquared];
+    F[kHeightSquared] = cell.count * x.z * x.z + cell.offsetOffset[5];
+    H[kHeightSquared] = 2.0 * x.z * gls::offsetOffsetTimes(cell, a).z + gls::dot(a, cell.offsetHeightSquared);
   }
 
   /// The sphere's fit of its own values, and the spread from sum w z (the sphere's kPositionZ) and sum w z^2.
@@ -87,6 +120,47 @@ double heightSpreadByHand(const Cloud& c, const gls::Vec3& p, double t)
 }
 
 /// Every value of the two samples has the same bits (NaN included).
+/// The test set's sums of every cell of the levels summedLevel and above (cellMoments' `cells`), formed as the build
+/// forms the pyramid's own (which are the oriented sphere's): the lowest summed level's from their points, the others
+/// merged from their children. Levels are stored finest first, each contiguous.
+std::vector<std::uint64_t> levelStarts(const gls::MultiresolutionView& v)
+{
+  std::vector<std::uint64_t> levelStart(static_cast<std::size_t>(v.topLevel) + 2);
+  levelStart[v.topLevel] = v.topBegin;
+  levelStart[v.topLevel + 1] = v.topEnd;
+  for (int l = v.topLevel; l > 0; --l)
+  {
+    levelStart[l - 1] = v.nodes[levelStart[l]].first;
+  }
+  return levelStart;
+}
+
+std::vector<HeightSpreadMoments::Cell> heightSpreadCells(const gls::MultiresolutionView& v, std::size_t nodes)
+{
+  const std::vector<std::uint64_t> levelStart = levelStarts(v);
+  std::vector<HeightSpreadMoments::Cell> cells(nodes - v.summedBegin);
+  for (int level = v.summedLevel; level <= v.topLevel; ++level)
+  {
+    for (std::uint64_t node = levelStart[level]; node < levelStart[level + 1]; ++node)
+    {
+      std::uint32_t first = 0, last = 0;
+      gls::pointRange(v.nodes, static_cast<std::uint32_t>(node), level, first, last);
+      const gls::Vec3 corner = gls::nodeCorner(v.origin, v.nodes[node], v.levelSize[level]);
+      HeightSpreadMoments::Cell& cell = cells[node - v.summedBegin];
+      if (level == v.summedLevel)
+      {
+        gls::momentsOfPoints<HeightSpreadMoments>(v.points, first, last, corner, cell);
+      }
+      else
+      {
+        const gls::PyramidNode& n = v.nodes[node];
+        gls::mergeChildren<HeightSpreadMoments>(&cells[n.first - v.summedBegin], n.last - n.first, corner, cell);
+      }
+    }
+  }
+  return cells;
+}
+
 bool sameBits(const gls::ScaleSample& a, const gls::ScaleSample& b)
 {
   const double u[] = { a.tau, a.kappa, a.phi, a.dtau, a.dkappa, a.eta.x, a.eta.y, a.eta.z, a.deta.x, a.deta.y,
@@ -162,4 +236,85 @@ TEST(FitWithAnExtraSum, RunsThroughTheExactKernelsAndAddsOnlyItsOwnSum)
   EXPECT_GT(checked, 100);
   EXPECT_LT(worstFastest, 1e-12);
   std::printf("AVX2 build, sphere with and without the extra sum: largest difference %.3g\n", worstFastest);
+}
+
+TEST(FitWithAnExtraSum, RunsThroughTheMultiresolutionWalkWithItsOwnCellSums)
+{
+  // The multi-resolution reference walk (the host/device loop, and its windowed form, the CUDA kernel's loop) with
+  // the test set's cells: the sphere's samples are the oriented sphere's own walk's, bit for bit, and the spread is
+  // the exact evaluation's to the accuracy of the cells taken whole.
+  const Cloud c = paraboloid(150, 1.0, 0.7, 0.3, 0.01, 0.05, 9);
+  const std::vector<double> scales = gls::sampleScales(0.05, 0.5, 10, gls::ScaleSampling::Quadratic);
+  gls::ScaleSpaceSettings settings;
+  settings.scales = scales;
+  settings.evaluation = gls::Evaluation::Multiresolution;
+  settings.multiresolution.accuracy = 0.3;
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  const gls::MultiresolutionView& v = engine.pyramid().view();
+  const std::vector<HeightSpreadMoments::Cell> cells = heightSpreadCells(v, engine.pyramid().nodeCount());
+  // Merged from their children (addChildToCell), the cells keep the sum y y_z^2 of their points.
+  long merged = 0;
+  const std::vector<std::uint64_t> levelStart = levelStarts(v);
+  for (std::uint64_t node = v.summedBegin; node < engine.pyramid().nodeCount(); ++node)
+  {
+    const HeightSpreadMoments::Cell& cell = cells[node - v.summedBegin];
+    HeightSpreadMoments::Cell direct;
+    int level = v.summedLevel;
+    while (node >= levelStart[level + 1])
+    {
+      ++level;
+    }
+    std::uint32_t first = 0, last = 0;
+    gls::pointRange(v.nodes, static_cast<std::uint32_t>(node), level, first, last);
+    gls::momentsOfPoints<HeightSpreadMoments>(v.points, first, last, cell.centroid, direct);
+    const double h = v.levelSize[level], tolerance = 1e-10 * cell.count * h * h * h;
+    ASSERT_NEAR(cell.offsetHeightSquared.x, direct.offsetHeightSquared.x, tolerance);
+    ASSERT_NEAR(cell.offsetHeightSquared.y, direct.offsetHeightSquared.y, tolerance);
+    ASSERT_NEAR(cell.offsetHeightSquared.z, direct.offsetHeightSquared.z, tolerance);
+    merged += level > v.summedLevel ? 1 : 0;
+  }
+  EXPECT_GT(merged, 50);
+  const TestBinning binning(scales);
+  const gls::ScaleBinning& b = binning.View;
+  std::vector<double> unitNormals;
+  std::vector<unsigned char> admit;
+  gls::normalizeAndAdmit(c.points.data(), c.normals.data(), c.size(), unitNormals, admit);
+  gls::NeighborGrid grid;
+  grid.build(c.points.data(), unitNormals.data(), c.size(), 0.25 * scales.back(), admit.data());
+  const std::size_t S = scales.size();
+  std::vector<gls::AggregateMomentsT<HeightSpreadMoments>> bins(S);
+  std::vector<gls::AggregateMoments> sphereBins(S);
+  std::vector<gls::MomentsT<HeightSpreadMoments>> exactBins(S);
+  std::vector<HeightSpreadMoments::Sample> walk(S), windows(S), exact(S);
+  std::vector<gls::ScaleSample> sphereWalk(S);
+  double worst = 0.0;
+  long taken = 0;
+  int checked = 0;
+  for (std::size_t i = 0; i < c.size(); i += 37)
+  {
+    const gls::Vec3 p = { c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] };
+    gls::evaluateAllScalesMultiresolution<HeightSpreadMoments>(v, cells.data(), p, b, 6.0, bins.data(), walk.data());
+    gls::evaluateAllScalesMultiresolutionByWindows<4, HeightSpreadMoments>(v, cells.data(), p, b, 6.0, windows.data());
+    gls::evaluateAllScalesMultiresolution(v, p, b, 6.0, sphereBins.data(), sphereWalk.data());
+    gls::evaluateAllScales(grid.view(), p, b, 6.0, exactBins.data(), exact.data());
+    gls::forEachMultiresolutionSample(v, p, scales.back(), scales.front(),
+      [&](std::uint32_t, int, int) { ++taken; }, [](std::uint32_t) {});
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      ASSERT_TRUE(sameBits(walk[k].sphere, sphereWalk[k])) << "point " << i << " scale " << k;
+      ASSERT_TRUE(sameBits(windows[k].sphere, sphereWalk[k])) << "point " << i << " scale " << k;
+      if (!walk[k].sphere.valid || !exact[k].sphere.valid)
+      {
+        continue;
+      }
+      EXPECT_EQ(windows[k].heightSpread, walk[k].heightSpread);
+      worst = std::max(worst, std::abs(walk[k].heightSpread - exact[k].heightSpread) / scales[k]);
+      ++checked;
+    }
+  }
+  EXPECT_GT(taken, 1000); // the walks took cells whole: their z^2 sums came from the test set's cells
+  EXPECT_GT(checked, 300);
+  EXPECT_LT(worst, 1e-3);
+  std::printf("multi-resolution spread against the exact one: largest difference %.3g t (%ld cells taken whole)\n",
+    worst, taken);
 }

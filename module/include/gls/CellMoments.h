@@ -21,11 +21,13 @@
 namespace gls
 {
 
-/// The sums of the points [first, last) (at least one), their centroid formed about `reference` (a point near them,
-/// such as their cube's corner, so that far coordinates lose no precision). The build stores these for the cells of
-/// its lowest summed level and the walks form them for finer cells, with the same arithmetic.
+/// The sums of the points [first, last) (at least one) that a cell of the moment set Set keeps (Set::Cell), their
+/// centroid formed about `reference` (a point near them, such as their cube's corner, so that far coordinates lose no
+/// precision). The build stores these for the cells of its lowest summed level and the walks form them for finer
+/// cells, with the same arithmetic.
+template <typename Set = OrientedSphereMoments>
 GLS_INLINE void momentsOfPoints(const StoredPoints& points, std::uint32_t first, std::uint32_t last,
-  const Vec3& reference, PyramidCell& cell)
+  const Vec3& reference, typename Set::Cell& cell)
 {
   double count = 0.0;
   Vec3 offset{ 0.0, 0.0, 0.0 }, normalSum{ 0.0, 0.0, 0.0 };
@@ -35,26 +37,53 @@ GLS_INLINE void momentsOfPoints(const StoredPoints& points, std::uint32_t first,
     offset = offset + (points.position(i) - reference);
     normalSum = normalSum + points.normal(i);
   }
-  cell = PyramidCell{};
+  cell = typename Set::Cell{};
   cell.centroid = reference + (1.0 / count) * offset;
   cell.normalSum = normalSum;
   cell.count = count;
   for (std::uint32_t i = first; i < last; ++i)
   {
-    OrientedSphereMoments::addPointToCell(cell, points.position(i) - cell.centroid, points.normal(i));
+    Set::addPointToCell(cell, points.position(i) - cell.centroid, points.normal(i));
+  }
+}
+
+/// The sums of a parent cell from those of its `count` children (in order), about its new centroid c formed about
+/// `reference` (its cube's corner): Set::addChildToCell for each child, d = c_k - c. The build forms the cells above
+/// the lowest summed level so.
+template <typename Set = OrientedSphereMoments>
+GLS_INLINE void mergeChildren(const typename Set::Cell* children, std::uint32_t count, const Vec3& reference,
+  typename Set::Cell& cell)
+{
+  double m = 0.0;
+  Vec3 offset{ 0.0, 0.0, 0.0 }, normalSum{ 0.0, 0.0, 0.0 };
+  for (std::uint32_t k = 0; k < count; ++k)
+  {
+    m += children[k].count;
+    offset = offset + children[k].count * (children[k].centroid - reference);
+    normalSum = normalSum + children[k].normalSum;
+  }
+  cell = typename Set::Cell{};
+  cell.centroid = reference + (1.0 / m) * offset;
+  cell.normalSum = normalSum;
+  cell.count = m;
+  for (std::uint32_t k = 0; k < count; ++k)
+  {
+    Set::addChildToCell(cell, children[k], children[k].centroid - cell.centroid);
   }
 }
 
 /// One cell as a sample of an evaluation point p, in local coordinates about an origin o (the host/device loop:
-/// o = p; the CPU kernel: o = the corner of p's walk region, its bins moved to p afterwards).
-struct CellSample
+/// o = p; the CPU kernel: o = the corner of p's walk region, its bins moved to p afterwards), for the moment set S.
+template <typename S>
+struct CellSampleT
 {
+  using Set = S;
   /// F: the exact sums of the fitted values f (MomentSet.h) over the cell's points, x = q - o.
-  double sums[kFitValues];
+  double sums[S::kValues];
   /// H: sum (a . y_i) f_i, with a = c - (the walk region's centre): what the sums gain when each point is weighted
   /// in proportion to a . y_i, the first-order variation of |q_i - p|^2 across the cell (a stands for c - p for
   /// every point of the region). H[0] = 0: the field moves weight within the cell, it adds none.
-  double gradient[kFitValues];
+  double gradient[S::kValues];
   /// sum |y|^2 / m: the mean of |q_i - p|^2 exceeds |c - p|^2 by this (length^2).
   double spreadPerPoint;
   /// sqrt(3 V), V = 4 a^T (sum y y^T) a / m: the half-width of the uniform distribution with the variance of
@@ -62,8 +91,12 @@ struct CellSample
   double halfWidth;
 };
 
+/// The oriented sphere's cell sample.
+using CellSample = CellSampleT<OrientedSphereMoments>;
+
 /// The half-width of a cell's spread of squared distances seen along `direction` (CellSample::halfWidth):
-/// sqrt(3 V), V = 4 a^T C a / m the variance of 2 a . y over its points.
+/// sqrt(3 V), V = 4 a^T C a / m the variance of 2 a . y over its points. (Every set's cell keeps the oriented
+/// sphere's statistics, which place it: its Cell is a PyramidCell or derives from one.)
 GLS_INLINE double spreadHalfWidth(const PyramidCell& cell, const Vec3& direction)
 {
   const double variance = 4.0 * dot(direction, offsetOffsetTimes(cell, direction)) / cell.count;
@@ -71,9 +104,11 @@ GLS_INLINE double spreadHalfWidth(const PyramidCell& cell, const Vec3& direction
 }
 
 /// The sample of `cell` in coordinates about `origin`, with `direction` a = c - (the walk region's centre).
-GLS_INLINE void makeCellSample(const PyramidCell& cell, const Vec3& origin, const Vec3& direction, CellSample& s)
+template <typename S>
+GLS_INLINE void makeCellSample(
+  const typename S::Cell& cell, const Vec3& origin, const Vec3& direction, CellSampleT<S>& s)
 {
-  OrientedSphereMoments::cellValues(cell, cell.centroid - origin, direction, s.sums, s.gradient);
+  S::cellValues(cell, cell.centroid - origin, direction, s.sums, s.gradient);
   s.spreadPerPoint = spreadOf(cell) / cell.count;
   s.halfWidth = spreadHalfWidth(cell, direction);
 }
@@ -286,13 +321,15 @@ GLS_INLINE ShellShare movedShare(const ShellShareExpansion& e, double delta, dou
 }
 
 /// Adds a cell's share of one shell: A_j += m_j F + c_j H (docs/math.md).
-GLS_INLINE void addCellShare(AggregateMoments& a, const CellSample& s, const ShellShare& share)
+template <typename S>
+GLS_INLINE void addCellShare(AggregateMomentsT<S>& a, const CellSampleT<S>& s, const ShellShare& share)
 {
-  for (int j = 0; j < kFitValues; ++j)
+  constexpr int V = S::kValues;
+  for (int j = 0; j < V; ++j)
   {
     a.m[j] += share.m[0] * s.sums[j] + share.c[0] * s.gradient[j];
-    a.m[kFitValues + j] += share.m[1] * s.sums[j] + share.c[1] * s.gradient[j];
-    a.m[2 * kFitValues + j] += share.m[2] * s.sums[j] + share.c[2] * s.gradient[j];
+    a.m[V + j] += share.m[1] * s.sums[j] + share.c[1] * s.gradient[j];
+    a.m[2 * V + j] += share.m[2] * s.sums[j] + share.c[2] * s.gradient[j];
   }
 }
 

@@ -94,10 +94,11 @@ GLS_INLINE void forEachMultiresolutionSample(const MultiresolutionView& v, const
 /// shell a cell taken whole meets (its CellSample: its points weighted by a linear field, their squared distances
 /// spread over the shells; a linearized cell's shares formed at its far region's centre and moved to p, movedShare),
 /// point(k, x, d2, normal) for each point read one by one inside the ball (x = its position - p, d2 = |x|^2). The
-/// walk (forEachMultiresolutionSample) fixes the terms and their order.
-template <typename CellShare, typename PointTerm>
-GLS_INLINE void forEachMultiresolutionTerm(
-  const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, CellShare&& cellShare, PointTerm&& point)
+/// walk (forEachMultiresolutionSample) fixes the terms and their order. Set: the moment set (MomentSet.h), whose cell
+/// sums of the levels summedLevel and above are `cells` (cellMoments).
+template <typename Set, typename CellShare, typename PointTerm>
+GLS_INLINE void forEachMultiresolutionTerm(const MultiresolutionView& v, const typename Set::Cell* cells,
+  const Vec3& p, const ScaleBinning& b, CellShare&& cellShare, PointTerm&& point)
 {
   const double r = b.scales[b.count - 1];
   const double r2 = r * r;
@@ -106,9 +107,9 @@ GLS_INLINE void forEachMultiresolutionTerm(
   forEachMultiresolutionSample(
     v, p, r, b.scales[0],
     [&](std::uint32_t node, int level, int farPart) {
-      PyramidCell cell;
-      cellMoments(v, node, level, cell);
-      CellSample s;
+      typename Set::Cell cell;
+      cellMoments<Set>(v, cells, node, level, cell);
+      CellSampleT<Set> s;
       // A far cell too narrow to linearize is sampled as a near cell (direction from the walk region's centre).
       const Vec3 centre = farPart > 0 ? regionCentre(far.region[farPart - 1]) : anchor;
       const bool linearized = farPart > 0 &&
@@ -142,10 +143,11 @@ GLS_INLINE void forEachMultiresolutionTerm(
 
 /// Fits every scale of the evaluation point p from the multi-resolution samples of the ball of the largest scale
 /// (forEachMultiresolutionTerm): points inside the ball enter exactly, as in evaluateAllScales; a cell taken whole
-/// enters as its CellSample. b: the S increasing scales and their binning table; bins: S scratch moment sets; out: S
-/// samples.
-GLS_INLINE void evaluateAllScalesMultiresolution(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
-  double minNeighbors, AggregateMoments* bins, ScaleSample* out)
+/// enters as its CellSample. b: the S increasing scales and their binning table; cells: the moment set's cell sums
+/// (cellMoments); bins: S scratch moment sets; out: S samples.
+template <typename Set>
+GLS_INLINE void evaluateAllScalesMultiresolution(const MultiresolutionView& v, const typename Set::Cell* cells,
+  const Vec3& p, const ScaleBinning& b, double minNeighbors, AggregateMomentsT<Set>* bins, typename Set::Sample* out)
 {
   if (b.count <= 0)
   {
@@ -155,36 +157,54 @@ GLS_INLINE void evaluateAllScalesMultiresolution(const MultiresolutionView& v, c
   {
     clearMoments(bins[k]);
   }
-  forEachMultiresolutionTerm(
-    v, p, b, [&](int k, const CellSample& s, const ShellShare& share) { addCellShare(bins[k], s, share); },
+  forEachMultiresolutionTerm<Set>(
+    v, cells, p, b,
+    [&](int k, const CellSampleT<Set>& s, const ShellShare& share) { addCellShare(bins[k], s, share); },
     [&](int k, const Vec3& x, double d2, const Vec3& n) { addPoint(bins[k], x, d2, n); });
   fitAllScalesFromBins(b, minNeighbors, bins, out);
+}
+
+/// The oriented sphere's evaluateAllScalesMultiresolution, from the pyramid's own cell sums.
+GLS_INLINE void evaluateAllScalesMultiresolution(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,
+  double minNeighbors, AggregateMoments* bins, ScaleSample* out)
+{
+  evaluateAllScalesMultiresolution<OrientedSphereMoments>(v, v.cells, p, b, minNeighbors, bins, out);
 }
 
 /// evaluateAllScalesMultiresolution, bit for bit, with the scales taken G at a time (fitAllScalesByWindows): the
 /// walk of the largest ball is repeated per window (the same terms in the same order), and only the window's bins
 /// are added to. No scratch bins: the CUDA kernel's loop, where S bins per thread in memory are read and written
-/// scattered.
-template <int G>
-GLS_INLINE void evaluateAllScalesMultiresolutionByWindows(const MultiresolutionView& v, const Vec3& p,
-  const ScaleBinning& b, double minNeighbors, ScaleSample* out)
+/// scattered. Set: the moment set; cells: its cell sums (cellMoments).
+template <int G, typename Set>
+GLS_INLINE void evaluateAllScalesMultiresolutionByWindows(const MultiresolutionView& v,
+  const typename Set::Cell* cells, const Vec3& p, const ScaleBinning& b, double minNeighbors,
+  typename Set::Sample* out)
 {
   if (b.count <= 0)
   {
     return;
   }
-  fitAllScalesByWindows<G, AggregateMoments>(b, minNeighbors,
-    [&](int k0, int, AggregateMoments* window) {
-      forEachMultiresolutionTerm(
-        v, p, b,
-        [&](int k, const CellSample& s, const ShellShare& share) {
-          addToWindowSlot<G>(window, k - k0, [&](AggregateMoments& m) { addCellShare(m, s, share); });
+  using Layout = AggregateMomentsT<Set>;
+  fitAllScalesByWindows<G, Layout>(b, minNeighbors,
+    [&](int k0, int, Layout* window) {
+      forEachMultiresolutionTerm<Set>(
+        v, cells, p, b,
+        [&](int k, const CellSampleT<Set>& s, const ShellShare& share) {
+          addToWindowSlot<G>(window, k - k0, [&](Layout& m) { addCellShare(m, s, share); });
         },
         [&](int k, const Vec3& x, double d2, const Vec3& n) {
-          addToWindowSlot<G>(window, k - k0, [&](AggregateMoments& m) { addPoint(m, x, d2, n); });
+          addToWindowSlot<G>(window, k - k0, [&](Layout& m) { addPoint(m, x, d2, n); });
         });
     },
     out);
+}
+
+/// The oriented sphere's evaluateAllScalesMultiresolutionByWindows, from the pyramid's own cell sums.
+template <int G>
+GLS_INLINE void evaluateAllScalesMultiresolutionByWindows(
+  const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b, double minNeighbors, ScaleSample* out)
+{
+  evaluateAllScalesMultiresolutionByWindows<G, OrientedSphereMoments>(v, v.cells, p, b, minNeighbors, out);
 }
 
 } // namespace gls

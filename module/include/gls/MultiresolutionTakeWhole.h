@@ -73,18 +73,27 @@ GLS_INLINE bool readPointByPoint(const MultiresolutionView& v, std::uint32_t nod
   return last - first < kFewestPointsOfACellSample;
 }
 
-/// The sums of the cell `node` of level `level`: stored, or formed from its points (momentsOfPoints about its
+/// The sums of the cell `node` of level `level` that the moment set Set keeps: stored (`cells`, those of levels
+/// summedLevel and above, node i's at cells[i - summedBegin]), or formed from its points (momentsOfPoints about its
 /// corner, as the build forms those of level summedLevel).
-GLS_INLINE void cellMoments(const MultiresolutionView& v, std::uint32_t node, int level, PyramidCell& cell)
+template <typename Set>
+GLS_INLINE void cellMoments(const MultiresolutionView& v, const typename Set::Cell* cells, std::uint32_t node,
+  int level, typename Set::Cell& cell)
 {
   if (level >= v.summedLevel)
   {
-    cell = v.cells[node - v.summedBegin];
+    cell = cells[node - v.summedBegin];
     return;
   }
   std::uint32_t first = 0, last = 0;
   pointRange(v.nodes, node, level, first, last);
-  momentsOfPoints(v.points, first, last, nodeCorner(v.origin, v.nodes[node], v.levelSize[level]), cell);
+  momentsOfPoints<Set>(v.points, first, last, nodeCorner(v.origin, v.nodes[node], v.levelSize[level]), cell);
+}
+
+/// The oriented sphere's cell sums: the pyramid's own (v.cells).
+GLS_INLINE void cellMoments(const MultiresolutionView& v, std::uint32_t node, int level, PyramidCell& cell)
+{
+  cellMoments<OrientedSphereMoments>(v, v.cells, node, level, cell);
 }
 
 } // namespace gls

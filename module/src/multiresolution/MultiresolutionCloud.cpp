@@ -90,28 +90,6 @@ void runsOfEqualKeys(std::size_t n, const KeyOf& keyOf, int threads, Uninitializ
   runStarts[first[slices]] = n;
 }
 
-/// The sums of a parent cell from those of its `count` children (in order), about its new centroid c
-/// (addChildToCell in MomentSet.h for each child, d = c_k - c).
-void mergeChildren(const PyramidCell* children, std::uint32_t count, const Vec3& reference, PyramidCell& cell)
-{
-  double m = 0.0;
-  Vec3 offset{ 0.0, 0.0, 0.0 }, normalSum{ 0.0, 0.0, 0.0 };
-  for (std::uint32_t k = 0; k < count; ++k)
-  {
-    m += children[k].count;
-    offset = offset + children[k].count * (children[k].centroid - reference);
-    normalSum = normalSum + children[k].normalSum;
-  }
-  cell = PyramidCell{};
-  cell.centroid = reference + (1.0 / m) * offset;
-  cell.normalSum = normalSum;
-  cell.count = m;
-  for (std::uint32_t k = 0; k < count; ++k)
-  {
-    OrientedSphereMoments::addChildToCell(cell, children[k], children[k].centroid - cell.centroid);
-  }
-}
-
 /// The options of one step of a build: progress mapped to [begin, end] of the caller's, chunks of 4096.
 ParallelOptions buildStage(const ParallelOptions& parallel, double begin, double end)
 {
