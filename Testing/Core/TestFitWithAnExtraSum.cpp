@@ -7,9 +7,11 @@
 #include "TestBinning.h"
 #include "TestClouds.h"
 
-#include "OnePassKernelBody.h" // the CPU kernel for any moment set (private to the core)
+#include "OnePassKernelBody.h"                        // the CPU kernels for any moment set (private to the core)
+#include "multiresolution/MultiresolutionKernelBody.h"
 
 #include "gls/MomentSet.h"
+#include "gls/MultiresolutionCellSums.h"
 #include "gls/MultiresolutionReferenceWalk.h"
 #include "gls/NeighborGrid.h"
 #include "gls/NormalEstimation.h"
@@ -50,6 +52,24 @@ struct HeightSpreadMoments
     Sphere::pointValues(x, d2, n, f);
     f[kValues - 1] = f[kHeightSquared];
     f[kHeightSquared] = x.z * x.z;
+  }
+
+  /// The move of origin (x + u): the sphere's values as the sphere moves them; sum z^2 gains 2 u_z sum z + u_z^2 W.
+  GLS_INLINE static void shiftValues(const gls::Vec3& u, double uu, double* f)
+  {
+    double sphere[Sphere::kValues];
+    for (int j = 0; j < kHeightSquared; ++j)
+    {
+      sphere[j] = f[j];
+    }
+    sphere[Sphere::kValues - 1] = f[kValues - 1];
+    f[kHeightSquared] += 2.0 * u.z * f[gls::kPositionZ] + u.z * u.z * f[gls::kOne];
+    Sphere::shiftValues(u, uu, sphere);
+    for (int j = 0; j < kHeightSquared; ++j)
+    {
+      f[j] = sphere[j];
+    }
+    f[kValues - 1] = sphere[Sphere::kValues - 1];
   }
 
   /// What a pyramid cell keeps: the sphere's statistics and sum y y_z^2 (length^3), which z^2's gradient needs.
@@ -119,10 +139,8 @@ double heightSpreadByHand(const Cloud& c, const gls::Vec3& p, double t)
   return std::sqrt(std::max(0.0, ZZ / W - (Z / W) * (Z / W)));
 }
 
-/// Every value of the two samples has the same bits (NaN included).
-/// The test set's sums of every cell of the levels summedLevel and above (cellMoments' `cells`), formed as the build
-/// forms the pyramid's own (which are the oriented sphere's): the lowest summed level's from their points, the others
-/// merged from their children. Levels are stored finest first, each contiguous.
+/// Where each level of the pyramid begins among its nodes (levels finest first, each contiguous), and where the top
+/// ends.
 std::vector<std::uint64_t> levelStarts(const gls::MultiresolutionView& v)
 {
   std::vector<std::uint64_t> levelStart(static_cast<std::size_t>(v.topLevel) + 2);
@@ -135,32 +153,7 @@ std::vector<std::uint64_t> levelStarts(const gls::MultiresolutionView& v)
   return levelStart;
 }
 
-std::vector<HeightSpreadMoments::Cell> heightSpreadCells(const gls::MultiresolutionView& v, std::size_t nodes)
-{
-  const std::vector<std::uint64_t> levelStart = levelStarts(v);
-  std::vector<HeightSpreadMoments::Cell> cells(nodes - v.summedBegin);
-  for (int level = v.summedLevel; level <= v.topLevel; ++level)
-  {
-    for (std::uint64_t node = levelStart[level]; node < levelStart[level + 1]; ++node)
-    {
-      std::uint32_t first = 0, last = 0;
-      gls::pointRange(v.nodes, static_cast<std::uint32_t>(node), level, first, last);
-      const gls::Vec3 corner = gls::nodeCorner(v.origin, v.nodes[node], v.levelSize[level]);
-      HeightSpreadMoments::Cell& cell = cells[node - v.summedBegin];
-      if (level == v.summedLevel)
-      {
-        gls::momentsOfPoints<HeightSpreadMoments>(v.points, first, last, corner, cell);
-      }
-      else
-      {
-        const gls::PyramidNode& n = v.nodes[node];
-        gls::mergeChildren<HeightSpreadMoments>(&cells[n.first - v.summedBegin], n.last - n.first, corner, cell);
-      }
-    }
-  }
-  return cells;
-}
-
+/// Every value of the two samples has the same bits (NaN included).
 bool sameBits(const gls::ScaleSample& a, const gls::ScaleSample& b)
 {
   const double u[] = { a.tau, a.kappa, a.phi, a.dtau, a.dkappa, a.eta.x, a.eta.y, a.eta.z, a.deta.x, a.deta.y,
@@ -240,9 +233,10 @@ TEST(FitWithAnExtraSum, RunsThroughTheExactKernelsAndAddsOnlyItsOwnSum)
 
 TEST(FitWithAnExtraSum, RunsThroughTheMultiresolutionWalkWithItsOwnCellSums)
 {
-  // The multi-resolution reference walk (the host/device loop, and its windowed form, the CUDA kernel's loop) with
-  // the test set's cells: the sphere's samples are the oriented sphere's own walk's, bit for bit, and the spread is
-  // the exact evaluation's to the accuracy of the cells taken whole.
+  // The multi-resolution reference walk (the host/device loop, and its windowed form, the CUDA kernel's loop) and the
+  // CPU kernel (both builds) with the test set's cells: the sphere's samples are the oriented sphere's own run's, bit
+  // for bit (to rounding in the AVX2 build), the spread is the exact evaluation's to the accuracy of the cells taken
+  // whole, and the CPU kernel's is the walk's to rounding.
   const Cloud c = paraboloid(150, 1.0, 0.7, 0.3, 0.01, 0.05, 9);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.5, 10, gls::ScaleSampling::Quadratic);
   gls::ScaleSpaceSettings settings;
@@ -251,7 +245,7 @@ TEST(FitWithAnExtraSum, RunsThroughTheMultiresolutionWalkWithItsOwnCellSums)
   settings.multiresolution.accuracy = 0.3;
   gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
   const gls::MultiresolutionView& v = engine.pyramid().view();
-  const std::vector<HeightSpreadMoments::Cell> cells = heightSpreadCells(v, engine.pyramid().nodeCount());
+  const std::vector<HeightSpreadMoments::Cell> cells = gls::summedCellsOf<HeightSpreadMoments>(v);
   // Merged from their children (addChildToCell), the cells keep the sum y y_z^2 of their points.
   long merged = 0;
   const std::vector<std::uint64_t> levelStart = levelStarts(v);
@@ -287,7 +281,13 @@ TEST(FitWithAnExtraSum, RunsThroughTheMultiresolutionWalkWithItsOwnCellSums)
   std::vector<gls::MomentsT<HeightSpreadMoments>> exactBins(S);
   std::vector<HeightSpreadMoments::Sample> walk(S), windows(S), exact(S);
   std::vector<gls::ScaleSample> sphereWalk(S);
-  double worst = 0.0;
+  const gls::CpuKernelBuild builds[2] = { gls::CpuKernelBuild::Portable, gls::CpuKernelBuild::Fastest };
+  gls::MultiresolutionScratchT<HeightSpreadMoments> scratch[2];
+  gls::MultiresolutionScratch sphereScratch[2];
+  std::vector<HeightSpreadMoments::Sample> cpu[2] = { std::vector<HeightSpreadMoments::Sample>(S),
+    std::vector<HeightSpreadMoments::Sample>(S) };
+  std::vector<gls::ScaleSample> sphereCpu[2] = { std::vector<gls::ScaleSample>(S), std::vector<gls::ScaleSample>(S) };
+  double worst = 0.0, worstCpu = 0.0, worstFastestSphere = 0.0;
   long taken = 0;
   int checked = 0;
   for (std::size_t i = 0; i < c.size(); i += 37)
@@ -297,24 +297,68 @@ TEST(FitWithAnExtraSum, RunsThroughTheMultiresolutionWalkWithItsOwnCellSums)
     gls::evaluateAllScalesMultiresolutionByWindows<4, HeightSpreadMoments>(v, cells.data(), p, b, 6.0, windows.data());
     gls::evaluateAllScalesMultiresolution(v, p, b, 6.0, sphereBins.data(), sphereWalk.data());
     gls::evaluateAllScales(grid.view(), p, b, 6.0, exactBins.data(), exact.data());
+    for (int k = 0; k < 2; ++k)
+    {
+      gls::multiresolution::evaluateAllScalesMultiresolutionOnCpuFor<HeightSpreadMoments>(
+        v, cells.data(), p, b, 6.0, scratch[k], cpu[k].data(), builds[k]);
+      gls::evaluateAllScalesMultiresolutionOnCpu(v, p, b, 6.0, sphereScratch[k], sphereCpu[k].data(), builds[k]);
+    }
     gls::forEachMultiresolutionSample(v, p, scales.back(), scales.front(),
       [&](std::uint32_t, int, int) { ++taken; }, [](std::uint32_t) {});
     for (std::size_t k = 0; k < S; ++k)
     {
       ASSERT_TRUE(sameBits(walk[k].sphere, sphereWalk[k])) << "point " << i << " scale " << k;
       ASSERT_TRUE(sameBits(windows[k].sphere, sphereWalk[k])) << "point " << i << " scale " << k;
-      if (!walk[k].sphere.valid || !exact[k].sphere.valid)
+      ASSERT_TRUE(sameBits(cpu[0][k].sphere, sphereCpu[0][k])) << "point " << i << " scale " << k;
+      ASSERT_EQ(cpu[1][k].sphere.valid, sphereCpu[1][k].valid);
+      if (sphereCpu[1][k].valid)
+      {
+        worstFastestSphere =
+          std::max(worstFastestSphere, std::abs(cpu[1][k].sphere.kappa - sphereCpu[1][k].kappa) * scales[k]);
+      }
+      if (!walk[k].sphere.valid || !exact[k].sphere.valid || !cpu[0][k].sphere.valid || !cpu[1][k].sphere.valid)
       {
         continue;
       }
       EXPECT_EQ(windows[k].heightSpread, walk[k].heightSpread);
       worst = std::max(worst, std::abs(walk[k].heightSpread - exact[k].heightSpread) / scales[k]);
+      for (int c = 0; c < 2; ++c)
+      {
+        worstCpu = std::max(worstCpu, std::abs(cpu[c][k].heightSpread - walk[k].heightSpread) / scales[k]);
+      }
       ++checked;
     }
   }
   EXPECT_GT(taken, 1000); // the walks took cells whole: their z^2 sums came from the test set's cells
   EXPECT_GT(checked, 300);
   EXPECT_LT(worst, 1e-3);
-  std::printf("multi-resolution spread against the exact one: largest difference %.3g t (%ld cells taken whole)\n",
-    worst, taken);
+  EXPECT_LT(worstCpu, 1e-10);
+  EXPECT_LT(worstFastestSphere, 1e-10);
+  std::printf("multi-resolution spread against the exact one: largest difference %.3g t (%ld cells taken whole); "
+              "CPU kernel against the walk %.3g t; AVX2 build's kappa t with and without the extra sum %.3g\n",
+    worst, taken, worstCpu, worstFastestSphere);
+}
+
+TEST(FitWithAnExtraSum, ASetsCellSumsOverABuiltPyramidAreTheBuildsOwnForTheSphere)
+{
+  // summedCellsOf forms a set's cells level by level as the build forms the pyramid's own: for the oriented sphere
+  // they are the pyramid's cells bit for bit, on one thread or several.
+  const Cloud c = paraboloid(120, 1.0, 0.7, 0.3, 0.01, 0.05, 5);
+  gls::ScaleSpaceSettings settings;
+  settings.scales = gls::sampleScales(0.05, 0.5, 6, gls::ScaleSampling::Quadratic);
+  settings.evaluation = gls::Evaluation::Multiresolution;
+  gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), c.size(), settings);
+  const gls::MultiresolutionView& v = engine.pyramid().view();
+  ASSERT_GT(v.topEnd - v.summedBegin, 100u);
+  ASSERT_GT(v.topLevel, v.summedLevel + 2);
+  for (int threads : { 1, 3 })
+  {
+    gls::ParallelOptions parallel;
+    parallel.threads = threads;
+    parallel.chunk = 7;
+    const std::vector<gls::PyramidCell> cells = gls::summedCellsOf<gls::OrientedSphereMoments>(v, parallel);
+    ASSERT_EQ(cells.size(), v.topEnd - v.summedBegin);
+    static_assert(sizeof(gls::PyramidCell) % sizeof(double) == 0, "a cell is doubles only (no padding compared)");
+    EXPECT_EQ(std::memcmp(cells.data(), v.cells, cells.size() * sizeof(gls::PyramidCell)), 0) << threads;
+  }
 }

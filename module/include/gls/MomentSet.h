@@ -8,9 +8,11 @@
 //   test-only set with one more value through them.
 // - shiftValues (a move of origin, closed over its values), Cell (what a pyramid cell keeps) with addPointToCell and
 //   addChildToCell (its rules for one point and for a child cell), and cellValues (a cell's sums of every value and
-//   their gradient): what the multi-resolution evaluation needs. Its pyramid, walks and kernels run
-//   OrientedSphereMoments (the multi-resolution moments, AggregateMoments.h, are a layout of any set; the pyramid is
-//   not yet a template). Testing/Core/TestMomentSet.cpp checks every rule of every value against pointValues.
+//   their gradient): what the multi-resolution evaluation needs. Its layout (AggregateMomentsT), the reference walk
+//   (MultiresolutionReferenceWalk.h, the CUDA kernel's loop) and the CPU kernel (src/multiresolution/
+//   MultiresolutionKernelBody.h) take the set and its cells; the pyramid stores the oriented sphere's cells, and
+//   summedCellsOf (MultiresolutionCellSums.h) forms another set's over it by the build's own rule.
+//   Testing/Core/TestMomentSet.cpp checks every rule of every value against pointValues.
 #pragma once
 
 #include "gls/Numeric.h"

@@ -36,9 +36,10 @@ struct WalkKey
 /// = c - r its direction from F's centre r): `value`, `slope`, `slopeA[i]` (times a_i) and `curvatureAA[ij]` (times
 /// a_i a_j, i <= j: xx, xy, xz, yy, yz, zz). A point p, u = p - r, adds value + |u|^2 slope - 2 u . slopeA +
 /// 2 u^T curvatureAA u: each cell's mean moves by |u|^2 - 2 a . u, and the second-order term is 2 (a . u)^2.
-struct LinearizedBins
+template <typename Set>
+struct LinearizedBinsT
 {
-  std::vector<AggregateMoments> value, slope, slopeA[3], curvatureAA[6];
+  std::vector<AggregateMomentsT<Set>> value, slope, slopeA[3], curvatureAA[6];
   std::size_t cells = 0; ///< linearized cells of the far region (0: nothing to add)
   int firstShell = 0;    ///< the lowest shell they reach (the bins below are zeros)
 };
@@ -51,12 +52,13 @@ struct LinearizedBins
 /// spread per point. The sums over the samples of F and H times 1, M, a_i, M a_i, a_i a_j and M^2 + V give those
 /// moments for every p of the region (addInnerSums in src/multiresolution/MultiresolutionPacking.h); their sums are
 /// about the walk's origin, as the packed samples'.
-struct InnerSums
+template <typename Set>
+struct InnerSumsT
 {
   /// Of F: 1, M, a (3), M^2 + V, M a (3), a a^T (6: xx, xy, xz, yy, yz, zz), in that order.
-  double f[15][kFitValues];
+  double f[15][Set::kValues];
   /// Of H: 1, M, a (3).
-  double h[5][kFitValues];
+  double h[5][Set::kValues];
   std::size_t samples = 0; ///< how many samples they hold (0: nothing to add)
 };
 
@@ -68,17 +70,19 @@ struct PointSpan
 
 /// A point of a walk as every point of its region reads it (packWalk in src/multiresolution/MultiresolutionPacking.h):
 /// its position and its fitted values f (MomentSet.h) about the region's corner.
-struct PackedPoint
+template <typename Set>
+struct PackedPointT
 {
   Vec3 position;
-  double sums[kFitValues];
+  double sums[Set::kValues];
 };
 
 /// A cell of a walk as every point of its region reads it once the cell is classified (its placement and spread are
 /// in CellPlacements): its CellSample about the region's corner, on cache lines of its own.
-struct alignas(64) PackedCell
+template <typename Set>
+struct alignas(64) PackedCellT
 {
-  CellSample sample;
+  CellSampleT<Set> sample;
 };
 
 /// What places each packed cell in the shells for a point and splits its spread into shell pieces, one array per
@@ -113,20 +117,14 @@ struct CellPlacements
   }
 };
 
-/// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points). It keeps the last walk
-/// (the samples of one walkRegion, shared by the points of that region: consecutive points in pyramid order
-/// mostly share it) with its key; a scratch reused for another pyramid at the same address with the same count and
-/// accuracy must be reset (`walked = false`).
-struct MultiresolutionScratch
+/// The part of a thread's scratch of evaluateAllScalesMultiresolutionOnCpu that no moment set changes: the walks'
+/// lists and keys, and the placements and kinds of the packed cells (MultiresolutionScratchT holds the rest).
+struct MultiresolutionWalkScratch
 {
   std::vector<std::uint32_t> frontier, next, opened, taken;
   std::vector<PointSpan> read; ///< the points read one by one, as ranges [first, last) of the pyramid's points
   std::vector<int> takenLevel;
-  std::vector<AggregateMoments> bins;
-  std::vector<PackedPoint> packedPoints;
-  std::vector<PackedCell> packedCells;
   CellPlacements placements;
-  InnerSums inner; ///< the walk's samples within the first shell for its whole region (not in packedCells/Points)
   std::vector<double> cellMean;
   std::vector<int> cellShell;
   std::vector<std::uint32_t> singleCells, pairCells, spreadCells, wideCells;
@@ -141,10 +139,30 @@ struct MultiresolutionScratch
   /// its far region samples them as near cells.
   std::vector<std::uint32_t> farSampled[kMaxFarLevels];
   std::vector<int> farSampledLevel[kMaxFarLevels];
-  LinearizedBins linearized[kMaxFarLevels]; ///< of each far part's region (farKey[i].farRegion)
   bool walked = false, farWalked[kMaxFarLevels] = {};
   WalkKey walkedKey{}, farKey[kMaxFarLevels] = {};
 };
+
+/// Per-thread scratch of evaluateAllScalesMultiresolutionOnCpu (reused across points), for the moment set Set. It
+/// keeps the last walk (the samples of one walkRegion, shared by the points of that region: consecutive points in
+/// pyramid order mostly share it) with its key; a scratch reused for another pyramid at the same address with the
+/// same count and accuracy must be reset (`walked = false`).
+template <typename Set>
+struct MultiresolutionScratchT : MultiresolutionWalkScratch
+{
+  std::vector<AggregateMomentsT<Set>> bins;
+  std::vector<PackedPointT<Set>> packedPoints;
+  std::vector<PackedCellT<Set>> packedCells;
+  InnerSumsT<Set> inner; ///< the walk's samples within the first shell for its whole region (not in packedCells/Points)
+  LinearizedBinsT<Set> linearized[kMaxFarLevels]; ///< of each far part's region (farKey[i].farRegion)
+};
+
+/// The oriented sphere's kernel types.
+using LinearizedBins = LinearizedBinsT<OrientedSphereMoments>;
+using InnerSums = InnerSumsT<OrientedSphereMoments>;
+using PackedPoint = PackedPointT<OrientedSphereMoments>;
+using PackedCell = PackedCellT<OrientedSphereMoments>;
+using MultiresolutionScratch = MultiresolutionScratchT<OrientedSphereMoments>;
 
 /// Fits every scale of the evaluation point p, as evaluateAllScalesMultiresolution; out: S samples.
 void evaluateAllScalesMultiresolutionOnCpu(const MultiresolutionView& v, const Vec3& p, const ScaleBinning& b,

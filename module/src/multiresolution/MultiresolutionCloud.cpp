@@ -1,6 +1,7 @@
 #include "gls/MultiresolutionCloud.h"
 
 #include "gls/KeySort.h"
+#include "gls/MultiresolutionCellSums.h"
 #include "gls/MultiresolutionTakeWhole.h"
 #include "gls/NeighborGrid.h"
 #include "gls/Numeric.h"
@@ -457,18 +458,8 @@ bool MultiresolutionCloud::buildLevel(int level, const UninitializedArray<std::u
       {
         continue;
       }
-      PyramidCell& cell = this->Cells[firstCell + c];
-      if (level == kFirstSummedLevel)
-      {
-        std::uint32_t p0 = 0, p1 = 0;
-        pointRange(this->Nodes.data(), static_cast<std::uint32_t>(first + c), level, p0, p1);
-        momentsOfPoints(this->View.points, p0, p1, corner, cell);
-      }
-      else
-      {
-        mergeChildren(
-          this->Cells.data() + (node.first - this->SummedBegin), node.last - node.first, corner, cell);
-      }
+      formSummedCell<OrientedSphereMoments>(this->Nodes.data(), this->View.points, this->SummedBegin,
+        kFirstSummedLevel, static_cast<std::uint32_t>(first + c), level, corner, this->Cells.data());
     }
   });
 }

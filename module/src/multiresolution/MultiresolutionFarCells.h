@@ -16,9 +16,10 @@ namespace kernel
 {
 
 /// sum += c * x over every moment.
-GLS_FORCE_INLINE void addScaled(AggregateMoments& sum, double c, const AggregateMoments& x)
+template <typename Set>
+GLS_FORCE_INLINE void addScaled(AggregateMomentsT<Set>& sum, double c, const AggregateMomentsT<Set>& x)
 {
-  for (int j = 0; j < 3 * kFitValues; ++j)
+  for (int j = 0; j < 3 * Set::kValues; ++j)
   {
     sum.m[j] += c * x.m[j];
   }
@@ -26,10 +27,11 @@ GLS_FORCE_INLINE void addScaled(AggregateMoments& sum, double c, const Aggregate
 
 /// Adds a linearized cell (FarRule) to its far region's LinearizedBins: its shares expanded at the region's centre
 /// (mean |a|^2 + its spread per point, a = c - the centre), its sample about the region's corner o.
-GLS_FORCE_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const PyramidCell& cell, const Vec3& o,
-  const Vec3& a, LinearizedBins& far)
+template <typename Set>
+GLS_FORCE_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const typename Set::Cell& cell,
+  const Vec3& o, const Vec3& a, LinearizedBinsT<Set>& far)
 {
-  CellSample sample;
+  CellSampleT<Set> sample;
   makeCellSample(cell, o, a, sample);
   const double aa[6] = { a.x * a.x, a.x * a.y, a.x * a.z, a.y * a.y, a.y * a.z, a.z * a.z };
   forEachShellOfSpreadExpanded(
@@ -38,7 +40,7 @@ GLS_FORCE_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const 
       const std::size_t shell = static_cast<std::size_t>(k);
       far.firstShell = std::min(far.firstShell, k);
       addCellShare(far.value[shell], sample, e.value);
-      AggregateMoments slope, curvature;
+      AggregateMomentsT<Set> slope, curvature;
       clearMoments(slope);
       clearMoments(curvature);
       addCellShare(slope, sample, e.slope);
@@ -55,19 +57,20 @@ GLS_FORCE_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const 
 }
 
 /// The LinearizedBins of the far region F of far part `part` from the cells of its far walk (s.taken, s.takenLevel),
-/// their sums about o; the cells too narrow to linearize go to s.farSampled[part] instead. Inlined into each build of
-/// the kernel (its loops vectorized there).
-GLS_FORCE_INLINE void packFarWalk(const MultiresolutionView& v, const WalkRegion& F, int part, const Vec3& o,
-  const ScaleBinning& b, double r2, MultiresolutionScratch& s, LinearizedBins& far)
+/// their sums about o (cells: the moment set's cell sums, cellMoments); the cells too narrow to linearize go to
+/// s.farSampled[part] instead. Inlined into each build of the kernel (its loops vectorized there).
+template <typename Set>
+GLS_FORCE_INLINE void packFarWalk(const MultiresolutionView& v, const typename Set::Cell* cells, const WalkRegion& F,
+  int part, const Vec3& o, const ScaleBinning& b, double r2, MultiresolutionWalkScratch& s, LinearizedBinsT<Set>& far)
 {
   const std::size_t S = static_cast<std::size_t>(b.count);
-  std::vector<AggregateMoments>* sets[] = { &far.value, &far.slope, &far.slopeA[0], &far.slopeA[1], &far.slopeA[2],
-    &far.curvatureAA[0], &far.curvatureAA[1], &far.curvatureAA[2], &far.curvatureAA[3], &far.curvatureAA[4],
-    &far.curvatureAA[5] };
-  for (std::vector<AggregateMoments>* bins : sets)
+  std::vector<AggregateMomentsT<Set>>* sets[] = { &far.value, &far.slope, &far.slopeA[0], &far.slopeA[1],
+    &far.slopeA[2], &far.curvatureAA[0], &far.curvatureAA[1], &far.curvatureAA[2], &far.curvatureAA[3],
+    &far.curvatureAA[4], &far.curvatureAA[5] };
+  for (std::vector<AggregateMomentsT<Set>>* bins : sets)
   {
     bins->resize(S);
-    std::memset(static_cast<void*>(bins->data()), 0, sizeof(AggregateMoments) * S); // all 0.0
+    std::memset(static_cast<void*>(bins->data()), 0, sizeof(AggregateMomentsT<Set>) * S); // all 0.0
   }
   far.cells = 0;
   far.firstShell = b.count;
@@ -78,12 +81,12 @@ GLS_FORCE_INLINE void packFarWalk(const MultiresolutionView& v, const WalkRegion
   const Vec3 centre = regionCentre(F);
   for (std::size_t k = 0; k < s.taken.size(); ++k)
   {
-    PyramidCell cell;
-    cellMoments(v, s.taken[k], s.takenLevel[k], cell);
+    typename Set::Cell cell;
+    cellMoments<Set>(v, cells, s.taken[k], s.takenLevel[k], cell);
     const Vec3 a = cell.centroid - centre;
     if (linearizable(spreadHalfWidth(cell, a), a, F))
     {
-      addLinearizedCell(b, r2, cell, o, a, far);
+      addLinearizedCell<Set>(b, r2, cell, o, a, far);
       ++far.cells;
     }
     else
@@ -96,7 +99,9 @@ GLS_FORCE_INLINE void packFarWalk(const MultiresolutionView& v, const WalkRegion
 
 /// Adds a far region's linearized cells for p, u = p - (the region's centre) (LinearizedBins), from the first shell
 /// they reach.
-GLS_FORCE_INLINE void addLinearizedCells(const LinearizedBins& far, const Vec3& u, int count, AggregateMoments* bins)
+template <typename Set>
+GLS_FORCE_INLINE void addLinearizedCells(
+  const LinearizedBinsT<Set>& far, const Vec3& u, int count, AggregateMomentsT<Set>* bins)
 {
   if (far.cells == 0)
   {
@@ -125,13 +130,13 @@ GLS_FORCE_INLINE void addLinearizedCells(const LinearizedBins& far, const Vec3& 
     };
     int j = 0;
 #if GLS_KERNEL_VECTORS
-    for (; j + 4 <= 3 * kFitValues; j += 4)
+    for (; j + 4 <= 3 * Set::kValues; j += 4)
     {
       const auto four = [j](const double* set) GLS_INLINE_LAMBDA { return load4(set + j); };
       store4(m + j, load4(m + j) + moved(four));
     }
 #endif
-    for (; j < 3 * kFitValues; ++j)
+    for (; j < 3 * Set::kValues; ++j)
     {
       m[j] += moved([j](const double* set) GLS_INLINE_LAMBDA { return set[j]; });
     }

@@ -29,17 +29,19 @@ GLS_FORCE_INLINE double squaredDistanceToFarthestPoint(const WalkRegion& region,
 
 /// Adds a sample to the region's InnerSums: its F (and H, or none), a = its centroid - the region's centre, M and
 /// K = M^2 + V.
+template <typename Set>
 GLS_FORCE_INLINE void addInnerSample(
-  InnerSums& inner, const Vec3& a, double M, double K, const double* F, const double* H)
+  InnerSumsT<Set>& inner, const Vec3& a, double M, double K, const double* F, const double* H)
 {
   const double weights[15] = { 1.0, M, a.x, a.y, a.z, K, M * a.x, M * a.y, M * a.z, a.x * a.x, a.x * a.y, a.x * a.z,
     a.y * a.y, a.y * a.z, a.z * a.z };
   // inner.x[i] += weights[i] * X, every value of a row at a time (four-double vectors while four remain, in the
   // vector builds).
-  const auto add = [&weights](double(*sums)[kFitValues], int count, const double* X) GLS_INLINE_LAMBDA {
+  constexpr int V = Set::kValues;
+  const auto add = [&weights](double(*sums)[V], int count, const double* X) GLS_INLINE_LAMBDA {
 #if GLS_KERNEL_VECTORS
-    Double4 x4[kFitValues / 4];
-    for (int v = 0; v < kFitValues / 4; ++v)
+    Double4 x4[V / 4];
+    for (int v = 0; v < V / 4; ++v)
     {
       x4[v] = load4(X + 4 * v);
     }
@@ -49,12 +51,12 @@ GLS_FORCE_INLINE void addInnerSample(
       double* row = sums[i];
       int j = 0;
 #if GLS_KERNEL_VECTORS
-      for (; j + 4 <= kFitValues; j += 4)
+      for (; j + 4 <= V; j += 4)
       {
         store4(row + j, load4(row + j) + weights[i] * x4[j / 4]);
       }
 #endif
-      for (; j < kFitValues; ++j)
+      for (; j < V; ++j)
       {
         row[j] += weights[i] * X[j];
       }
@@ -70,7 +72,8 @@ GLS_FORCE_INLINE void addInnerSample(
 
 /// Adds the InnerSums' share of the first shell for p, u = p - (the region's centre): with mean = M - 2 a . u + |u|^2,
 /// the sums of F, mean F + 2 H and (mean^2 + V) F + 4 mean H (wholeShare's m and c, InnerSums), expanded in u.
-GLS_FORCE_INLINE void addInnerSums(const InnerSums& inner, const Vec3& u, AggregateMoments& bin)
+template <typename Set>
+GLS_FORCE_INLINE void addInnerSums(const InnerSumsT<Set>& inner, const Vec3& u, AggregateMomentsT<Set>& bin)
 {
   if (inner.samples == 0)
   {
@@ -78,7 +81,8 @@ GLS_FORCE_INLINE void addInnerSums(const InnerSums& inner, const Vec3& u, Aggreg
   }
   const double uu = squaredNorm(u);
   const double q[6] = { u.x * u.x, 2.0 * u.x * u.y, 2.0 * u.x * u.z, u.y * u.y, 2.0 * u.y * u.z, u.z * u.z };
-  for (int j = 0; j < kFitValues; ++j)
+  constexpr int V = Set::kValues;
+  for (int j = 0; j < V; ++j)
   {
     const double F = inner.f[0][j], MF = inner.f[1][j], KF = inner.f[5][j];
     const double uaF = u.x * inner.f[2][j] + u.y * inner.f[3][j] + u.z * inner.f[4][j];
@@ -91,30 +95,31 @@ GLS_FORCE_INLINE void addInnerSums(const InnerSums& inner, const Vec3& u, Aggreg
     // mean^2 = M^2 - 4 M a.u + 2 M |u|^2 + 4 (a.u)^2 - 4 (a.u) |u|^2 + |u|^4
     const double squareF = KF - 4.0 * uMaF + 2.0 * uu * MF + 4.0 * uaauF - 4.0 * uu * uaF + uu * uu * F;
     bin.m[j] += F;
-    bin.m[kFitValues + j] += meanF + 2.0 * inner.h[0][j];
-    bin.m[2 * kFitValues + j] += squareF + 4.0 * meanH;
+    bin.m[V + j] += meanF + 2.0 * inner.h[0][j];
+    bin.m[2 * V + j] += squareF + 4.0 * meanH;
   }
 }
 
-/// The samples of a walk, packed once for every point of its region, about an origin o near it (the corner of its far
-/// region, or its own; x = q - o): the points with their fitted values f (MomentSet.h), the cells with their
-/// CellSample (direction from the region's centre), so that a point adds them as they are and moves its sums from o
-/// to itself once per scale (fitAllScalesAboutOrigin) instead of forming them for every sample. The samples inside
-/// the first shell's sphere for every point of the region (below sq0 = scales[0]^2) go to s.inner instead
-/// (InnerSums).
-GLS_FORCE_INLINE void packWalk(
-  const MultiresolutionView& v, const WalkRegion& region, const Vec3& o, double sq0, MultiresolutionScratch& s)
+/// The samples of a walk (cells: the moment set's cell sums, cellMoments), packed once for every point of its region,
+/// about an origin o near it (the corner of its far region, or its own; x = q - o): the points with their fitted values
+/// f (MomentSet.h), the cells with their CellSample (direction from the region's centre), so that a point adds them as
+/// they are and moves its sums from o to itself once per scale (fitAllScalesAboutOrigin) instead of forming them for
+/// every sample. The samples inside the first shell's sphere for every point of the region (below sq0 = scales[0]^2) go
+/// to s.inner instead (InnerSums).
+template <typename Set>
+GLS_FORCE_INLINE void packWalk(const MultiresolutionView& v, const typename Set::Cell* cells, const WalkRegion& region,
+  const Vec3& o, double sq0, MultiresolutionScratchT<Set>& s)
 {
   const Vec3 anchor = regionCentre(region);
-  std::memset(static_cast<void*>(&s.inner), 0, sizeof(InnerSums)); // all 0.0
+  std::memset(static_cast<void*>(&s.inner), 0, sizeof(s.inner)); // all 0.0
   s.packedCells.resize(s.taken.size());
   s.placements.resize(s.taken.size());
-  std::size_t cells = 0;
+  std::size_t packed = 0;
   for (std::size_t k = 0; k < s.taken.size(); ++k)
   {
-    PyramidCell cell;
-    cellMoments(v, s.taken[k], s.takenLevel[k], cell);
-    PackedCell& out = s.packedCells[cells];
+    typename Set::Cell cell;
+    cellMoments<Set>(v, cells, s.taken[k], s.takenLevel[k], cell);
+    PackedCellT<Set>& out = s.packedCells[packed];
     const Vec3 a = cell.centroid - anchor;
     makeCellSample(cell, o, a, out.sample);
     const double spread = out.sample.spreadPerPoint, half = out.sample.halfWidth;
@@ -124,18 +129,18 @@ GLS_FORCE_INLINE void packWalk(
       addInnerSample(s.inner, a, M, M * M + spreadVariance(half), out.sample.sums, out.sample.gradient);
       continue;
     }
-    s.placements.set(cells, cell.centroid, spread, half);
-    ++cells;
+    s.placements.set(packed, cell.centroid, spread, half);
+    ++packed;
   }
-  s.packedCells.resize(cells);
-  s.placements.resize(cells);
+  s.packedCells.resize(packed);
+  s.placements.resize(packed);
   std::size_t n = 0;
   for (const PointSpan& span : s.read)
   {
     n += span.last - span.first;
   }
   s.packedPoints.resize(n);
-  PackedPoint* out = s.packedPoints.data();
+  PackedPointT<Set>* out = s.packedPoints.data();
   for (const PointSpan& span : s.read)
   {
     for (std::uint32_t i = span.first; i < span.last; ++i)
@@ -143,7 +148,7 @@ GLS_FORCE_INLINE void packWalk(
       const Vec3 q = v.points.position(i);
       const Vec3 x = q - o;
       out->position = q;
-      OrientedSphereMoments::pointValues(x, squaredNorm(x), v.points.normal(i), out->sums);
+      Set::pointValues(x, squaredNorm(x), v.points.normal(i), out->sums);
       if (squaredDistanceToFarthestPoint(region, q) < sq0)
       {
         const Vec3 a = q - anchor;

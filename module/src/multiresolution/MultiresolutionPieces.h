@@ -21,16 +21,16 @@ namespace kernel
 /// The cells `list[0, count)` whose spread meets at most `Pieces` shells from its first one (cellShell): each adds
 /// `Pieces` pieces [lo, sq[k]], [sq[k], sq[k + 1]], ..., cut to [lo, min(hi, r2)] (pieceShare; shells past the
 /// last one are clamped to it, with an empty piece, which adds zeros).
-template <int Pieces>
+template <int Pieces, typename Set>
 GLS_FORCE_INLINE void addPieces(const ScaleBinning& b, double r2, const std::uint32_t* list, std::size_t count,
-  const MultiresolutionScratch& s, AggregateMoments* bins)
+  const MultiresolutionScratchT<Set>& s, AggregateMomentsT<Set>* bins)
 {
   const int S = b.count;
   const double* sq = b.squaredScales;
   for (std::size_t i = 0; i < count; ++i)
   {
     const std::uint32_t c = list[i];
-    const CellSample& sample = s.packedCells[c].sample;
+    const CellSampleT<Set>& sample = s.packedCells[c].sample;
     const double mean = s.cellMean[c], a = s.placements.halfWidth[c];
     const SpreadDensity density = s.placements.density(c);
     const double lo = mean - a, top = mean + a < r2 ? mean + a : r2;
@@ -58,7 +58,7 @@ struct SpreadLanes
 };
 
 __attribute__((target("avx2,fma"))) GLS_FORCE_INLINE SpreadLanes gatherSpreads(
-  const MultiresolutionScratch& s, const std::uint32_t* cells, double r2)
+  const MultiresolutionWalkScratch& s, const std::uint32_t* cells, double r2)
 {
   const __m128i index = _mm_loadu_si128(reinterpret_cast<const __m128i*>(cells));
   SpreadLanes l;
@@ -102,9 +102,9 @@ __attribute__((target("avx2,fma"))) GLS_FORCE_INLINE void pieceSharesAvx2(
 
 /// addPieces four cells at a time (AVX2): the pieces' bounds and shares formed for four cells in vector registers,
 /// then each cell's pieces added to its shells. The tail of fewer than four cells goes through addPieces.
-template <int Pieces>
+template <int Pieces, typename Set>
 __attribute__((target("avx2,fma"))) inline void addPiecesAvx2(const ScaleBinning& b, double r2,
-  const std::uint32_t* list, std::size_t count, const MultiresolutionScratch& s, AggregateMoments* bins)
+  const std::uint32_t* list, std::size_t count, const MultiresolutionScratchT<Set>& s, AggregateMomentsT<Set>* bins)
 {
   const __m256d vr2 = _mm256_set1_pd(r2);
   const __m128i lastShell = _mm_set1_epi32(b.count - 1);
@@ -130,7 +130,7 @@ __attribute__((target("avx2,fma"))) inline void addPiecesAvx2(const ScaleBinning
     for (int lane = 0; lane < 4; ++lane)
     {
       // The cell's F and H loaded once for all its pieces.
-      const LoadedSample f = loadSample(s.packedCells[list[i + static_cast<std::size_t>(lane)]].sample);
+      const LoadedSampleT<Set> f = loadSample(s.packedCells[list[i + static_cast<std::size_t>(lane)]].sample);
       for (int j = 0; j < Pieces; ++j)
       {
         const double(&share)[6][4] = shares[j];
@@ -140,7 +140,7 @@ __attribute__((target("avx2,fma"))) inline void addPiecesAvx2(const ScaleBinning
       }
     }
   }
-  addPieces<Pieces>(b, r2, list + i, count - i, s, bins);
+  addPieces<Pieces, Set>(b, r2, list + i, count - i, s, bins);
 }
 #endif
 

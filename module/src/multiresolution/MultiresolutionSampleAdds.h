@@ -14,10 +14,11 @@ namespace kernel
 
 /// Adds the values f of a point at squared distance d2 (addSampleSums in AggregateMoments.h: the same products and
 /// sums, element by element, fused into multiply-adds in the AVX2 build).
-GLS_FORCE_INLINE void addPackedSums(AggregateMoments& a, const double* f, double d2)
+template <typename Set>
+GLS_FORCE_INLINE void addPackedSums(AggregateMomentsT<Set>& a, const double* f, double d2)
 {
 #if GLS_KERNEL_VECTORS
-  addTimesPowers(a.m, f, kFitValues, kFitValues, false, d2, d2 * d2);
+  addTimesPowers(a.m, f, Set::kValues, Set::kValues, false, d2, d2 * d2);
 #else
   addSampleSums(a, f, d2);
 #endif
@@ -26,15 +27,18 @@ GLS_FORCE_INLINE void addPackedSums(AggregateMoments& a, const double* f, double
 #if GLS_KERNEL_VECTORS
 /// A cell's F and H as the shell adds read them, loaded once for all the shells the cell meets: four values at a
 /// time while four remain, the rest one by one.
-struct LoadedSample
+template <typename Set>
+struct LoadedSampleT
 {
-  static constexpr int kVectors = kFitValues / 4, kRest = kFitValues % 4;
+  static constexpr int kVectors = Set::kValues / 4, kRest = Set::kValues % 4;
   Double4 f[kVectors], g[kVectors];
   double fRest[kRest > 0 ? kRest : 1], gRest[kRest > 0 ? kRest : 1];
 };
 
-GLS_FORCE_INLINE LoadedSample loadSample(const CellSample& s)
+template <typename Set>
+GLS_FORCE_INLINE LoadedSampleT<Set> loadSample(const CellSampleT<Set>& s)
 {
+  using LoadedSample = LoadedSampleT<Set>;
   LoadedSample l;
   for (int v = 0; v < LoadedSample::kVectors; ++v)
   {
@@ -50,13 +54,16 @@ GLS_FORCE_INLINE LoadedSample loadSample(const CellSample& s)
 }
 
 /// A cell's share of one shell (addCellShare in CellMoments.h, the same products and sums element by element).
-GLS_FORCE_INLINE void addPackedCellShare(AggregateMoments& a, const LoadedSample& f, const ShellShare& share)
+template <typename Set>
+GLS_FORCE_INLINE void addPackedCellShare(
+  AggregateMomentsT<Set>& a, const LoadedSampleT<Set>& f, const ShellShare& share)
 {
+  using LoadedSample = LoadedSampleT<Set>;
   double* m = a.m;
   for (int j = 0; j < 3; ++j)
   {
     const double mj = share.m[j], cj = share.c[j];
-    double* row = m + j * kFitValues;
+    double* row = m + j * Set::kValues;
     for (int v = 0; v < LoadedSample::kVectors; ++v)
     {
       store4(row + 4 * v, load4(row + 4 * v) + (mj * f.f[v] + cj * f.g[v]));
@@ -69,7 +76,8 @@ GLS_FORCE_INLINE void addPackedCellShare(AggregateMoments& a, const LoadedSample
 }
 #endif
 
-GLS_FORCE_INLINE void addPackedCellShare(AggregateMoments& a, const CellSample& s, const ShellShare& share)
+template <typename Set>
+GLS_FORCE_INLINE void addPackedCellShare(AggregateMomentsT<Set>& a, const CellSampleT<Set>& s, const ShellShare& share)
 {
 #if GLS_KERNEL_VECTORS
   addPackedCellShare(a, loadSample(s), share);

@@ -28,7 +28,7 @@ struct WalkTarget
 /// `opened` of s.opened, returned); part 1 also records where part 0 takes over (s.nearSeeds). The writes only
 /// advance indices: no branch per cell.
 GLS_FORCE_INLINE std::size_t classifyLevel(
-  const WalkTarget& w, int level, std::size_t takenBefore, std::size_t& taken, MultiresolutionScratch& s)
+  const WalkTarget& w, int level, std::size_t takenBefore, std::size_t& taken, MultiresolutionWalkScratch& s)
 {
   const bool recordSeeds = w.part == 1;
   const double edge = w.v.levelSize[level];
@@ -75,7 +75,7 @@ GLS_FORCE_INLINE std::size_t classifyLevel(
 /// The near cells taken whole at this level (s.taken[takenBefore, taken)) that hold too few points for a sample are
 /// read point by point instead (readPointByPoint; s.read); the others stay, with their level.
 GLS_FORCE_INLINE void readSmallNearCells(
-  const MultiresolutionView& v, int level, std::size_t takenBefore, std::size_t taken, MultiresolutionScratch& s)
+  const MultiresolutionView& v, int level, std::size_t takenBefore, std::size_t taken, MultiresolutionWalkScratch& s)
 {
   std::size_t kept = takenBefore;
   for (std::size_t i = takenBefore; i < taken; ++i)
@@ -99,7 +99,7 @@ GLS_FORCE_INLINE void readSmallNearCells(
 }
 
 /// The children of the `opened` cells opened at a level above 0: the next level's frontier.
-GLS_FORCE_INLINE void openCells(const MultiresolutionView& v, std::size_t opened, MultiresolutionScratch& s)
+GLS_FORCE_INLINE void openCells(const MultiresolutionView& v, std::size_t opened, MultiresolutionWalkScratch& s)
 {
   s.next.clear();
   for (std::size_t i = 0; i < opened; ++i)
@@ -125,7 +125,7 @@ GLS_FORCE_INLINE void openCells(const MultiresolutionView& v, std::size_t opened
 /// of the top cells, each joining the frontier at its level (the cells above them are far cells opened, or
 /// linearized, by F_0's rule for every point of F_0).
 GLS_FORCE_INLINE void walk(const MultiresolutionView& v, const WalkRegion& region, const FarRule& far, int part,
-  bool seeded, double r, double smallest, MultiresolutionScratch& s)
+  bool seeded, double r, double smallest, MultiresolutionWalkScratch& s)
 {
   s.taken.clear();
   s.takenLevel.clear();
