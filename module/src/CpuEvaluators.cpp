@@ -23,36 +23,6 @@ constexpr std::size_t kMultiresolutionChunk = 4096;
 /// The fewest chunks per thread that a multi-resolution run's larger chunks leave (the load's balance at the end).
 constexpr std::size_t kChunksPerThread = 8;
 
-/// Feeds the sink with every point of the run in parallel: evaluateAt(p, thread, samples) at a finite position,
-/// invalid samples at another. A run in the engine's own order reads its positions from the sorted copy in that
-/// order (through a copy in input order, each point cost a cache miss: 2% of a 10M-point run).
-template <typename EvaluateAt>
-bool feedEachPoint(const RunPoints& points, std::size_t S, ScaleSampleSink& sink, const ParallelOptions& cpu,
-  const EvaluateAt& evaluateAt)
-{
-  std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(resolveThreadCount(cpu.threads)));
-  return parallelFor(points.count, cpu, [&](std::size_t begin, std::size_t end, int thread) {
-    std::vector<ScaleSample>& out = samples[static_cast<std::size_t>(thread)];
-    out.resize(S);
-    for (std::size_t k = begin; k < end; ++k)
-    {
-      const Vec3& p = points.positionAt(k);
-      if (!(isFinite(p.x) && isFinite(p.y) && isFinite(p.z)))
-      {
-        for (std::size_t s = 0; s < S; ++s)
-        {
-          out[s] = invalidSample<double>(0.0);
-        }
-      }
-      else
-      {
-        evaluateAt(p, thread, out.data());
-      }
-      sink.consume(points.order[k], out.data(), thread);
-    }
-  });
-}
-
 /// What the exact evaluators read: the grid and the basis.
 class GridEvaluator : public CpuSampleEvaluator
 {
