@@ -91,7 +91,7 @@ struct HeightSpreadMoments
   }
 
   /// The sphere's fit of its own values, and the spread from sum w z (the sphere's kPositionZ) and sum w z^2.
-  GLS_INLINE static Sample fit(const double* v, const double* dv, double neighbors, double minNeighbors)
+  GLS_INLINE static Sample fit(const double* v, const double* dv, double t, double neighbors, double minNeighbors)
   {
     double sphere[Sphere::kValues], sphereDerivative[Sphere::kValues];
     for (int j = 0; j < kHeightSquared; ++j)
@@ -102,7 +102,7 @@ struct HeightSpreadMoments
     sphere[Sphere::kValues - 1] = v[kValues - 1];
     sphereDerivative[Sphere::kValues - 1] = dv[kValues - 1];
     Sample s;
-    s.sphere = Sphere::fit(sphere, sphereDerivative, neighbors, minNeighbors);
+    s.sphere = Sphere::fit(sphere, sphereDerivative, t, neighbors, minNeighbors);
     const double W = v[gls::kOne];
     const double mean = v[gls::kPositionZ] / W;
     s.heightSpread =

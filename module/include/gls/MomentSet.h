@@ -2,7 +2,7 @@
 // needs to sum them, and the fit of one scale from those sums (docs/architecture.md, "How to add a fit"). Host/device.
 // OrientedSphereMoments is the one the filters run. A set is a type with:
 // - kValues, its values (the last one always |x|^2, which the one pass keeps as the moments of d^2), pointValues (a
-//   point's values), Sample and fit (the fit of one scale from the values weighted by w and by dw/dt): all the exact
+//   point's values), Sample and fit (the fit of scale t from the values weighted by w and by dw/dt): all the exact
 //   evaluation needs. Its kernels take the set as a template parameter and derive their bins, vector adds and fits
 //   from it (MomentBins.h, PointScaleSpace.h, src/OnePassKernelBody.h); Testing/Core/TestFitWithAnExtraSum.cpp runs a
 //   test-only set with one more value through them.
@@ -223,8 +223,9 @@ struct OrientedSphereMoments
     H[kSquaredPosition] = 2.0 * dot(x, Ca) + dot(a, cell.offsetSquaredOffset);
   }
 
-  /// The fit of one scale from the values weighted by w (v) and by dw/dt (dv), over `neighbors` points.
-  GLS_INLINE static Sample fit(const double* v, const double* dv, double neighbors, double minNeighbors)
+  /// The fit of scale t from the values weighted by w (v) and by dw/dt (dv), over `neighbors` points (the sphere's
+  /// needs no t: a fit that weighs its values otherwise, such as a spatial derivative's, does).
+  GLS_INLINE static Sample fit(const double* v, const double* dv, double, double neighbors, double minNeighbors)
   {
     WeightedSums s, ds;
     toWeightedSums(v, dv, s, ds);

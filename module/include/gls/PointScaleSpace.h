@@ -83,7 +83,7 @@ GLS_INLINE SampleOf<Layout> fitBall(const Layout& ball, double t, double minNeig
   using S = typename Layout::Set;
   double v[S::kValues], dv[S::kValues];
   weightedValues(ball, t, v, dv);
-  return S::fit(v, dv, neighborCount(ball), minNeighbors);
+  return S::fit(v, dv, t, neighborCount(ball), minNeighbors);
 }
 
 /// One step of the running sum over the bins: ball += bin, the ball of scale t, and its fit.

@@ -45,4 +45,10 @@ GLS_INLINE T squaredNorm(const Vec3T<T>& a)
   return dot(a, a);
 }
 
+template <typename T>
+GLS_INLINE Vec3T<T> cross(const Vec3T<T>& a, const Vec3T<T>& b)
+{
+  return { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
+}
+
 } // namespace gls

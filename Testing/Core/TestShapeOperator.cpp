@@ -1,0 +1,434 @@
+// Principal curvatures and directions at every scale (ShapeOperator.h), against three oracles: analytic surfaces with
+// exact normals (their curvatures from the fundamental forms of the parametrization), central differences of the
+// fitted normal eta over positions, and kappa on a sphere. Run through the host/device loop, its windowed form (the
+// CUDA kernel's loop) and the CPU kernel's two builds.
+#include "TestBinning.h"
+#include "TestClouds.h"
+
+#include "OnePassKernelBody.h" // the CPU kernels for any moment set (private to the core)
+
+#include "gls/NeighborGrid.h"
+#include "gls/PointScaleSpace.h"
+#include "gls/ShapeOperator.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace glstest;
+
+namespace
+{
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// A parametric surface X(u, v) with its outward unit normal (the orientation the curvatures' signs refer to).
+struct Surface
+{
+  std::string name;
+  std::function<gls::Vec3(double, double)> X;
+  std::function<gls::Vec3(double, double)> normal;
+};
+
+gls::Vec3 unit(const gls::Vec3& v)
+{
+  return (1.0 / std::sqrt(gls::squaredNorm(v))) * v;
+}
+
+/// The true principal curvatures and directions at (u, v): the eigenvalues of -I^{-1} II (positive on a sphere with
+/// outward normals), from the parametrization's derivatives by central differences (step 1e-4: errors near 1e-8).
+gls::PrincipalCurvatures truth(const Surface& s, double u, double v)
+{
+  const double h = 1e-4;
+  const gls::Vec3 Xu = (0.5 / h) * (s.X(u + h, v) - s.X(u - h, v));
+  const gls::Vec3 Xv = (0.5 / h) * (s.X(u, v + h) - s.X(u, v - h));
+  const gls::Vec3 X0 = s.X(u, v);
+  const gls::Vec3 Xuu = (1.0 / (h * h)) * (s.X(u + h, v) - 2.0 * X0 + s.X(u - h, v));
+  const gls::Vec3 Xvv = (1.0 / (h * h)) * (s.X(u, v + h) - 2.0 * X0 + s.X(u, v - h));
+  const gls::Vec3 Xuv =
+    (0.25 / (h * h)) * (s.X(u + h, v + h) - s.X(u + h, v - h) - s.X(u - h, v + h) + s.X(u - h, v - h));
+  const gls::Vec3 n = s.normal(u, v);
+  const double E = gls::dot(Xu, Xu), F = gls::dot(Xu, Xv), G = gls::dot(Xv, Xv);
+  const double L = gls::dot(Xuu, n), M = gls::dot(Xuv, n), N = gls::dot(Xvv, n);
+  // A = -I^{-1} II.
+  const double det = E * G - F * F;
+  const double a00 = -(G * L - F * M) / det, a01 = -(G * M - F * N) / det;
+  const double a10 = -(E * M - F * L) / det, a11 = -(E * N - F * M) / det;
+  const double mean = 0.5 * (a00 + a11), disc = std::sqrt(std::max(0.0, 0.25 * (a00 - a11) * (a00 - a11) + a01 * a10));
+  gls::PrincipalCurvatures pc;
+  pc.k1 = mean + disc;
+  pc.k2 = mean - disc;
+  // The eigenvector of k1 in (u, v), the longer of two forms.
+  const double p1 = a01, q1 = pc.k1 - a00, p2 = pc.k1 - a11, q2 = a10;
+  const bool first = p1 * p1 + q1 * q1 >= p2 * p2 + q2 * q2;
+  pc.d1 = unit(first ? p1 * Xu + q1 * Xv : p2 * Xu + q2 * Xv);
+  pc.d2 = gls::cross(n, pc.d1);
+  return pc;
+}
+
+/// Points of the surface around (u0, v0) with exact normals, as a scanner samples it: one point jittered within each
+/// cell of a grid over the parameter box [u0 - du, u0 + du] x [v0 - dv, v0 + dv], the grid's cells of about
+/// 1 / `density` area on the surface at (u0, v0), with their parameters.
+struct Patch
+{
+  Cloud cloud;
+  std::vector<double> u, v;
+};
+
+Patch samplePatch(const Surface& s, double u0, double v0, double du, double dv, double density, unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> jitter(0.0, 1.0);
+  const double h = 1e-6;
+  const double lu = std::sqrt(gls::squaredNorm((0.5 / h) * (s.X(u0 + h, v0) - s.X(u0 - h, v0))));
+  const double lv = std::sqrt(gls::squaredNorm((0.5 / h) * (s.X(u0, v0 + h) - s.X(u0, v0 - h))));
+  const double spacing = 1.0 / std::sqrt(density); // on the surface
+  const int nu = static_cast<int>(std::ceil(2.0 * du * lu / spacing));
+  const int nv = static_cast<int>(std::ceil(2.0 * dv * lv / spacing));
+  Patch p;
+  for (int i = 0; i < nu; ++i)
+  {
+    for (int j = 0; j < nv; ++j)
+    {
+      const double u = u0 - du + 2.0 * du * (i + jitter(rng)) / nu;
+      const double v = v0 - dv + 2.0 * dv * (j + jitter(rng)) / nv;
+      const gls::Vec3 x = s.X(u, v), n = s.normal(u, v);
+      p.cloud.points.insert(p.cloud.points.end(), { x.x, x.y, x.z });
+      p.cloud.normals.insert(p.cloud.normals.end(), { n.x, n.y, n.z });
+      p.u.push_back(u);
+      p.v.push_back(v);
+    }
+  }
+  return p;
+}
+
+double angleDegrees(const gls::Vec3& a, const gls::Vec3& b)
+{
+  const double c = std::min(1.0, std::abs(gls::dot(a, b)));
+  return std::acos(c) * 180.0 / kPi;
+}
+
+Surface sphere(double R)
+{
+  return { "sphere",
+    [R](double u, double v) {
+      return gls::Vec3{ R * std::cos(u) * std::cos(v), R * std::sin(u) * std::cos(v), R * std::sin(v) };
+    },
+    [](double u, double v) { return gls::Vec3{ std::cos(u) * std::cos(v), std::sin(u) * std::cos(v), std::sin(v) }; } };
+}
+
+Surface cylinder(double r)
+{
+  return { "cylinder", [r](double u, double v) { return gls::Vec3{ r * std::cos(u), r * std::sin(u), v }; },
+    [](double u, double) { return gls::Vec3{ std::cos(u), std::sin(u), 0.0 }; } };
+}
+
+Surface torus(double R, double r)
+{
+  return { "torus",
+    [R, r](double u, double v) {
+      return gls::Vec3{ (R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v) };
+    },
+    [](double u, double v) { return gls::Vec3{ std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v) }; } };
+}
+
+Surface ellipsoid(double a, double b, double c)
+{
+  return { "ellipsoid",
+    [a, b, c](double u, double v) {
+      return gls::Vec3{ a * std::cos(v) * std::cos(u), b * std::cos(v) * std::sin(u), c * std::sin(v) };
+    },
+    [a, b, c](double u, double v) {
+      const gls::Vec3 x{ a * std::cos(v) * std::cos(u), b * std::cos(v) * std::sin(u), c * std::sin(v) };
+      return unit(gls::Vec3{ x.x / (a * a), x.y / (b * b), x.z / (c * c) });
+    } };
+}
+
+Surface saddle()
+{
+  return { "saddle", [](double u, double v) { return gls::Vec3{ u, v, 0.5 * (u * u - v * v) }; },
+    [](double u, double v) { return unit(gls::Vec3{ -u, v, 1.0 }); } };
+}
+
+/// What a shape's check measured.
+struct Accuracy
+{
+  double curvatureP99 = 0.0; ///< p99 of |k - k_true| / max |k_true|
+  double directionP99 = 0.0; ///< p99 of d1's angle to the true one, degrees, where |k1 - k2| >= 0.2 max |k|
+  long curvatures = 0, directions = 0;
+};
+
+double percentile99(std::vector<double> v)
+{
+  if (v.empty())
+  {
+    return 0.0;
+  }
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(0.99 * static_cast<double>(v.size() - 1))];
+}
+
+/// Evaluates the points of the patch within `reach` of its site (u0, v0) at the scales (fractions of the smallest
+/// radius of curvature over those points, at most 5%) with the host/device loop, and compares with the truth.
+Accuracy measure(const Surface& s, double u0, double v0, double du, double dv, const std::vector<double>& fractions,
+  double smallestRadius, unsigned seed)
+{
+  std::vector<double> scales;
+  for (double f : fractions)
+  {
+    scales.push_back(f * smallestRadius);
+  }
+  const double t = scales.back();
+  const double density = 1000.0 / (kPi * scales.front() * scales.front()); // 1000 points in the smallest ball
+  const Patch patch = samplePatch(s, u0, v0, du, dv, density, seed);
+  gls::NeighborGrid grid;
+  grid.build(patch.cloud.points.data(), patch.cloud.normals.data(), patch.cloud.size(), t / 4.0);
+  const TestBinning binning(scales);
+  const std::size_t S = scales.size();
+  std::vector<gls::MomentsT<gls::ShapeOperatorMoments>> bins(S);
+  std::vector<gls::CurvatureSample> out(S);
+  std::vector<double> curvatureErrors, directionErrors;
+  const gls::Vec3 site = s.X(u0, v0);
+  for (std::size_t i = 0; i < patch.cloud.size(); i += 7)
+  {
+    const gls::Vec3 p{ patch.cloud.points[3 * i], patch.cloud.points[3 * i + 1], patch.cloud.points[3 * i + 2] };
+    if (gls::squaredNorm(p - site) > t * t)
+    {
+      continue;
+    }
+    gls::evaluateAllScales<gls::ShapeOperatorMoments>(grid.view(), p, binning.View, 6.0, bins.data(), out.data());
+    const gls::PrincipalCurvatures want = truth(s, patch.u[i], patch.v[i]);
+    const double largest = std::max(std::abs(want.k1), std::abs(want.k2));
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      const gls::PrincipalCurvatures& got = out[k].principal;
+      EXPECT_TRUE(out[k].sphere.valid) << s.name;
+      curvatureErrors.push_back(std::max(std::abs(got.k1 - want.k1), std::abs(got.k2 - want.k2)) / largest);
+      if (want.k1 - want.k2 >= 0.2 * largest)
+      {
+        directionErrors.push_back(angleDegrees(got.d1, want.d1));
+        // The frame: unit, tangent to the fitted normal, d1 x d2 = eta.
+        EXPECT_NEAR(gls::squaredNorm(got.d1), 1.0, 1e-12);
+        EXPECT_NEAR(gls::dot(got.d1, out[k].sphere.eta), 0.0, 1e-12);
+        const gls::Vec3 e = gls::cross(got.d1, got.d2) - out[k].sphere.eta;
+        EXPECT_LT(gls::squaredNorm(e), 1e-24);
+      }
+    }
+  }
+  Accuracy a;
+  a.curvatureP99 = percentile99(curvatureErrors);
+  a.directionP99 = percentile99(directionErrors);
+  a.curvatures = static_cast<long>(curvatureErrors.size());
+  a.directions = static_cast<long>(directionErrors.size());
+  return a;
+}
+
+void expectAccurate(const Surface& s, double u0, double v0, double du, double dv, double smallestRadius,
+  bool expectDirections, unsigned seed)
+{
+  const Accuracy a = measure(s, u0, v0, du, dv, { 0.03, 0.04, 0.05 }, smallestRadius, seed);
+  std::printf("%-9s at (%.2f, %.2f): p99 |k - k_true| / max|k| = %.3g%% (%ld), p99 direction error %.3g deg (%ld)\n",
+    s.name.c_str(), u0, v0, 100.0 * a.curvatureP99, a.curvatures, a.directionP99, a.directions);
+  EXPECT_GT(a.curvatures, 30) << s.name;
+  EXPECT_LE(a.curvatureP99, 0.01) << s.name << " at " << u0 << ", " << v0;
+  if (expectDirections)
+  {
+    EXPECT_GT(a.directions, 30) << s.name;
+    EXPECT_LE(a.directionP99, 2.0) << s.name << " at " << u0 << ", " << v0;
+  }
+}
+
+} // namespace
+
+TEST(ShapeOperator, SphereCurvaturesAreKappaAndDirectionsUndefined)
+{
+  // On a sphere the fit is the sphere at any p: D u_l = 2 u_q I, so k1 = k2 = kappa = 1/R (to rounding), H = kappa,
+  // K = 1/R^2, shape index 1, curvedness 1/R, and the directions are NaN (an umbilic).
+  const double R = 0.8;
+  const Surface s = sphere(R);
+  const std::vector<double> scales{ 0.02, 0.04 };
+  const Patch patch = samplePatch(s, 0.0, 0.3, 0.15, 0.15, 400.0 / (kPi * 0.02 * 0.02), 3);
+  gls::NeighborGrid grid;
+  grid.build(patch.cloud.points.data(), patch.cloud.normals.data(), patch.cloud.size(), 0.01);
+  const TestBinning binning(scales);
+  std::vector<gls::MomentsT<gls::ShapeOperatorMoments>> bins(2);
+  std::vector<gls::CurvatureSample> out(2);
+  long checked = 0;
+  for (std::size_t i = 0; i < patch.cloud.size(); i += 53)
+  {
+    const gls::Vec3 p{ patch.cloud.points[3 * i], patch.cloud.points[3 * i + 1], patch.cloud.points[3 * i + 2] };
+    if (gls::squaredNorm(p - s.X(0.0, 0.3)) > 0.05 * 0.05)
+    {
+      continue;
+    }
+    gls::evaluateAllScales<gls::ShapeOperatorMoments>(grid.view(), p, binning.View, 6.0, bins.data(), out.data());
+    for (const gls::CurvatureSample& c : out)
+    {
+      ASSERT_TRUE(c.sphere.valid);
+      EXPECT_NEAR(c.sphere.kappa, 1.0 / R, 1e-9);
+      EXPECT_NEAR(c.principal.k1, c.sphere.kappa, 1e-9 * c.sphere.kappa);
+      EXPECT_NEAR(c.principal.k2, c.sphere.kappa, 1e-9 * c.sphere.kappa);
+      EXPECT_NEAR(gls::meanCurvature(c.principal), c.sphere.kappa, 1e-9 * c.sphere.kappa);
+      EXPECT_NEAR(gls::gaussianCurvature(c.principal), 1.0 / (R * R), 1e-8 / (R * R));
+      EXPECT_NEAR(gls::shapeIndex(c.principal, 0.02), 1.0, 1e-9);
+      EXPECT_NEAR(gls::curvedness(c.principal), 1.0 / R, 1e-9 / R);
+      EXPECT_TRUE(std::isnan(c.principal.d1.x) && std::isnan(c.principal.d2.z));
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20);
+}
+
+TEST(ShapeOperator, AnalyticSurfacesWithinOnePercentAndTwoDegrees)
+{
+  // Scales 2%, 3.5% and 5% of the smallest radius of curvature of the evaluated region; 400 points in the smallest
+  // ball. The bounds: p99 of |k - k_true| / max|k_true| <= 1%, directions p99 <= 2 degrees where
+  // |k1 - k2| >= 0.2 max |k|.
+  expectAccurate(sphere(1.0), 0.3, 0.4, 0.12, 0.12, 1.0, false, 11);
+  expectAccurate(cylinder(0.5), 0.0, 0.0, 0.12, 0.06, 0.5, true, 12);
+  const double R = 1.0, r = 0.4;
+  // Outer equator (k = 1/r, 1/(R + r)), top (1/r, 0), inner equator (1/r, -1/(R - r)) and between.
+  expectAccurate(torus(R, r), 0.0, 0.0, 0.05, 0.12, r, true, 13);
+  expectAccurate(torus(R, r), 0.5, 0.5 * kPi, 0.05, 0.12, r, true, 14);
+  expectAccurate(torus(R, r), 1.0, kPi, 0.08, 0.12, r, true, 15);
+  expectAccurate(torus(R, r), 2.0, 2.2, 0.08, 0.12, r, true, 16);
+  // Ellipsoid (1, 0.7, 0.5): smallest radius of curvature c^2 / a = 0.25 (at (a, 0, 0)).
+  expectAccurate(ellipsoid(1.0, 0.7, 0.5), 0.0, 0.0, 0.06, 0.12, 0.25, true, 17);
+  expectAccurate(ellipsoid(1.0, 0.7, 0.5), 0.9, 0.5, 0.06, 0.06, 0.25, true, 18);
+  expectAccurate(ellipsoid(1.0, 0.7, 0.5), 2.5, 1.1, 0.12, 0.06, 0.25, true, 19);
+  // The saddle z = (x^2 - y^2) / 2 at its centre: k = 1 (along y) and -1 (along x).
+  expectAccurate(saddle(), 0.0, 0.0, 0.1, 0.1, 1.0, true, 20);
+}
+
+TEST(ShapeOperator, IsTheDerivativeOfTheFittedNormalOverPositions)
+{
+  // Central differences of the oriented sphere's eta over the evaluation point (step 1e-5 t), scaled as the shape
+  // operator is (by |u_l| / sqrt(phi) = sqrt(1 + 2 tau kappa): the curvature of the fitted surface, not of the level
+  // set through p), in the same tangent basis and symmetrized: the same k1 and k2, on a noisy cloud.
+  const Cloud c = paraboloid(90, 1.0, 0.9, -0.4, 0.01, 0.05, 7);
+  const std::vector<double> scales{ 0.15, 0.3 };
+  gls::NeighborGrid grid;
+  grid.build(c.points.data(), c.normals.data(), c.size(), 0.075);
+  const TestBinning binning(scales);
+  std::vector<gls::MomentsT<gls::ShapeOperatorMoments>> bins(2);
+  std::vector<gls::Moments> sphereBins(2);
+  std::vector<gls::CurvatureSample> out(2);
+  std::vector<gls::ScaleSample> plus(2), minus(2);
+  double worst = 0.0;
+  long checked = 0;
+  for (std::size_t i = 0; i < c.size(); i += 97)
+  {
+    const gls::Vec3 p{ c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] };
+    if (std::abs(p.x) > 0.6 || std::abs(p.y) > 0.6)
+    {
+      continue;
+    }
+    gls::evaluateAllScales<gls::ShapeOperatorMoments>(grid.view(), p, binning.View, 6.0, bins.data(), out.data());
+    for (std::size_t k = 0; k < scales.size(); ++k)
+    {
+      const double t = scales[k], h = 1e-5 * t;
+      gls::Vec3 column[3];
+      for (int j = 0; j < 3; ++j)
+      {
+        const gls::Vec3 e{ j == 0 ? h : 0.0, j == 1 ? h : 0.0, j == 2 ? h : 0.0 };
+        gls::evaluateAllScales(grid.view(), p + e, binning.View, 6.0, sphereBins.data(), plus.data());
+        gls::evaluateAllScales(grid.view(), p - e, binning.View, 6.0, sphereBins.data(), minus.data());
+        column[j] = (0.5 / h) * (plus[k].eta - minus[k].eta);
+      }
+      const gls::ScaleSample& s = out[k].sphere;
+      ASSERT_TRUE(s.valid);
+      const double scale = std::sqrt(1.0 + 2.0 * s.tau * s.kappa);
+      const gls::Vec3 b1 = gls::orthogonalUnit(s.eta), b2 = gls::cross(s.eta, b1);
+      const gls::Vec3 Sb1 = b1.x * column[0] + b1.y * column[1] + b1.z * column[2];
+      const gls::Vec3 Sb2 = b2.x * column[0] + b2.y * column[1] + b2.z * column[2];
+      const double a = scale * gls::dot(b1, Sb1), d = scale * gls::dot(b2, Sb2);
+      const double b = 0.5 * scale * (gls::dot(b1, Sb2) + gls::dot(b2, Sb1));
+      const gls::PrincipalCurvatures fd = gls::principalOf(a, b, d, b1, b2, s.eta, t);
+      const gls::PrincipalCurvatures& got = out[k].principal;
+      const double tolerance = 1e-6 * std::max({ std::abs(fd.k1), std::abs(fd.k2), 1.0 / t });
+      EXPECT_NEAR(got.k1, fd.k1, tolerance) << "point " << i << " scale " << t;
+      EXPECT_NEAR(got.k2, fd.k2, tolerance) << "point " << i << " scale " << t;
+      EXPECT_LT(angleDegrees(got.d1, fd.d1), 1e-3);
+      worst = std::max({ worst, std::abs(got.k1 - fd.k1) * t, std::abs(got.k2 - fd.k2) * t });
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 40);
+  std::printf("shape operator against central differences of eta: largest difference %.3g / t\n", worst);
+}
+
+TEST(ShapeOperator, PlaneIsFlatWithUndefinedDirectionsAndShapeIndex)
+{
+  const Cloud c = paraboloid(60, 1.0, 0.0, 0.0, 0.0, 0.0, 3);
+  const std::vector<double> scales{ 0.2, 0.4 };
+  gls::NeighborGrid grid;
+  grid.build(c.points.data(), c.normals.data(), c.size(), 0.1);
+  const TestBinning binning(scales);
+  std::vector<gls::MomentsT<gls::ShapeOperatorMoments>> bins(2);
+  std::vector<gls::CurvatureSample> out(2);
+  for (std::size_t i = 0; i < c.size(); i += 131)
+  {
+    const gls::Vec3 p{ c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] };
+    gls::evaluateAllScales<gls::ShapeOperatorMoments>(grid.view(), p, binning.View, 6.0, bins.data(), out.data());
+    for (std::size_t k = 0; k < scales.size(); ++k)
+    {
+      ASSERT_TRUE(out[k].sphere.valid);
+      EXPECT_LT(std::abs(out[k].principal.k1) * scales[k], 1e-9);
+      EXPECT_LT(std::abs(out[k].principal.k2) * scales[k], 1e-9);
+      EXPECT_TRUE(std::isnan(out[k].principal.d1.x));
+      EXPECT_TRUE(std::isnan(gls::shapeIndex(out[k].principal, scales[k])));
+    }
+  }
+}
+
+TEST(ShapeOperator, EveryKernelGivesTheSameCurvatures)
+{
+  // The windowed form (the CUDA kernel's loop) bit for bit the loop's; the CPU kernel's builds to rounding (the same
+  // sums grouped otherwise).
+  const Cloud c = paraboloid(70, 1.0, 0.8, 0.3, 0.005, 0.02, 5);
+  const std::vector<double> scales{ 0.08, 0.12, 0.2, 0.3, 0.45 };
+  gls::NeighborGrid grid;
+  grid.build(c.points.data(), c.normals.data(), c.size(), 0.1);
+  const TestBinning binning(scales);
+  const std::size_t S = scales.size();
+  std::vector<gls::MomentsT<gls::ShapeOperatorMoments>> bins(S);
+  std::vector<gls::CurvatureSample> loop(S), windows(S), portable(S), fastest(S);
+  double worst = 0.0;
+  long checked = 0;
+  for (std::size_t i = 0; i < c.size(); i += 41)
+  {
+    const gls::Vec3 p{ c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] };
+    gls::evaluateAllScales<gls::ShapeOperatorMoments>(grid.view(), p, binning.View, 6.0, bins.data(), loop.data());
+    gls::evaluateAllScalesByWindows<4, gls::ShapeOperatorMoments>(grid.view(), p, binning.View, 6.0, windows.data());
+    gls::onepass::evaluateAllScalesOnCpuFor<gls::ShapeOperatorMoments>(
+      grid.view(), p, binning.View, 6.0, bins.data(), portable.data(), gls::CpuKernelBuild::Portable);
+    gls::onepass::evaluateAllScalesOnCpuFor<gls::ShapeOperatorMoments>(
+      grid.view(), p, binning.View, 6.0, bins.data(), fastest.data(), gls::CpuKernelBuild::Fastest);
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      const gls::PrincipalCurvatures& a = loop[k].principal;
+      EXPECT_EQ(std::memcmp(&a, &windows[k].principal, sizeof a), 0) << "point " << i << " scale " << k;
+      if (!loop[k].sphere.valid)
+      {
+        EXPECT_TRUE(std::isnan(portable[k].principal.k1) && std::isnan(fastest[k].principal.k1));
+        continue;
+      }
+      for (const gls::CurvatureSample* other : { &portable[k], &fastest[k] })
+      {
+        worst = std::max({ worst, std::abs(other->principal.k1 - a.k1) * scales[k],
+          std::abs(other->principal.k2 - a.k2) * scales[k] });
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 200);
+  EXPECT_LT(worst, 1e-9);
+  std::printf("CPU kernel against the loop: largest k t difference %.3g\n", worst);
+}

@@ -1,0 +1,276 @@
+// Principal curvatures and directions at every scale: the shape operator of the oriented sphere fit, how its normal
+// field turns as the evaluation point moves (docs/math.md, "Principal curvatures"; after Lejemble, Coeurjolly,
+// Barthe and Mellado, "Stable and efficient differential estimators on oriented point clouds", SGP 2021, whose
+// algebraic shape operator this is, at every scale of one pass). Host/device.
+//
+// The fit at p weighs its neighbours by w(|q_i - p|^2 / t^2); moving p by e changes each weight by omega_i (x_i . e),
+// omega = (4/t^2)(1 - d^2/t^2), and each local position x_i by -e. So the spatial derivatives of the sphere's sums
+// need, besides them, the omega-weighted sums of x, x x^T, n x^T, (x . n) x and |x|^2 x: ShapeOperatorMoments
+// declares those values (MomentSet.h) and its fit forms them as (4/t^2) v + dv / t from the w- and dw/dt-weighted
+// sums every kernel already gives, so that the one pass, its windowed form and the CPU kernel run it unchanged.
+#pragma once
+
+#include "gls/MomentSet.h"
+#include "gls/Numeric.h"
+#include "gls/ScaleSample.h"
+#include "gls/SphereFit.h"
+#include "gls/WeightedSums.h"
+
+namespace gls
+{
+
+/// The values of ShapeOperatorMoments after the oriented sphere's eight (kOne .. kPositionDotNormal, FitValue), in
+/// this order, then |x|^2 last.
+enum ShapeOperatorValue : int
+{
+  kOffsetOffset = kSquaredPosition,                  ///< x x^T as xx, xy, xz, yy, yz, zz (length^2): 6 values
+  kNormalOffset = kOffsetOffset + 6,                 ///< n x^T, [3 a + b] = n_a x_b (length): 9 values
+  kOffsetDotNormalOffset = kNormalOffset + 9,        ///< (x . n) x (length^2): 3 values
+  kSquaredOffsetOffset = kOffsetDotNormalOffset + 3, ///< |x|^2 x (length^3): 3 values
+  kShapeOperatorSquaredPosition = kSquaredOffsetOffset + 3, ///< |x|^2, last as in every set
+  kShapeOperatorValues                               ///< how many (30)
+};
+
+/// Directions are NaN where the principal curvatures differ by at most this much times 1/t (an umbilic at the
+/// scale of the fit: a sphere, a plane, or a point where the two curvatures cross).
+constexpr double kUmbilicTolerance = 1e-6;
+
+/// The principal curvatures k1 >= k2 (1/length; > 0 on a sphere with outward normals, like kappa) and their unit
+/// tangent directions d1, d2 (d1 x d2 = eta; d1's largest component is positive). All NaN where the fit is undefined
+/// or degenerate; d1, d2 NaN at an umbilic (k1 - k2 <= kUmbilicTolerance / t).
+struct PrincipalCurvatures
+{
+  double k1, k2;
+  Vec3 d1, d2;
+};
+
+/// The sample of ShapeOperatorMoments' fit at one scale: the oriented sphere's, and the principal curvatures.
+struct CurvatureSample
+{
+  ScaleSample sphere;
+  PrincipalCurvatures principal;
+};
+
+/// The omega-weighted sums (omega = (4/t^2)(1 - d^2/t^2) in the ball) a move of the evaluation point needs: moving p
+/// by e changes sum w f by sum omega (x . e) f, plus the sums' own change with x (-e).
+struct SpatialSums
+{
+  Vec3 X;                ///< sum omega x (length / length^2)
+  double XX[6];          ///< sum omega x x^T as xx, xy, xz, yy, yz, zz
+  double NX[9];          ///< sum omega n x^T, [3 a + b] = n_a x_b
+  Vec3 XdotNX;           ///< sum omega (x . n) x
+  Vec3 SquaredX;         ///< sum omega |x|^2 x
+};
+
+/// Column j of the symmetric matrix stored as xx, xy, xz, yy, yz, zz.
+GLS_INLINE Vec3 symmetricColumn(const double* m, int j)
+{
+  return j == 0 ? Vec3{ m[0], m[1], m[2] } : (j == 1 ? Vec3{ m[1], m[3], m[4] } : Vec3{ m[2], m[4], m[5] });
+}
+
+GLS_INLINE PrincipalCurvatures undefinedCurvatures()
+{
+  const double nan = quietNaN<double>();
+  return { nan, nan, { nan, nan, nan }, { nan, nan, nan } };
+}
+
+/// A unit vector orthogonal to the unit vector n: the axis least aligned with n, less its part along n.
+GLS_INLINE Vec3 orthogonalUnit(const Vec3& n)
+{
+  const double ax = absolute(n.x), ay = absolute(n.y), az = absolute(n.z);
+  const Vec3 axis =
+    ax <= ay && ax <= az ? Vec3{ 1.0, 0.0, 0.0 } : (ay <= az ? Vec3{ 0.0, 1.0, 0.0 } : Vec3{ 0.0, 0.0, 1.0 });
+  const Vec3 v = axis - dot(axis, n) * n;
+  return (1.0 / squareRoot(squaredNorm(v))) * v;
+}
+
+/// The principal curvatures of the symmetric 2x2 shape operator [[a, b], [b, c]] in the tangent basis (b1, b2) of
+/// eta, at scale t: its eigenvalues k1 >= k2 and eigenvectors.
+GLS_INLINE PrincipalCurvatures principalOf(double a, double b, double c, const Vec3& b1, const Vec3& b2,
+  const Vec3& eta, double t)
+{
+  const double mean = 0.5 * (a + c), half = 0.5 * (a - c);
+  const double r = squareRoot(half * half + b * b);
+  PrincipalCurvatures pc;
+  pc.k1 = mean + r;
+  pc.k2 = mean - r;
+  const double nan = quietNaN<double>();
+  if (!(pc.k1 - pc.k2 > kUmbilicTolerance / t))
+  {
+    pc.d1 = pc.d2 = { nan, nan, nan };
+    return pc;
+  }
+  // (b, k1 - a) and (k1 - c, b) are both eigenvectors of k1 where non-zero: the longer, for its precision.
+  const double u1 = b, v1 = pc.k1 - a, u2 = pc.k1 - c, v2 = b;
+  const bool first = u1 * u1 + v1 * v1 >= u2 * u2 + v2 * v2;
+  const Vec3 d = first ? u1 * b1 + v1 * b2 : u2 * b1 + v2 * b2;
+  Vec3 d1 = (1.0 / squareRoot(squaredNorm(d))) * d;
+  const double ax = absolute(d1.x), ay = absolute(d1.y), az = absolute(d1.z);
+  const double largest = ax >= ay && ax >= az ? d1.x : (ay >= az ? d1.y : d1.z);
+  if (largest < 0.0)
+  {
+    d1 = -1.0 * d1;
+  }
+  pc.d1 = d1;
+  pc.d2 = cross(eta, d1);
+  return pc;
+}
+
+/// The principal curvatures of the oriented sphere fitted to the sums s (w-weighted, about p) at scale t, from the
+/// spatial sums g: the tangent part of D eta = (I - eta eta^T) D u_l / sqrt(phi) (D: the derivative with respect to
+/// p; u_l and phi as in fitOrientedSphere, whose sample `sphere` is the fit of s), symmetrized. On a sphere D u_l =
+/// 2 u_q I, so k1 = k2 = kappa. Undefined (NaN) where the sphere is, and where its spread term vanishes (its points
+/// at one place: no curvature).
+GLS_INLINE PrincipalCurvatures principalCurvaturesOf(
+  const WeightedSums& s, const SpatialSums& g, const ScaleSample& sphere, double t)
+{
+  const double invW = 1.0 / s.W;
+  const double PdotN = dot(s.P, s.N), PdotP = dot(s.P, s.P);
+  const double nume = s.PN - PdotN * invW, deno = s.PP - PdotP * invW;
+  const double spreadScale = s.PP > PdotP * invW ? s.PP : PdotP * invW;
+  if (!sphere.valid || !(absolute(deno) > kDegenerateSpreadEpsilon * spreadScale))
+  {
+    return undefinedCurvatures();
+  }
+  const double halfInvDeno = 1.0 / (2.0 * deno), invW2 = invW * invW;
+  const double uq = nume * halfInvDeno;
+  const Vec3 ul = invW * (s.N - (2.0 * uq) * s.P);
+  // Column j of the shape operator: the derivative of eta along the axis e_j, times sqrt(phi).
+  Vec3 column[3];
+  for (int j = 0; j < 3; ++j)
+  {
+    const Vec3 e{ j == 0 ? 1.0 : 0.0, j == 1 ? 1.0 : 0.0, j == 2 ? 1.0 : 0.0 };
+    const double dW = dot(g.X, e);
+    const Vec3 dP = symmetricColumn(g.XX, j) - s.W * e;
+    const Vec3 dN{ g.NX[j], g.NX[3 + j], g.NX[6 + j] };
+    const double dPN = dot(g.XdotNX, e) - dot(s.N, e);
+    const double dPP = dot(g.SquaredX, e) - 2.0 * dot(s.P, e);
+    const double dnume = dPN - (dot(dP, s.N) + dot(s.P, dN)) * invW + PdotN * dW * invW2;
+    const double ddeno = dPP - 2.0 * dot(s.P, dP) * invW + PdotP * dW * invW2;
+    const double duq = (dnume - 2.0 * uq * ddeno) * halfInvDeno;
+    const Vec3 dul = invW * (dN - (2.0 * duq) * s.P - (2.0 * uq) * dP - dW * ul);
+    column[j] = dul - dot(sphere.eta, dul) * sphere.eta;
+  }
+  const double invSqrtPhi = 1.0 / squareRoot(sphere.phi);
+  const Vec3& eta = sphere.eta;
+  const Vec3 b1 = orthogonalUnit(eta), b2 = cross(eta, b1);
+  // S b = sum_j b_j column[j]; the 2x2 form in (b1, b2), symmetrized.
+  const Vec3 Sb1 = b1.x * column[0] + b1.y * column[1] + b1.z * column[2];
+  const Vec3 Sb2 = b2.x * column[0] + b2.y * column[1] + b2.z * column[2];
+  const double a = dot(b1, Sb1) * invSqrtPhi, c = dot(b2, Sb2) * invSqrtPhi;
+  const double b = 0.5 * (dot(b1, Sb2) + dot(b2, Sb1)) * invSqrtPhi;
+  PrincipalCurvatures pc = principalOf(a, b, c, b1, b2, eta, t);
+  if (!(isFinite(pc.k1) && isFinite(pc.k2)))
+  {
+    return undefinedCurvatures();
+  }
+  return pc;
+}
+
+/// The oriented sphere's moment set with the values its shape operator needs (ShapeOperatorValue): the exact
+/// evaluation's kernels run it as they run the sphere's (it has no cell rules yet: the multi-resolution evaluation
+/// does not take it).
+struct ShapeOperatorMoments
+{
+  using Sphere = OrientedSphereMoments;
+  static constexpr int kValues = kShapeOperatorValues;
+  using Sample = CurvatureSample;
+
+  GLS_INLINE static void pointValues(const Vec3& x, double d2, const Vec3& n, double* f)
+  {
+    Sphere::pointValues(x, d2, n, f); // its |x|^2 (at kSquaredPosition) is overwritten below, and set last
+    const double xv[3] = { x.x, x.y, x.z }, nv[3] = { n.x, n.y, n.z };
+    const double xx[6] = { x.x * x.x, x.x * x.y, x.x * x.z, x.y * x.y, x.y * x.z, x.z * x.z };
+    for (int k = 0; k < 6; ++k)
+    {
+      f[kOffsetOffset + k] = xx[k];
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        f[kNormalOffset + 3 * a + b] = nv[a] * xv[b];
+      }
+    }
+    const double xn = f[kPositionDotNormal];
+    for (int a = 0; a < 3; ++a)
+    {
+      f[kOffsetDotNormalOffset + a] = xn * xv[a];
+      f[kSquaredOffsetOffset + a] = d2 * xv[a];
+    }
+    f[kShapeOperatorSquaredPosition] = d2;
+  }
+
+  /// The sphere's fit, and the principal curvatures from the omega-weighted values (4/t^2) v + dv / t.
+  GLS_INLINE static Sample fit(const double* v, const double* dv, double t, double neighbors, double minNeighbors)
+  {
+    double sv[Sphere::kValues], sdv[Sphere::kValues];
+    for (int j = 0; j < kSquaredPosition; ++j)
+    {
+      sv[j] = v[j];
+      sdv[j] = dv[j];
+    }
+    sv[kSquaredPosition] = v[kShapeOperatorSquaredPosition];
+    sdv[kSquaredPosition] = dv[kShapeOperatorSquaredPosition];
+    Sample r;
+    r.sphere = Sphere::fit(sv, sdv, t, neighbors, minNeighbors);
+    if (!r.sphere.valid)
+    {
+      r.principal = undefinedCurvatures();
+      return r;
+    }
+    const double a = 4.0 / (t * t), b = 1.0 / t;
+    const auto omega = [&](int j) { return a * v[j] + b * dv[j]; };
+    SpatialSums g;
+    g.X = { omega(kPositionX), omega(kPositionY), omega(kPositionZ) };
+    for (int k = 0; k < 6; ++k)
+    {
+      g.XX[k] = omega(kOffsetOffset + k);
+    }
+    for (int k = 0; k < 9; ++k)
+    {
+      g.NX[k] = omega(kNormalOffset + k);
+    }
+    const int dn = kOffsetDotNormalOffset, sq = kSquaredOffsetOffset;
+    g.XdotNX = { omega(dn), omega(dn + 1), omega(dn + 2) };
+    g.SquaredX = { omega(sq), omega(sq + 1), omega(sq + 2) };
+    WeightedSums s, ds;
+    toWeightedSums(sv, sdv, s, ds);
+    r.principal = principalCurvaturesOf(s, g, r.sphere, t);
+    return r;
+  }
+};
+
+/// Mean curvature H = (k1 + k2) / 2 (1/length; equal to kappa on a sphere).
+GLS_INLINE double meanCurvature(const PrincipalCurvatures& c)
+{
+  return 0.5 * (c.k1 + c.k2);
+}
+
+/// Gaussian curvature K = k1 k2 (1/length^2).
+GLS_INLINE double gaussianCurvature(const PrincipalCurvatures& c)
+{
+  return c.k1 * c.k2;
+}
+
+/// Curvedness sqrt((k1^2 + k2^2) / 2) (1/length; 0 on a plane).
+GLS_INLINE double curvedness(const PrincipalCurvatures& c)
+{
+  return squareRoot(0.5 * (c.k1 * c.k1 + c.k2 * c.k2));
+}
+
+/// Koenderink's shape index (2/pi) atan((k1 + k2) / (k1 - k2)) in [-1, 1] (dimensionless) at scale t: +1 a dome (a
+/// sphere with outward normals), 1/2 a ridge (a cylinder), 0 a symmetric saddle, -1/2 a valley, -1 a cup. NaN where
+/// the surface is flat at the scale of the fit (curvedness <= kUmbilicTolerance / t: a plane, whose curvatures are
+/// rounding) and where the curvatures are.
+GLS_INLINE double shapeIndex(const PrincipalCurvatures& c, double t)
+{
+  using std::atan2;
+  if (!(curvedness(c) > kUmbilicTolerance / t))
+  {
+    return quietNaN<double>();
+  }
+  return 0.6366197723675814 * atan2(c.k1 + c.k2, c.k1 - c.k2);
+}
+
+} // namespace gls
