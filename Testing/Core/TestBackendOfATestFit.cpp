@@ -3,7 +3,7 @@
 // A backend is a gls::SampleEvaluator: given a run's points (RunPoints: ids and positions), it feeds the sink every
 // point's samples in any order, invalid ones at a non-finite position, and stops when the progress callback asks.
 // This one runs the host/device loops a device runs (the windowed forms, bit for bit the reference loops) on the
-// grid or on the pyramid with the test set's own cells, on the CPU's threads (feedEachPoint). Checked against the
+// grid or on the pyramid with the test set's own cells, on the CPU's threads (evaluateEachPoint). Checked against the
 // engine's CPU evaluators for the sphere's samples, and against the heights summed by hand for the fit's own value.
 #include "HeightSpreadMoments.h"
 #include "TestBinning.h"
@@ -29,36 +29,6 @@ using namespace glstest;
 namespace
 {
 
-/// The samples of the test fit at every scale of one point, split: the sink gets the sphere's, `spreads` the heights'
-/// standard deviations (point id times S plus the scale), NaN at a point the evaluator did not evaluate.
-class SpreadKeeper : public gls::ScaleSampleSink
-{
-public:
-  SpreadKeeper(gls::ScaleSampleSink& sink, std::vector<std::vector<HeightSpreadMoments::Sample>>& lastSamples,
-    std::vector<double>& spreads)
-    : Sink(sink)
-    , LastSamples(lastSamples)
-    , Spreads(spreads)
-  {
-  }
-
-  void consume(std::uint64_t pointId, const gls::ScaleSample* samples, int thread) override
-  {
-    std::vector<HeightSpreadMoments::Sample>& last = this->LastSamples[static_cast<std::size_t>(thread)];
-    for (std::size_t k = 0; k < last.size(); ++k)
-    {
-      this->Spreads[pointId * last.size() + k] = last[k].heightSpread;
-      last[k].heightSpread = gls::quietNaN<double>(); // a point not evaluated (non-finite) keeps NaN
-    }
-    this->Sink.consume(pointId, samples, thread);
-  }
-
-private:
-  gls::ScaleSampleSink& Sink;
-  std::vector<std::vector<HeightSpreadMoments::Sample>>& LastSamples;
-  std::vector<double>& Spreads;
-};
-
 /// The test-only backend: the windowed host/device loops of the test set, on the grid (exact) or on the pyramid with
 /// the set's cells (multi-resolution).
 class WindowedLoopEvaluator : public gls::SampleEvaluator
@@ -80,33 +50,35 @@ public:
     bool& aborted, std::string&) const override
   {
     const std::size_t S = this->Basis.scaleCount();
-    std::vector<std::vector<HeightSpreadMoments::Sample>> last(
-      static_cast<std::size_t>(gls::resolveThreadCount(options.threads)));
-    for (std::vector<HeightSpreadMoments::Sample>& samples : last)
-    {
-      samples.assign(S, HeightSpreadMoments::Sample{ gls::invalidSample<double>(0.0), gls::quietNaN<double>() });
-    }
-    this->Spreads.assign(points.count * S, gls::quietNaN<double>());
-    SpreadKeeper keeper(sink, last, this->Spreads);
     const gls::ScaleBinning& b = this->Basis.binning;
     const double m = this->Basis.minNeighbors;
-    const auto evaluateAt = [&](const gls::Vec3& p, int thread, gls::ScaleSample* out) {
-      std::vector<HeightSpreadMoments::Sample>& samples = last[static_cast<std::size_t>(thread)];
-      if (this->Grid)
-      {
-        gls::evaluateAllScalesByWindows<4, HeightSpreadMoments>(*this->Grid, p, b, m, samples.data());
-      }
-      else
-      {
-        gls::evaluateAllScalesMultiresolutionByWindows<4, HeightSpreadMoments>(
-          *this->Pyramid, this->Cells, p, b, m, samples.data());
-      }
-      for (std::size_t k = 0; k < S; ++k)
-      {
-        out[k] = samples[k].sphere;
-      }
-    };
-    aborted = !gls::feedEachPoint(points, S, keeper, options, evaluateAt);
+    this->Spreads.assign(points.count * S, gls::quietNaN<double>());
+    std::vector<std::vector<gls::ScaleSample>> spheres(
+      static_cast<std::size_t>(gls::resolveThreadCount(options.threads)), std::vector<gls::ScaleSample>(S));
+    const HeightSpreadMoments::Sample invalid{ gls::invalidSample<double>(0.0), gls::quietNaN<double>() };
+    aborted = !gls::evaluateEachPoint(
+      points, S, invalid, options,
+      [&](const gls::Vec3& p, int, HeightSpreadMoments::Sample* out) {
+        if (this->Grid)
+        {
+          gls::evaluateAllScalesByWindows<4, HeightSpreadMoments>(*this->Grid, p, b, m, out);
+        }
+        else
+        {
+          gls::evaluateAllScalesMultiresolutionByWindows<4, HeightSpreadMoments>(
+            *this->Pyramid, this->Cells, p, b, m, out);
+        }
+      },
+      // The sink takes the sphere's samples; the spreads are kept beside them.
+      [&](std::uint64_t id, const HeightSpreadMoments::Sample* samples, int thread) {
+        std::vector<gls::ScaleSample>& sphere = spheres[static_cast<std::size_t>(thread)];
+        for (std::size_t k = 0; k < S; ++k)
+        {
+          sphere[k] = samples[k].sphere;
+          this->Spreads[id * S + k] = samples[k].heightSpread;
+        }
+        sink.consume(id, sphere.data(), thread);
+      });
     return !aborted;
   }
 

@@ -9,6 +9,7 @@
 
 #include "gls/NeighborGrid.h"
 #include "gls/PointScaleSpace.h"
+#include "gls/ScaleSpaceEngine.h"
 #include "gls/ShapeOperator.h"
 
 #include <gtest/gtest.h>
@@ -431,4 +432,112 @@ TEST(ShapeOperator, EveryKernelGivesTheSameCurvatures)
   EXPECT_GT(checked, 200);
   EXPECT_LT(worst, 1e-9);
   std::printf("CPU kernel against the loop: largest k t difference %.3g\n", worst);
+}
+
+namespace
+{
+
+/// Keeps each point's curvatures and checks that they come on the thread and just before its samples.
+struct CurvatureRecorder : gls::ScaleSampleSink
+{
+  CurvatureRecorder(std::size_t points, std::size_t scales, int threads)
+    : S(scales)
+    , Curvatures(points * scales, gls::undefinedCurvatures())
+    , Samples(points * scales)
+    , Pending(static_cast<std::size_t>(threads), ~std::uint64_t(0))
+  {
+  }
+  void consumeCurvatures(std::uint64_t id, const gls::PrincipalCurvatures* c, int thread) override
+  {
+    std::copy(c, c + this->S, &this->Curvatures[id * this->S]);
+    this->Pending[static_cast<std::size_t>(thread)] = id;
+    ++this->CurvatureCalls[thread];
+  }
+  void consume(std::uint64_t id, const gls::ScaleSample* s, int thread) override
+  {
+    std::copy(s, s + this->S, &this->Samples[id * this->S]);
+    this->OutOfStep[thread] += this->Pending[static_cast<std::size_t>(thread)] == id ? 0 : 1;
+    ++this->SampleCalls[thread];
+  }
+  long total(const long* counts) const { return counts[0] + counts[1] + counts[2] + counts[3]; }
+  std::size_t S;
+  std::vector<gls::PrincipalCurvatures> Curvatures;
+  std::vector<gls::ScaleSample> Samples;
+  std::vector<std::uint64_t> Pending;
+  long CurvatureCalls[4] = {}, SampleCalls[4] = {}, OutOfStep[4] = {};
+};
+
+} // namespace
+
+TEST(ShapeOperator, EngineFeedsCurvaturesBeforeEachPointsSamples)
+{
+  // An engine asked for the principal curvatures feeds them to consumeCurvatures just before each point's samples
+  // (on the CPU, also when CUDA is asked for, saying why); they are the host/device loop's to rounding. A
+  // multi-resolution engine feeds NaN curvatures; an engine not asked feeds none.
+  const Patch patch = samplePatch(cylinder(0.5), 0.0, 0.0, 0.1, 0.05, 300.0 / (kPi * 0.012 * 0.012), 21);
+  const Cloud& c = patch.cloud;
+  const std::vector<double> scales{ 0.012, 0.02, 0.025 };
+  const std::size_t S = scales.size(), n = c.size();
+  gls::ScaleSpaceSettings settings;
+  settings.scales = scales;
+  settings.parallel.threads = 4;
+  settings.principalCurvatures = true;
+  settings.backend = gls::Backend::CUDA;
+  const gls::ScaleSpaceEngine engine(c.points.data(), c.normals.data(), n, settings);
+  CurvatureRecorder recorder(n, S, 4);
+  gls::RunReport report;
+  ASSERT_TRUE(engine.run(recorder, nullptr, nullptr, &report));
+  EXPECT_EQ(report.used, gls::Backend::CPU);
+  EXPECT_EQ(report.fallbackReason, "the principal curvatures are computed on the CPU only");
+  EXPECT_EQ(recorder.total(recorder.CurvatureCalls), static_cast<long>(n));
+  EXPECT_EQ(recorder.total(recorder.SampleCalls), static_cast<long>(n));
+  EXPECT_EQ(recorder.total(recorder.OutOfStep), 0);
+  gls::NeighborGrid grid;
+  grid.build(c.points.data(), c.normals.data(), n, scales.back() / 4.0);
+  const TestBinning binning(scales);
+  std::vector<gls::MomentsT<gls::ShapeOperatorMoments>> bins(S);
+  std::vector<gls::CurvatureSample> out(S);
+  long checked = 0;
+  for (std::size_t i = 0; i < n; i += 37)
+  {
+    const gls::Vec3 p{ c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] };
+    gls::evaluateAllScales<gls::ShapeOperatorMoments>(grid.view(), p, binning.View, 6.0, bins.data(), out.data());
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      const gls::PrincipalCurvatures& got = recorder.Curvatures[i * S + k];
+      EXPECT_EQ(recorder.Samples[i * S + k].valid, out[k].sphere.valid);
+      if (!out[k].sphere.valid)
+      {
+        EXPECT_TRUE(std::isnan(got.k1));
+        continue;
+      }
+      EXPECT_NEAR(got.k1 * scales[k], out[k].principal.k1 * scales[k], 1e-10) << "point " << i;
+      EXPECT_NEAR(got.k2 * scales[k], out[k].principal.k2 * scales[k], 1e-10) << "point " << i;
+      EXPECT_NEAR(recorder.Samples[i * S + k].kappa * scales[k], out[k].sphere.kappa * scales[k], 1e-10);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100);
+
+  settings.evaluation = gls::Evaluation::Multiresolution;
+  const gls::ScaleSpaceEngine pyramid(c.points.data(), c.normals.data(), n, settings);
+  CurvatureRecorder undefined(n, S, 4);
+  ASSERT_TRUE(pyramid.run(undefined));
+  EXPECT_EQ(undefined.total(undefined.CurvatureCalls), static_cast<long>(n));
+  EXPECT_EQ(undefined.total(undefined.OutOfStep), 0);
+  long validSpheres = 0;
+  for (std::size_t j = 0; j < n * S; ++j)
+  {
+    EXPECT_TRUE(std::isnan(undefined.Curvatures[j].k1) && std::isnan(undefined.Curvatures[j].d1.x));
+    validSpheres += undefined.Samples[j].valid ? 1 : 0;
+  }
+  EXPECT_GT(validSpheres, static_cast<long>(n));
+
+  settings.evaluation = gls::Evaluation::Exact;
+  settings.principalCurvatures = false;
+  const gls::ScaleSpaceEngine plain(c.points.data(), c.normals.data(), n, settings);
+  CurvatureRecorder none(n, S, 4);
+  ASSERT_TRUE(plain.run(none));
+  EXPECT_EQ(none.total(none.CurvatureCalls), 0);
+  EXPECT_EQ(none.total(none.SampleCalls), static_cast<long>(n));
 }

@@ -68,6 +68,52 @@ public:
   }
 };
 
+/// The one pass with the principal curvatures: a point's curvatures to consumeCurvatures, then its sphere samples.
+class OnePassCurvatureEvaluator : public GridEvaluator
+{
+public:
+  using GridEvaluator::GridEvaluator;
+
+  bool run(const RunPoints& points, ScaleSampleSink& sink, const ParallelOptions& options, bool& aborted,
+    std::string&) const override
+  {
+    const std::size_t S = this->Basis.scaleCount();
+    const std::size_t threads = static_cast<std::size_t>(resolveThreadCount(options.threads));
+    std::vector<std::vector<MomentsT<ShapeOperatorMoments>>> bins(threads);
+    std::vector<std::vector<ScaleSample>> spheres(threads);
+    std::vector<std::vector<PrincipalCurvatures>> curvatures(threads);
+    const CurvatureSample invalid{ invalidSample<double>(0.0), undefinedCurvatures() };
+    aborted = !evaluateEachPoint(
+      points, S, invalid, options,
+      [&](const Vec3& p, int t, CurvatureSample* out) {
+        std::vector<MomentsT<ShapeOperatorMoments>>& b = bins[static_cast<std::size_t>(t)];
+        b.resize(S);
+        evaluateAllScalesOnCpu(this->Grid, p, this->Basis.binning, this->Basis.minNeighbors, b.data(), out);
+      },
+      [&](std::uint64_t id, const CurvatureSample* samples, int t) {
+        std::vector<ScaleSample>& sphere = spheres[static_cast<std::size_t>(t)];
+        std::vector<PrincipalCurvatures>& principal = curvatures[static_cast<std::size_t>(t)];
+        sphere.resize(S);
+        principal.resize(S);
+        for (std::size_t k = 0; k < S; ++k)
+        {
+          sphere[k] = samples[k].sphere;
+          principal[k] = samples[k].principal;
+        }
+        sink.consumeCurvatures(id, principal.data(), t);
+        sink.consume(id, sphere.data(), t);
+      });
+    return !aborted;
+  }
+
+  /// The oriented sphere's samples alone (the one pass's).
+  void evaluatePosition(const Vec3& p, ScaleSample* out) const override
+  {
+    std::vector<Moments> b(this->Basis.scaleCount());
+    evaluateAllScalesOnCpu(this->Grid, p, this->Basis.binning, this->Basis.minNeighbors, b.data(), out);
+  }
+};
+
 class PerScaleEvaluator : public GridEvaluator
 {
 public:
@@ -134,6 +180,11 @@ private:
 std::unique_ptr<CpuSampleEvaluator> makeOnePassEvaluator(const GridView& grid, const EvaluatorBasis& basis)
 {
   return std::make_unique<OnePassEvaluator>(grid, basis);
+}
+
+std::unique_ptr<CpuSampleEvaluator> makeOnePassCurvatureEvaluator(const GridView& grid, const EvaluatorBasis& basis)
+{
+  return std::make_unique<OnePassCurvatureEvaluator>(grid, basis);
 }
 
 std::unique_ptr<CpuSampleEvaluator> makePerScaleEvaluator(const GridView& grid, const EvaluatorBasis& basis)

@@ -11,6 +11,12 @@ void evaluateAllScalesOnCpu(const GridView& g, const Vec3& p, const ScaleBinning
   onepass::evaluateAllScalesOnCpuFor<OrientedSphereMoments>(g, p, b, minNeighbors, bins, out, build);
 }
 
+void evaluateAllScalesOnCpu(const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors,
+  MomentsT<ShapeOperatorMoments>* bins, CurvatureSample* out, CpuKernelBuild build)
+{
+  onepass::evaluateAllScalesOnCpuFor<ShapeOperatorMoments>(g, p, b, minNeighbors, bins, out, build);
+}
+
 const char* onePassKernelBuild()
 {
 #if GLS_KERNEL_DISPATCH

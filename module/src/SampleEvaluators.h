@@ -51,17 +51,18 @@ struct EvaluatorBasis
   std::size_t scaleCount() const { return static_cast<std::size_t>(this->binning.count); }
 };
 
-/// Feeds the sink with every point of the run in parallel on the CPU's threads (the CPU evaluators' loop, and any
-/// evaluator's that computes point by point on the host): evaluateAt(p, thread, samples) at a finite position,
-/// invalid samples at another. A run in the engine's own order reads its positions from the sorted copy in that
-/// order (through a copy in input order, each point cost a cache miss: 2% of a 10M-point run).
-template <typename EvaluateAt>
-bool feedEachPoint(const RunPoints& points, std::size_t S, ScaleSampleSink& sink, const ParallelOptions& cpu,
-  const EvaluateAt& evaluateAt)
+/// Evaluates every point of the run in parallel on the CPU's threads (the CPU evaluators' loop, and any evaluator's
+/// that computes point by point on the host) and delivers each point's S samples of type Sample: evaluateAt(p,
+/// thread, samples) at a finite position, `invalid` at another, then deliver(id, samples, thread). A run in the
+/// engine's own order reads its positions from the sorted copy in that order (through a copy in input order, each
+/// point cost a cache miss: 2% of a 10M-point run).
+template <typename Sample, typename EvaluateAt, typename Deliver>
+bool evaluateEachPoint(const RunPoints& points, std::size_t S, const Sample& invalid, const ParallelOptions& cpu,
+  const EvaluateAt& evaluateAt, const Deliver& deliver)
 {
-  std::vector<std::vector<ScaleSample>> samples(static_cast<std::size_t>(resolveThreadCount(cpu.threads)));
+  std::vector<std::vector<Sample>> samples(static_cast<std::size_t>(resolveThreadCount(cpu.threads)));
   return parallelFor(points.count, cpu, [&](std::size_t begin, std::size_t end, int thread) {
-    std::vector<ScaleSample>& out = samples[static_cast<std::size_t>(thread)];
+    std::vector<Sample>& out = samples[static_cast<std::size_t>(thread)];
     out.resize(S);
     for (std::size_t k = begin; k < end; ++k)
     {
@@ -70,16 +71,25 @@ bool feedEachPoint(const RunPoints& points, std::size_t S, ScaleSampleSink& sink
       {
         for (std::size_t s = 0; s < S; ++s)
         {
-          out[s] = invalidSample<double>(0.0);
+          out[s] = invalid;
         }
       }
       else
       {
         evaluateAt(p, thread, out.data());
       }
-      sink.consume(points.order[k], out.data(), thread);
+      deliver(points.order[k], out.data(), thread);
     }
   });
+}
+
+/// evaluateEachPoint for the oriented sphere's samples, fed to the sink.
+template <typename EvaluateAt>
+bool feedEachPoint(const RunPoints& points, std::size_t S, ScaleSampleSink& sink, const ParallelOptions& cpu,
+  const EvaluateAt& evaluateAt)
+{
+  return evaluateEachPoint(points, S, invalidSample<double>(0.0), cpu, evaluateAt,
+    [&sink](std::uint64_t id, const ScaleSample* s, int thread) { sink.consume(id, s, thread); });
 }
 
 /// Computes the samples of a run's points and feeds them to a sink.
@@ -109,6 +119,9 @@ public:
 std::unique_ptr<CpuSampleEvaluator> makeOnePassEvaluator(const GridView& grid, const EvaluatorBasis& basis);
 /// The exact per-scale reference: one ball query and one weighted fit per scale (evaluateOneScale).
 std::unique_ptr<CpuSampleEvaluator> makePerScaleEvaluator(const GridView& grid, const EvaluatorBasis& basis);
+/// The exact one pass with the principal curvatures (ShapeOperatorMoments): each point's curvatures to the sink's
+/// consumeCurvatures, then its sphere samples to consume.
+std::unique_ptr<CpuSampleEvaluator> makeOnePassCurvatureEvaluator(const GridView& grid, const EvaluatorBasis& basis);
 /// The multi-resolution pass over the pyramid (MultiresolutionKernel.h).
 std::unique_ptr<CpuSampleEvaluator> makeMultiresolutionEvaluator(
   const MultiresolutionView& pyramid, const EvaluatorBasis& basis);

@@ -7,6 +7,7 @@
 #include "gls/PointBox.h"
 #include "gls/PointScaleSpace.h"
 #include "gls/ScaleSampling.h"
+#include "gls/ShapeOperator.h"
 
 #include <algorithm>
 #include <utility>
@@ -15,6 +16,27 @@ namespace gls
 {
 namespace
 {
+
+/// Gives every point NaN principal curvatures before its samples (a multi-resolution engine asked for them: its cells
+/// do not keep the sums their derivative needs).
+class UndefinedCurvaturesSink : public ScaleSampleSink
+{
+public:
+  UndefinedCurvaturesSink(ScaleSampleSink& inner, std::size_t scales)
+    : Inner(inner)
+    , Undefined(scales, undefinedCurvatures())
+  {
+  }
+  void consume(std::uint64_t id, const ScaleSample* samples, int thread) override
+  {
+    this->Inner.consumeCurvatures(id, this->Undefined.data(), thread);
+    this->Inner.consume(id, samples, thread);
+  }
+
+private:
+  ScaleSampleSink& Inner;
+  std::vector<PrincipalCurvatures> Undefined;
+};
 
 /// A multi-resolution run given fewer than 1 / kSampleFraction of the points takes them in pyramid order.
 constexpr std::size_t kSampleFraction = 4;
@@ -137,6 +159,10 @@ void ScaleSpaceEngine::chooseEvaluators()
   {
     this->Cpu = makeMultiresolutionEvaluator(this->Pyramid.view(), basis);
   }
+  else if (this->Settings.principalCurvatures)
+  {
+    this->Cpu = makeOnePassCurvatureEvaluator(this->Grid.view(), basis);
+  }
   else if (this->Settings.method == EvaluationMethod::PerScale)
   {
     this->Cpu = makePerScaleEvaluator(this->Grid.view(), basis);
@@ -148,6 +174,11 @@ void ScaleSpaceEngine::chooseEvaluators()
   // The one place the device is chosen, or the CPU instead with the reason.
   if (this->Settings.backend == Backend::CPU)
   {
+    return;
+  }
+  if (this->Settings.principalCurvatures)
+  {
+    this->DeviceRefusal = "the principal curvatures are computed on the CPU only";
     return;
   }
   if (!multiresolution && this->Settings.method != EvaluationMethod::OnePass)
@@ -282,6 +313,11 @@ bool ScaleSpaceEngine::run(
     r.fallbackReason = "CUDA failed (" + failure + ")";
   }
   r.used = Backend::CPU;
+  if (this->Settings.principalCurvatures && this->Settings.evaluation == Evaluation::Multiresolution)
+  {
+    UndefinedCurvaturesSink undefined(sink, this->Settings.scales.size());
+    return this->Cpu->run(points, undefined, options, aborted, failure);
+  }
   return this->Cpu->run(points, sink, options, aborted, failure);
 }
 

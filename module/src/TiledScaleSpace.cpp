@@ -25,6 +25,10 @@ public:
   {
     this->Inner.consume(this->Members[local], samples, thread);
   }
+  void consumeCurvatures(std::uint64_t local, const PrincipalCurvatures* curvatures, int thread) override
+  {
+    this->Inner.consumeCurvatures(this->Members[local], curvatures, thread);
+  }
 
 private:
   ScaleSampleSink& Inner;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "gls/PointScaleSpace.h"
+#include "gls/ShapeOperator.h"
 
 namespace gls
 {
@@ -22,6 +23,10 @@ enum class CpuKernelBuild
 /// S samples (nothing is written when there are no scales).
 void evaluateAllScalesOnCpu(const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors,
   Moments* bins, ScaleSample* out, CpuKernelBuild build = CpuKernelBuild::Fastest);
+
+/// evaluateAllScalesOnCpu with the principal curvatures (ShapeOperatorMoments): out, S curvature samples.
+void evaluateAllScalesOnCpu(const GridView& g, const Vec3& p, const ScaleBinning& b, double minNeighbors,
+  MomentsT<ShapeOperatorMoments>* bins, CurvatureSample* out, CpuKernelBuild build = CpuKernelBuild::Fastest);
 
 /// The build of the loop evaluateAllScalesOnCpu runs on this processor: "avx2+fma" or "baseline".
 const char* onePassKernelBuild();

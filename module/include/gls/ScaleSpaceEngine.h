@@ -31,11 +31,17 @@ constexpr std::uint64_t kMaxEnginePoints = 0xffffffffULL;
 
 /// Receives the samples of one point at all scales. Called concurrently from several threads, each call with a
 /// distinct pointId: an implementation writes only that point's outputs (or thread-local state).
+struct PrincipalCurvatures;
+
 class ScaleSampleSink
 {
 public:
   virtual ~ScaleSampleSink() = default;
   virtual void consume(std::uint64_t pointId, const ScaleSample* samples, int threadIndex) = 0;
+  /// Receives the principal curvatures and directions (ShapeOperator.h) of one point at all scales, on the thread and
+  /// just before the consume() of that point, when the engine computes them (ScaleSpaceSettings::
+  /// principalCurvatures). A sink that passes samples on passes these on too; the default ignores them.
+  virtual void consumeCurvatures(std::uint64_t, const PrincipalCurvatures*, int) {}
 };
 
 /// The multi-resolution evaluation's parameters (used when ScaleSpaceSettings::evaluation is Multiresolution).
@@ -74,6 +80,11 @@ struct ScaleSpaceSettings
   /// engine falls back to the CPU otherwise (or on any CUDA error), saying why (RunReport).
   Backend backend = Backend::CPU;
   std::size_t deviceChunkLimit = 0; ///< CUDA: at most this many points per device pass (0 = as memory allows)
+  /// Also the principal curvatures and directions at every scale (ShapeOperator.h), to the sink's consumeCurvatures:
+  /// computed by the exact one pass on the CPU (whatever `method` says; a CUDA backend falls back to the CPU, saying
+  /// why). A multi-resolution engine gives NaN curvatures: its cells do not keep the sums the derivative needs (the
+  /// filters refuse that combination). Costs about two and a half times the one pass's moment adds.
+  bool principalCurvatures = false;
   /// The exact evaluation's grid lattice when given (a spatial tile of a larger cloud takes the whole cloud's, so that
   /// its sums equal the whole run's bit for bit: TiledScaleSpace); else exactGridLattice of the points.
   bool haveGridLattice = false;
