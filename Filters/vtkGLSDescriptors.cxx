@@ -28,11 +28,42 @@ const Descriptor Table[NUMBER_OF_DESCRIPTORS] = {
   { "GLSNeighborCount", 1, offsetof(ScaleSample, neighbors), true, STORE_NEIGHBOR_COUNT, WRITTEN_ONLY, "count",
     "neighbours strictly inside the ball of radius t" },
 };
+
+double Component(const gls::Vec3& v, int component)
+{
+  return component == 0 ? v.x : (component == 1 ? v.y : v.z);
+}
+
+const CurvatureArray CurvatureTable[NUMBER_OF_CURVATURE_ARRAYS] = {
+  { "GLSK1", 1, [](const gls::PrincipalCurvatures& c, double, int) { return c.k1; }, "1/length",
+    "the larger principal curvature, positive on a sphere with outward normals" },
+  { "GLSK2", 1, [](const gls::PrincipalCurvatures& c, double, int) { return c.k2; }, "1/length",
+    "the smaller principal curvature" },
+  { "GLSPrincipalDirection1", 3, [](const gls::PrincipalCurvatures& c, double, int j) { return Component(c.d1, j); },
+    "unit vector", "direction of k1, tangent (its largest component positive); NaN at an umbilic" },
+  { "GLSPrincipalDirection2", 3, [](const gls::PrincipalCurvatures& c, double, int j) { return Component(c.d2, j); },
+    "unit vector", "direction of k2, eta x d1; NaN at an umbilic" },
+  { "GLSMeanCurvature", 1, [](const gls::PrincipalCurvatures& c, double, int) { return gls::meanCurvature(c); },
+    "1/length", "(k1 + k2) / 2, kappa on a sphere" },
+  { "GLSGaussianCurvature", 1,
+    [](const gls::PrincipalCurvatures& c, double, int) { return gls::gaussianCurvature(c); }, "1/length^2",
+    "k1 k2" },
+  { "GLSShapeIndex", 1, [](const gls::PrincipalCurvatures& c, double t, int) { return gls::shapeIndex(c, t); },
+    "dimensionless, [-1, 1]", "Koenderink's (2/pi) atan((k1 + k2) / (k1 - k2)): 1 dome, 1/2 ridge, 0 saddle, -1/2 "
+    "valley, -1 cup; NaN where flat at the scale" },
+  { "GLSCurvedness", 1, [](const gls::PrincipalCurvatures& c, double, int) { return gls::curvedness(c); },
+    "1/length", "sqrt((k1^2 + k2^2) / 2)" },
+};
 }
 
 const Descriptor& Get(Id id)
 {
   return Table[id];
+}
+
+const CurvatureArray& GetCurvature(CurvatureId id)
+{
+  return CurvatureTable[id];
 }
 
 }

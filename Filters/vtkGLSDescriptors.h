@@ -7,6 +7,7 @@
 #define vtkGLSDescriptors_h
 
 #include "gls/ScaleSample.h"
+#include "gls/ShapeOperator.h"
 
 #include <cstddef>
 
@@ -68,6 +69,34 @@ inline double Value(const Descriptor& d, const gls::ScaleSample& s, int componen
 {
   return reinterpret_cast<const double*>(reinterpret_cast<const char*>(&s) + d.Offset)[component];
 }
+
+/// The principal-curvature arrays (vtkGLSScaleSpace's StorePrincipalCurvatures), in the order it adds them: each
+/// from the gls::PrincipalCurvatures of a point at one scale (ShapeOperator.h), in the layout of the descriptors.
+enum CurvatureId
+{
+  K1 = 0,
+  K2,
+  PRINCIPAL_DIRECTION1,
+  PRINCIPAL_DIRECTION2,
+  MEAN_CURVATURE,
+  GAUSSIAN_CURVATURE,
+  SHAPE_INDEX,
+  CURVEDNESS,
+  NUMBER_OF_CURVATURE_ARRAYS
+};
+
+struct CurvatureArray
+{
+  const char* Name;    ///< point-data array name
+  int Components;      ///< values per scale (3-vectors scale-major, as the descriptors)
+  /// Value `component` at scale t.
+  double (*Value)(const gls::PrincipalCurvatures& c, double t, int component);
+  const char* Units;   ///< unit of the values
+  const char* Meaning; ///< one line for the documentation
+};
+
+/// The row of one principal-curvature array.
+const CurvatureArray& GetCurvature(CurvatureId id);
 
 /// Sets value `component` of descriptor d in sample s.
 inline void SetValue(const Descriptor& d, gls::ScaleSample& s, int component, double value)

@@ -31,13 +31,26 @@ public:
 
   void consume(std::uint64_t position, const gls::ScaleSample* samples, int thread) override
   {
+    this->forEachCopy(position, [&](std::uint64_t id) { this->Inner.consume(id, samples, thread); });
+  }
+
+  void consumeCurvatures(std::uint64_t position, const gls::PrincipalCurvatures* c, int thread) override
+  {
+    this->forEachCopy(position, [&](std::uint64_t id) { this->Inner.consumeCurvatures(id, c, thread); });
+  }
+
+private:
+  /// Calls pass(id) for each input point the distinct position stands for.
+  template <typename Pass>
+  void forEachCopy(std::uint64_t position, const Pass& pass) const
+  {
     if (this->Requested)
     {
       auto it = std::lower_bound(this->Requested->begin(), this->Requested->end(),
         std::make_pair(position, std::uint64_t(0)));
       for (; it != this->Requested->end() && it->first == position; ++it)
       {
-        this->Inner.consume(it->second, samples, thread);
+        pass(it->second);
       }
       return;
     }
@@ -46,12 +59,11 @@ public:
     {
       if (c.copies[k] < this->Cloud.InputOwned)
       {
-        this->Inner.consume(c.copies[k], samples, thread);
+        pass(c.copies[k]);
       }
     }
   }
 
-private:
   gls::ScaleSampleSink& Inner;
   const vtkGLSCloud& Cloud;
   const std::vector<std::pair<std::uint64_t, std::uint64_t>>* Requested;

@@ -58,6 +58,10 @@ public:
     , Neighbors(static_cast<std::size_t>(threads))
   {
   }
+  void consumeCurvatures(std::uint64_t id, const gls::PrincipalCurvatures* c, int thread) override
+  {
+    this->Inner.consumeCurvatures(id, c, thread);
+  }
   void consume(std::uint64_t id, const gls::ScaleSample* s, int thread) override
   {
     this->Inner.consume(id, s, thread);
@@ -245,6 +249,7 @@ bool vtkGLSScaleFilterBase::PrepareFit(vtkGLSRun& run, const SampleRequest& requ
   settings.minNeighbors = run.MinimumNeighbors;
   settings.parallel.threads = this->NumberOfThreads;
   settings.backend = static_cast<gls::Backend>(this->Backend);
+  settings.principalCurvatures = request.PrincipalCurvatures;
   // The pyramid's build reports its progress in the first 2% (the feed's own progress follows) and stops when
   // aborted.
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 0.02); };
@@ -368,14 +373,16 @@ void vtkGLSScaleFilterBase::ChooseEvaluation(vtkGLSRun& run, gls::ScaleSpaceSett
   const vtkGLSDistributedCloud& dist = run.Distributed;
   const double t = run.Scales.back();
   gls::BallCountEstimate estimate; // only Auto needs it (every rank takes the same branch)
-  if (this->Evaluation == EVALUATION_AUTO)
+  // The principal curvatures need the exact evaluation: Auto takes it (Multiresolution was refused before).
+  const bool automatic = this->Evaluation == EVALUATION_AUTO && !settings.principalCurvatures;
+  if (automatic)
   {
     estimate = gls::estimateBallCount(run.Cloud.Points.data(), run.Cloud.Size(), run.Cloud.Owned, t);
     estimate.neighbors = dist.Sum(estimate.neighbors);
     estimate.samples = dist.Sum(estimate.samples);
   }
-  const bool cells = this->Evaluation == EVALUATION_MULTIRESOLUTION ||
-    (this->Evaluation == EVALUATION_AUTO && estimate.mean() > gls::kExactNeighborLimit);
+  const bool cells = (this->Evaluation == EVALUATION_MULTIRESOLUTION && !settings.principalCurvatures) ||
+    (automatic && estimate.mean() > gls::kExactNeighborLimit);
   settings.evaluation = cells ? gls::Evaluation::Multiresolution : gls::Evaluation::Exact;
   run.EvaluationUsed = cells ? "Multiresolution" : "Exact";
   run.AccuracyUsed = this->Accuracy;

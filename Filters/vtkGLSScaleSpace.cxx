@@ -35,13 +35,38 @@ public:
     T* Values;     ///< floating-point descriptors
     int* Integers; ///< integer descriptors
   };
+  struct CurvatureColumn
+  {
+    const vtkGLSDescriptors::CurvatureArray* Array;
+    T* Values;
+  };
 
-  ArraySink(std::size_t scales, std::vector<Column> columns, double* kappaMedian, int threads)
-    : S(scales)
+  ArraySink(const std::vector<double>& scales, std::vector<Column> columns, std::vector<CurvatureColumn> curvatures,
+    double* kappaMedian, int threads)
+    : S(scales.size())
+    , Scales(scales)
     , Columns(std::move(columns))
+    , Curvatures(std::move(curvatures))
     , KappaMedian(kappaMedian)
     , Scratch(static_cast<std::size_t>(threads))
   {
+  }
+
+  void consumeCurvatures(std::uint64_t id, const gls::PrincipalCurvatures* c, int) override
+  {
+    for (const CurvatureColumn& column : this->Curvatures)
+    {
+      const int m = column.Array->Components;
+      T* row = column.Values + id * this->S * static_cast<std::size_t>(m);
+      for (std::size_t k = 0; k < this->S; ++k)
+      {
+        for (int j = 0; j < m; ++j)
+        {
+          row[k * static_cast<std::size_t>(m) + static_cast<std::size_t>(j)] =
+            static_cast<T>(column.Array->Value(c[k], this->Scales[k], j));
+        }
+      }
+    }
   }
 
   void consume(std::uint64_t id, const gls::ScaleSample* s, int thread) override
@@ -101,15 +126,18 @@ private:
   }
 
   std::size_t S;
+  const std::vector<double>& Scales;
   std::vector<Column> Columns;
+  std::vector<CurvatureColumn> Curvatures;
   double* KappaMedian;
   std::vector<std::vector<double>> Scratch;
 };
 
-/// Allocates the stored descriptors' arrays in precision T (ArrayType holds T), fills them from the run's
-/// samples, and adds them to the output in the table's order. False if aborted (nothing added).
+/// Allocates the stored descriptors' arrays in precision T (ArrayType holds T), and the principal curvatures' when
+/// `curvatures`, fills them from the run's samples, and adds them to the output in the tables' order. False if
+/// aborted (nothing added).
 template <typename T, typename ArrayType, typename Feed>
-bool FillArrays(const std::vector<int>& stored, const std::vector<double>& scales, vtkIdType n,
+bool FillArrays(const std::vector<int>& stored, bool curvatures, const std::vector<double>& scales, vtkIdType n,
   vtkPointData* out, Feed feed, void (*nameComponents)(vtkDataArray*, const std::vector<double>&, int),
   vtkDoubleArray* kappaMedian, int threads)
 {
@@ -142,8 +170,21 @@ bool FillArrays(const std::vector<int>& stored, const std::vector<double>& scale
     arrays.push_back(a);
     columns.push_back(column);
   }
-  ArraySink<T> sink(
-    scales.size(), std::move(columns), kappaMedian ? kappaMedian->GetPointer(0) : nullptr, threads);
+  std::vector<typename ArraySink<T>::CurvatureColumn> curvatureColumns;
+  for (int id = 0; curvatures && id < vtkGLSDescriptors::NUMBER_OF_CURVATURE_ARRAYS; ++id)
+  {
+    const vtkGLSDescriptors::CurvatureArray& c =
+      vtkGLSDescriptors::GetCurvature(static_cast<vtkGLSDescriptors::CurvatureId>(id));
+    auto values = vtkSmartPointer<ArrayType>::New();
+    values->SetNumberOfComponents(S * c.Components);
+    values->SetNumberOfTuples(n);
+    values->SetName(c.Name);
+    nameComponents(values, scales, c.Components);
+    arrays.push_back(values);
+    curvatureColumns.push_back({ &c, values->GetPointer(0) });
+  }
+  ArraySink<T> sink(scales, std::move(columns), std::move(curvatureColumns),
+    kappaMedian ? kappaMedian->GetPointer(0) : nullptr, threads);
   if (!feed(sink))
   {
     return false; // aborted: the output is the input, without partial arrays
@@ -164,6 +205,7 @@ vtkGLSScaleSpace::vtkGLSScaleSpace()
   , StoreFitness(true)
   , StoreDerivatives(true)
   , StoreNeighborCount(true)
+  , StorePrincipalCurvatures(false)
   , OutputPrecision(DOUBLE)
 {
 }
@@ -191,6 +233,18 @@ bool vtkGLSScaleSpace::IsStored(int storeSwitch) const
   }
 }
 
+bool vtkGLSScaleSpace::CheckParameters(vtkGLSRun& run)
+{
+  if (this->StorePrincipalCurvatures && this->Evaluation == EVALUATION_MULTIRESOLUTION)
+  {
+    vtkErrorMacro("StorePrincipalCurvatures needs the exact evaluation: the multi-resolution cells do not keep the "
+                  "sums the curvatures' derivative needs. Set Evaluation to Exact or Auto (which then takes Exact), or "
+                  "turn StorePrincipalCurvatures off.");
+    return false;
+  }
+  return this->Superclass::CheckParameters(run);
+}
+
 vtkGLSScaleFilterBase::SampleRequest vtkGLSScaleSpace::GetSampleRequest(const vtkGLSRun&) const
 {
   // Memory: every stored array is n x S x components values of the output precision (int for the counts).
@@ -204,6 +258,12 @@ vtkGLSScaleFilterBase::SampleRequest vtkGLSScaleSpace::GetSampleRequest(const vt
       request.BytesPerPointScale += d.Components * (d.Integer ? 4.0 : valueBytes);
     }
   }
+  for (int id = 0; this->StorePrincipalCurvatures && id < vtkGLSDescriptors::NUMBER_OF_CURVATURE_ARRAYS; ++id)
+  {
+    request.BytesPerPointScale +=
+      vtkGLSDescriptors::GetCurvature(static_cast<vtkGLSDescriptors::CurvatureId>(id)).Components * valueBytes;
+  }
+  request.PrincipalCurvatures = this->StorePrincipalCurvatures;
   request.What = "storing every scale";
   request.Advice = "Use fewer scales, OutputPrecision FLOAT (half the memory), turn off arrays you do not need "
                    "(Store*), or use vtkGLSGeometricVariation / vtkGLSContinuousFeatures / "
@@ -235,8 +295,10 @@ int vtkGLSScaleSpace::ComputeOutputs(vtkGLSRun& run)
   }
   const int threads = gls::resolveThreadCount(this->NumberOfThreads);
   const bool completed = this->OutputPrecision == FLOAT
-    ? FillArrays<float, vtkFloatArray>(stored, run.Scales, n, out, feed, &NameScaleComponents, median, threads)
-    : FillArrays<double, vtkDoubleArray>(stored, run.Scales, n, out, feed, &NameScaleComponents, median, threads);
+    ? FillArrays<float, vtkFloatArray>(
+        stored, this->StorePrincipalCurvatures, run.Scales, n, out, feed, &NameScaleComponents, median, threads)
+    : FillArrays<double, vtkDoubleArray>(
+        stored, this->StorePrincipalCurvatures, run.Scales, n, out, feed, &NameScaleComponents, median, threads);
   if (completed && median)
   {
     out->AddArray(median);
@@ -260,5 +322,6 @@ void vtkGLSScaleSpace::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StoreFitness: " << this->StoreFitness << "\n";
   os << indent << "StoreDerivatives: " << this->StoreDerivatives << "\n";
   os << indent << "StoreNeighborCount: " << this->StoreNeighborCount << "\n";
+  os << indent << "StorePrincipalCurvatures: " << this->StorePrincipalCurvatures << "\n";
   os << indent << "OutputPrecision: " << (this->OutputPrecision == FLOAT ? "Float" : "Double") << "\n";
 }

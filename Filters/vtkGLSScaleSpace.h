@@ -19,6 +19,13 @@
  * - GLSKappaMedian (1/length, one component, the active scalars; with StoreKappa): the median of kappa over the
  *   scales where the fit is defined, NaN where none is: a summary that colours well (a colour map of GLSKappa's
  *   magnitude is NaN wherever a single scale is undefined).
+ * With StorePrincipalCurvatures (off by default; the exact evaluation: Auto takes it, Multiresolution is refused):
+ * the principal curvatures and directions of the fit (the derivative of its normal field over positions, docs/math.md)
+ * - GLSK1 >= GLSK2 (1/length): principal curvatures, positive on a sphere with outward normals.
+ * - GLSPrincipalDirection1, GLSPrincipalDirection2 (3 per scale, unit): their tangent directions (d1's largest
+ *   component positive, d2 = eta x d1); NaN at an umbilic (k1 - k2 <= 1e-6 / t).
+ * - GLSMeanCurvature (1/length, (k1 + k2) / 2), GLSGaussianCurvature (1/length^2, k1 k2), GLSShapeIndex
+ *   (dimensionless in [-1, 1], Koenderink's; NaN where flat at the scale), GLSCurvedness (1/length).
  * Field data: GLSScales, the absolute scales (length).
  * A fit that is undefined (fewer than MinimumNeighbors neighbours, all normals cancelling, non-finite point) is NaN
  * in every output for that point and scale.
@@ -59,6 +66,17 @@ public:
   vtkBooleanMacro(StoreNeighborCount, bool);
   ///@}
 
+  ///@{
+  /// Also compute and write the principal curvatures and directions at every scale (off by default: 12 more values
+  /// per point and scale, and the fit takes about twice as long): GLSK1, GLSK2, GLSPrincipalDirection1,
+  /// GLSPrincipalDirection2, GLSMeanCurvature, GLSGaussianCurvature, GLSShapeIndex, GLSCurvedness. Needs the exact
+  /// evaluation (Evaluation Auto takes it; Multiresolution is refused with an error) and runs on the CPU (Backend
+  /// CUDA falls back with a warning).
+  vtkSetMacro(StorePrincipalCurvatures, bool);
+  vtkGetMacro(StorePrincipalCurvatures, bool);
+  vtkBooleanMacro(StorePrincipalCurvatures, bool);
+  ///@}
+
   enum OutputPrecisionType
   {
     DOUBLE = 0, ///< vtkDoubleArray outputs (default)
@@ -79,6 +97,8 @@ protected:
   vtkGLSScaleSpace();
   ~vtkGLSScaleSpace() override;
 
+  /// Refuses StorePrincipalCurvatures with the multi-resolution evaluation.
+  bool CheckParameters(vtkGLSRun& run) override;
   /// The producer of a scale space: it always fits, and its outputs are every stored descriptor.
   SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
   int ComputeOutputs(vtkGLSRun& run) override;
@@ -92,6 +112,7 @@ protected:
   bool StoreFitness;
   bool StoreDerivatives;
   bool StoreNeighborCount;
+  bool StorePrincipalCurvatures;
   int OutputPrecision;
 
 private:

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 using namespace glstest;
 
@@ -277,5 +278,114 @@ TEST(ScaleSpaceFilter, BackendFallbackWarnsOnceAndRecordsTheCpu)
     }
     EXPECT_TRUE(identical(pointArray(f->GetPolyDataOutput(), "GLSKappa"), pointArray(cpu->GetPolyDataOutput(), "GLSKappa")));
     EXPECT_TRUE(identical(pointArray(f->GetPolyDataOutput(), "GLSdEta"), pointArray(cpu->GetPolyDataOutput(), "GLSdEta")));
+  }
+}
+
+namespace
+{
+
+/// A patch of the cylinder x^2 + y^2 = r^2 (angles [-a, a], heights [-h, h]) sampled as a scanner does (one point
+/// jittered in each cell of a grid of `spacing`), with exact outward normals.
+Cloud cylinderPatch(double r, double a, double h, double spacing, unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> jitter(0.0, 1.0);
+  const int nu = static_cast<int>(std::ceil(2.0 * a * r / spacing));
+  const int nv = static_cast<int>(std::ceil(2.0 * h / spacing));
+  Cloud c;
+  for (int i = 0; i < nu; ++i)
+  {
+    for (int j = 0; j < nv; ++j)
+    {
+      const double u = -a + 2.0 * a * (i + jitter(rng)) / nu, z = -h + 2.0 * h * (j + jitter(rng)) / nv;
+      c.points.insert(c.points.end(), { r * std::cos(u), r * std::sin(u), z });
+      c.normals.insert(c.normals.end(), { std::cos(u), std::sin(u), 0.0 });
+    }
+  }
+  return c;
+}
+
+} // namespace
+
+TEST(ScaleSpaceFilter, PrincipalCurvaturesOnACylinderWhenAsked)
+{
+  // A cylinder of radius 1 at scales of 4 and 5% of it: k1 = 1 around it, k2 = 0 along the axis (d2 = z), H = 1/2,
+  // K = 0, shape index 1/2 (a ridge), curvedness 1/sqrt(2). Off by default; the exact evaluation under Auto.
+  const Cloud c = cylinderPatch(1.0, 0.3, 0.3, 0.0045, 3);
+  vtkNew<vtkGLSScaleSpace> f;
+  f->SetInputData(makePolyData(c));
+  f->SetScaleUnitsToAbsolute();
+  f->AddScale(0.04);
+  f->AddScale(0.05);
+  f->Update();
+  EXPECT_EQ(f->GetPolyDataOutput()->GetPointData()->GetArray("GLSK1"), nullptr);
+  f->StorePrincipalCurvaturesOn();
+  f->Update();
+  EXPECT_STREQ(f->GetLastEvaluationUsed(), "Exact");
+  vtkPolyData* out = f->GetPolyDataOutput();
+  const std::size_t S = 2;
+  const auto k1 = pointArray(out, "GLSK1"), k2 = pointArray(out, "GLSK2");
+  const auto d1 = pointArray(out, "GLSPrincipalDirection1"), d2 = pointArray(out, "GLSPrincipalDirection2");
+  const auto H = pointArray(out, "GLSMeanCurvature"), K = pointArray(out, "GLSGaussianCurvature");
+  const auto shape = pointArray(out, "GLSShapeIndex"), curved = pointArray(out, "GLSCurvedness");
+  const auto kappa = pointArray(out, "GLSKappa");
+  ASSERT_EQ(k1.size(), c.size() * S);
+  ASSERT_EQ(d2.size(), c.size() * S * 3);
+  EXPECT_STREQ(out->GetPointData()->GetArray("GLSPrincipalDirection1")->GetComponentName(4), "t=0.05 y");
+  long checked = 0;
+  for (std::size_t i = 0; i < c.size(); i += 17)
+  {
+    const double u = std::atan2(c.points[3 * i + 1], c.points[3 * i]), z = c.points[3 * i + 2];
+    if (std::abs(u) > 0.15 || std::abs(z) > 0.15)
+    {
+      continue;
+    }
+    for (std::size_t k = 0; k < S; ++k)
+    {
+      const std::size_t o = i * S + k;
+      EXPECT_NEAR(k1[o], 1.0, 0.03); // pointwise, at about 250 points in the smaller ball
+      EXPECT_NEAR(k2[o], 0.0, 0.03);
+      EXPECT_GT(std::abs(d2[3 * o + 2]), std::cos(2.0 * 3.14159265358979 / 180.0)); // along the axis
+      EXPECT_LT(std::abs(d1[3 * o + 2]), std::sin(2.0 * 3.14159265358979 / 180.0));
+      EXPECT_NEAR(H[o], 0.5 * (k1[o] + k2[o]), 1e-12);
+      EXPECT_NEAR(H[o], kappa[o], 0.01); // the sphere's compromise, to the fit's accuracy
+      EXPECT_NEAR(K[o], k1[o] * k2[o], 1e-12);
+      EXPECT_NEAR(shape[o], 0.5, 0.02);
+      EXPECT_NEAR(curved[o], std::sqrt(0.5), 0.02);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100);
+}
+
+TEST(ScaleSpaceFilter, PrincipalCurvaturesRefuseTheMultiresolutionEvaluationAndCountInTheBudget)
+{
+  const Cloud c = sphere(150, 1.0);
+  {
+    vtkNew<vtkGLSScaleSpace> f;
+    auto errors = catchErrors(f);
+    f->SetInputData(makePolyData(c));
+    f->StorePrincipalCurvaturesOn();
+    f->SetEvaluationToMultiresolution();
+    f->Update();
+    EXPECT_EQ(errors->Count, 1);
+    EXPECT_NE(errors->Message.find("StorePrincipalCurvatures"), std::string::npos) << errors->Message;
+    EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray("GLSKappa"), nullptr);
+  }
+  // 150 points at 4,000 scales: 48 MiB of stored descriptors, 103 MiB with the curvatures' 12 doubles more.
+  for (bool curvatures : { false, true })
+  {
+    vtkNew<vtkGLSScaleSpace> f;
+    auto errors = catchErrors(f);
+    f->SetInputData(makePolyData(c));
+    f->SetScaleUnitsToAbsolute();
+    f->SetMinScale(0.8);
+    f->SetMaxScale(1.5);
+    f->SetNumberOfScales(4000);
+    f->SetMemoryBudget(80.0);
+    f->SetStorePrincipalCurvatures(curvatures);
+    f->Update();
+    EXPECT_EQ(errors->Count, curvatures ? 1 : 0) << errors->Message;
+    EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray("GLSKappa") != nullptr, !curvatures);
   }
 }
