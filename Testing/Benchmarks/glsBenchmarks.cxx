@@ -1,7 +1,7 @@
 // The performance benchmarks P1-P5 (issue "Performance"), on the bundled bunny sampled by area to 173,000 and
 // 1,000,000 points with normals interpolated from the mesh; scales are fractions of the bounding-box diagonal.
 //
-//   glsBenchmarks --case all|P1|P2|P3|P4|P5|P1-one-pass [--threads T] [--no-peers]
+//   glsBenchmarks --case all|P1|P2|P3|P4|P5|P1-one-pass|C1 [--threads T] [--no-peers]
 //
 //   P1  scale space + nu, 20 quadratic scales 0.8%-8%, 173k points; against the per-scale evaluation (one ball
 //       query and one fit per scale) in the same run, and against a single-thread run (bitwise identical?).
@@ -18,6 +18,8 @@
 //   P5  continuous features alone (fused: nothing stored per scale), 1M points, 100 quadratic scales from 0.08% to
 //       0.8% of the diagonal: peak memory. Run it in a process of its own (--case P5) so that the peak is its own.
 //   P1-one-pass  P1's one-pass row alone (for tuning the kernel).
+//   C1  P1's setup with the principal curvatures (ShapeOperatorMoments) against the scale space alone, in the same
+//       run, alternating twice: the cost ratio (the target is at most 1.6x).
 // Each prints wall time, points x scales per second, neighbour visits per second, CPU utilisation and peak memory.
 #include "CloudComparePeer.h"
 #include "MeshSampler.h"
@@ -164,12 +166,13 @@ double cpuSecondsOf(const Measure& m)
 }
 
 Measure scaleSpaceAndNu(const Cloud& c, const std::vector<double>& scales, int threads, gls::EvaluationMethod method,
-  std::vector<double>* nu = nullptr, std::vector<double>* kappa = nullptr)
+  std::vector<double>* nu = nullptr, std::vector<double>* kappa = nullptr, bool principalCurvatures = false)
 {
   gls::ScaleSpaceSettings settings;
   settings.scales = scales;
   settings.parallel.threads = threads;
   settings.method = method;
+  settings.principalCurvatures = principalCurvatures;
   Timer t;
   gls::ScaleSpaceEngine engine(c.xyz.data(), c.normals.data(), c.size(), settings);
   VariationSink sink(c.size(), scales, gls::resolveThreadCount(threads), kappa != nullptr);
@@ -310,7 +313,7 @@ int main(int argc, char* argv[])
     }
     else
     {
-      std::fprintf(stderr, "usage: %s [--case all|P1|P2|P3|P4|P5|P1-one-pass] [--threads T] [--no-peers]\n",
+      std::fprintf(stderr, "usage: %s [--case all|P1|P2|P3|P4|P5|P1-one-pass|C1] [--threads T] [--no-peers]\n",
         argv[0]);
       return 2;
     }
@@ -320,6 +323,23 @@ int main(int argc, char* argv[])
   std::printf("threads: %d; one-pass CPU kernel build: %s\n", peerThreads, gls::onePassKernelBuild());
   std::map<std::string, double> seconds;
 
+  if (all || which == "C1")
+  {
+    const Cloud c = bunny(173000);
+    const auto scales = relativeScales(c, 20, gls::ScaleSampling::Quadratic);
+    header();
+    double alone = 0.0, with = 0.0;
+    for (int repeat = 0; repeat < 2; ++repeat)
+    {
+      const Measure a = scaleSpaceAndNu(c, scales, threads, gls::EvaluationMethod::OnePass);
+      row("C1 173k x 20 scales, scale space alone", 173000, 20, a);
+      const Measure w = scaleSpaceAndNu(c, scales, threads, gls::EvaluationMethod::OnePass, nullptr, nullptr, true);
+      row("C1 173k x 20 scales, with principal curvatures", 173000, 20, w);
+      alone += cpuSecondsOf(a);
+      with += cpuSecondsOf(w);
+    }
+    std::printf("C1: principal curvatures / scale space alone = %.2fx (CPU time, two runs each)\n", with / alone);
+  }
   if (all || which == "P1" || which == "P2" || which == "P3" || which == "P1-one-pass")
   {
     const Cloud c = bunny(173000);

@@ -25,6 +25,7 @@ struct HeightSpreadMoments
   using Sphere = gls::OrientedSphereMoments;
   static constexpr int kHeightSquared = Sphere::kValues - 1; ///< the one new value: z^2 (length^2)
   static constexpr int kValues = Sphere::kValues + 1;
+  static constexpr int kOmegaValues = 0;
 
   /// The sphere's sample and the heights' standard deviation (length; NaN where the fit is undefined).
   struct Sample

@@ -540,4 +540,52 @@ TEST(ShapeOperator, EngineFeedsCurvaturesBeforeEachPointsSamples)
   ASSERT_TRUE(plain.run(none));
   EXPECT_EQ(none.total(none.CurvatureCalls), 0);
   EXPECT_EQ(none.total(none.SampleCalls), static_cast<long>(n));
+  // Asking for the curvatures leaves the sphere's samples as they were (bit for bit in the portable build:
+  // TheSpheresSamplesAreTheSphereSetsBitForBit; to rounding where the AVX2 build fuses multiply-adds otherwise).
+  double worst = 0.0;
+  for (std::size_t j = 0; j < n * S; ++j)
+  {
+    const gls::ScaleSample &a = none.Samples[j], &b = recorder.Samples[j];
+    ASSERT_EQ(a.valid, b.valid);
+    ASSERT_EQ(a.neighbors, b.neighbors);
+    if (a.valid)
+    {
+      const double t = scales[j % S];
+      worst = std::max({ worst, std::abs(a.kappa - b.kappa) * t, std::abs(a.tau - b.tau) / t });
+    }
+  }
+  EXPECT_LT(worst, 1e-12);
+}
+
+TEST(ShapeOperator, TheSpheresSamplesAreTheSphereSetsBitForBit)
+{
+  // The sphere's values keep their moments and their vector grouping with the omega-values beside them.
+  const Cloud c = paraboloid(60, 1.0, 0.8, 0.3, 0.005, 0.02, 5);
+  const std::vector<double> scales{ 0.08, 0.2, 0.45 };
+  gls::NeighborGrid grid;
+  grid.build(c.points.data(), c.normals.data(), c.size(), 0.1);
+  const TestBinning binning(scales);
+  std::vector<gls::MomentsT<gls::ShapeOperatorMoments>> bins(3);
+  std::vector<gls::Moments> sphereBins(3);
+  std::vector<gls::CurvatureSample> with(3);
+  std::vector<gls::ScaleSample> alone(3);
+  long different[2] = {};
+  for (std::size_t i = 0; i < c.size(); i += 29)
+  {
+    const gls::Vec3 p{ c.points[3 * i], c.points[3 * i + 1], c.points[3 * i + 2] };
+    for (int build = 0; build < 2; ++build)
+    {
+      const auto b = build == 0 ? gls::CpuKernelBuild::Portable : gls::CpuKernelBuild::Fastest;
+      gls::onepass::evaluateAllScalesOnCpuFor<gls::ShapeOperatorMoments>(
+        grid.view(), p, binning.View, 6.0, bins.data(), with.data(), b);
+      gls::evaluateAllScalesOnCpu(grid.view(), p, binning.View, 6.0, sphereBins.data(), alone.data(), b);
+      for (std::size_t k = 0; k < 3; ++k)
+      {
+        different[build] += std::memcmp(&with[k].sphere.kappa, &alone[k].kappa, sizeof(double)) == 0 &&
+            std::memcmp(&with[k].sphere.deta, &alone[k].deta, sizeof(gls::Vec3)) == 0 ? 0 : 1;
+      }
+    }
+  }
+  EXPECT_EQ(different[0], 0);
+  std::printf("sphere samples differing with the curvatures: portable %ld, fastest %ld\n", different[0], different[1]);
 }

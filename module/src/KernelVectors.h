@@ -39,12 +39,12 @@ GLS_FORCE_INLINE void store4(double* m, Double4 v)
   std::memcpy(m, &v, sizeof(v));
 }
 
-/// Adds the `count` values f times 1, d2 and d4 to the rows m[0, count), m[stride, stride + count) and
-/// m[2 stride, 2 stride + count): four at a time while four remain (formed from the
-/// values, `gathered`, when they are held in registers, else loaded with load4), then one by one. The same products and sums as the scalar loop, element by element
-/// (fused into multiply-adds in the AVX2 build). Callers pass constants, so the loops unroll.
+/// Adds the `count` values f times 1, d2 and (with `fourth`) d4 to the rows m[0, count), m[stride, stride + count) and
+/// m[2 stride, 2 stride + count): four at a time while four remain (formed from the values, `gathered`, when they are
+/// held in registers, else loaded with load4), then one by one. The same products and sums as the scalar loop,
+/// element by element (fused into multiply-adds in the AVX2 build). Callers pass constants, so the loops unroll.
 GLS_FORCE_INLINE void addTimesPowers(
-  double* m, const double* f, int count, int stride, bool gathered, double d2, double d4)
+  double* m, const double* f, int count, int stride, bool gathered, double d2, double d4, bool fourth = true)
 {
   int j = 0;
   for (; j + 4 <= count; j += 4)
@@ -52,13 +52,19 @@ GLS_FORCE_INLINE void addTimesPowers(
     const Double4 v = gathered ? Double4{ f[j], f[j + 1], f[j + 2], f[j + 3] } : load4(f + j);
     store4(m + j, load4(m + j) + v);
     store4(m + stride + j, load4(m + stride + j) + d2 * v);
-    store4(m + 2 * stride + j, load4(m + 2 * stride + j) + d4 * v);
+    if (fourth)
+    {
+      store4(m + 2 * stride + j, load4(m + 2 * stride + j) + d4 * v);
+    }
   }
   for (; j < count; ++j)
   {
     m[j] += f[j];
     m[stride + j] += d2 * f[j];
-    m[2 * stride + j] += d4 * f[j];
+    if (fourth)
+    {
+      m[2 * stride + j] += d4 * f[j];
+    }
   }
 }
 

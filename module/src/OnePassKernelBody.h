@@ -19,12 +19,16 @@ namespace onepass
 template <typename Set>
 GLS_FORCE_INLINE void addToMomentsVectorized(MomentsT<Set>& a, const Vec3& x, double d2, const Vec3& n)
 {
-  constexpr int V = MomentsT<Set>::kValues;
+  constexpr int V = MomentsT<Set>::kValues, W = MomentsT<Set>::kWeighted;
   double f[Set::kValues];
   Set::pointValues(x, d2, n, f);
   const double d4 = d2 * d2;
-  kernel::addTimesPowers(a.m, f, V, V, true, d2, d4);
-  a.m[3 * V] += d4 * d2;
+  kernel::addTimesPowers(a.m, f, W, V, true, d2, d4);
+  if (W < V)
+  {
+    kernel::addTimesPowers(a.m + W, f + W, V - W, V, true, d2, d4, false); // the omega-values: two powers
+  }
+  a.m[MomentsT<Set>::kSixthPower] += d4 * d2;
 }
 
 #else

@@ -18,6 +18,7 @@ struct alignas(64) AggregateMomentsT
 {
   using Set = S;
   static constexpr int kValues = S::kValues;
+  static_assert(S::kOmegaValues == 0, "the multi-resolution moments keep no omega-values yet");
   double m[wholeCacheLines(3 * kValues)];
 };
 

@@ -1,7 +1,9 @@
 // A moment set: the values f whose weighted sums sum w_i f_i a fit consumes, declared once with every rule the engine
 // needs to sum them, and the fit of one scale from those sums (docs/architecture.md, "How to add a fit"). Host/device.
 // OrientedSphereMoments is the one the filters run. A set is a type with:
-// - kValues, its values (the last one always |x|^2, which the one pass keeps as the moments of d^2), pointValues (a
+// - kValues, its values (the last one always |x|^2, which the one pass keeps as the moments of d^2), kOmegaValues (how
+//   many of the last values before |x|^2 are summed weighted by the spatial derivative's omega = (4/t^2)(1 - d^2/t^2)
+//   only: the kernels keep two moments of them, and the fit gets their omega-weighted sums in v), pointValues (a
 //   point's values), Sample and fit (the fit of scale t from the values weighted by w and by dw/dt): all the exact
 //   evaluation needs. Its kernels take the set as a template parameter and derive their bins, vector adds and fits
 //   from it (MomentBins.h, PointScaleSpace.h, src/OnePassKernelBody.h); Testing/Core/TestFitWithAnExtraSum.cpp runs a
@@ -114,6 +116,7 @@ GLS_INLINE Vec3 normalOffsetTimes(const PyramidCell& c, const Vec3& v)
 struct OrientedSphereMoments
 {
   static constexpr int kValues = kFitValues; ///< how many values; the last is |x|^2 (d^2 for a point)
+  static constexpr int kOmegaValues = 0;     ///< how many before |x|^2 are summed weighted by omega only (none)
   using Cell = PyramidCell;                  ///< what a pyramid cell keeps for the values' cell rules
   using Sample = ScaleSample;                ///< what the fit gives at one scale
 

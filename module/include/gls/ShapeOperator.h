@@ -5,9 +5,10 @@
 //
 // The fit at p weighs its neighbours by w(|q_i - p|^2 / t^2); moving p by e changes each weight by omega_i (x_i . e),
 // omega = (4/t^2)(1 - d^2/t^2), and each local position x_i by -e. So the spatial derivatives of the sphere's sums
-// need, besides them, the omega-weighted sums of x, x x^T, n x^T, (x . n) x and |x|^2 x: ShapeOperatorMoments
-// declares those values (MomentSet.h) and its fit forms them as (4/t^2) v + dv / t from the w- and dw/dt-weighted
-// sums every kernel already gives, so that the one pass, its windowed form and the CPU kernel run it unchanged.
+// need, besides them, the omega-weighted sums of x, x x^T, n x^T, (x . n) x and |x|^2 x. Of the sphere's own values
+// they are (4/t^2) v + dv / t, and sum omega |x|^2 f = t sum (dw/dt) f, so |x|^2 x, the trace of x x^T and that of
+// n x^T come from them; the 16 others are ShapeOperatorMoments' omega-values (MomentSet.h), of which the kernels keep
+// two moments (MomentBins.h): the one pass, its windowed form and the CPU kernel run the set unchanged.
 #pragma once
 
 #include "gls/MomentSet.h"
@@ -20,15 +21,15 @@ namespace gls
 {
 
 /// The values of ShapeOperatorMoments after the oriented sphere's eight (kOne .. kPositionDotNormal, FitValue), in
-/// this order, then |x|^2 last.
+/// this order, then |x|^2 last: its omega-values, summed weighted by omega only. The entries of x x^T and n x^T that
+/// their traces give are left out.
 enum ShapeOperatorValue : int
 {
-  kOffsetOffset = kSquaredPosition,                  ///< x x^T as xx, xy, xz, yy, yz, zz (length^2): 6 values
-  kNormalOffset = kOffsetOffset + 6,                 ///< n x^T, [3 a + b] = n_a x_b (length): 9 values
-  kOffsetDotNormalOffset = kNormalOffset + 9,        ///< (x . n) x (length^2): 3 values
-  kSquaredOffsetOffset = kOffsetDotNormalOffset + 3, ///< |x|^2 x (length^3): 3 values
-  kShapeOperatorSquaredPosition = kSquaredOffsetOffset + 3, ///< |x|^2, last as in every set
-  kShapeOperatorValues                               ///< how many (30)
+  kOffsetOffset = kSquaredPosition,                  ///< x x^T as xx, xy, xz, yy, yz (length^2): 5 values (zz: trace)
+  kNormalOffset = kOffsetOffset + 5,                 ///< n x^T, [3 a + b] = n_a x_b for 3 a + b < 8 (length): 8
+  kOffsetDotNormalOffset = kNormalOffset + 8,        ///< (x . n) x (length^2): 3 values
+  kShapeOperatorSquaredPosition = kOffsetDotNormalOffset + 3, ///< |x|^2, last as in every set
+  kShapeOperatorValues                               ///< how many (25)
 };
 
 /// Directions are NaN where the principal curvatures differ by at most this much times 1/t (an umbilic at the
@@ -174,34 +175,32 @@ struct ShapeOperatorMoments
 {
   using Sphere = OrientedSphereMoments;
   static constexpr int kValues = kShapeOperatorValues;
+  static constexpr int kOmegaValues = kShapeOperatorSquaredPosition - kOffsetOffset; ///< 16
   using Sample = CurvatureSample;
 
   GLS_INLINE static void pointValues(const Vec3& x, double d2, const Vec3& n, double* f)
   {
     Sphere::pointValues(x, d2, n, f); // its |x|^2 (at kSquaredPosition) is overwritten below, and set last
     const double xv[3] = { x.x, x.y, x.z }, nv[3] = { n.x, n.y, n.z };
-    const double xx[6] = { x.x * x.x, x.x * x.y, x.x * x.z, x.y * x.y, x.y * x.z, x.z * x.z };
-    for (int k = 0; k < 6; ++k)
+    const double xx[5] = { x.x * x.x, x.x * x.y, x.x * x.z, x.y * x.y, x.y * x.z };
+    for (int k = 0; k < 5; ++k)
     {
       f[kOffsetOffset + k] = xx[k];
     }
-    for (int a = 0; a < 3; ++a)
+    for (int k = 0; k < 8; ++k)
     {
-      for (int b = 0; b < 3; ++b)
-      {
-        f[kNormalOffset + 3 * a + b] = nv[a] * xv[b];
-      }
+      f[kNormalOffset + k] = nv[k / 3] * xv[k % 3];
     }
     const double xn = f[kPositionDotNormal];
     for (int a = 0; a < 3; ++a)
     {
       f[kOffsetDotNormalOffset + a] = xn * xv[a];
-      f[kSquaredOffsetOffset + a] = d2 * xv[a];
     }
     f[kShapeOperatorSquaredPosition] = d2;
   }
 
-  /// The sphere's fit, and the principal curvatures from the omega-weighted values (4/t^2) v + dv / t.
+  /// The sphere's fit, and the principal curvatures from the omega-weighted sums: the omega-values' own (v), the
+  /// sphere's values' (4/t^2) v + dv / t.
   GLS_INLINE static Sample fit(const double* v, const double* dv, double t, double neighbors, double minNeighbors)
   {
     double sv[Sphere::kValues], sdv[Sphere::kValues];
@@ -223,17 +222,19 @@ struct ShapeOperatorMoments
     const auto omega = [&](int j) { return a * v[j] + b * dv[j]; };
     SpatialSums g;
     g.X = { omega(kPositionX), omega(kPositionY), omega(kPositionZ) };
-    for (int k = 0; k < 6; ++k)
+    for (int k = 0; k < 5; ++k)
     {
-      g.XX[k] = omega(kOffsetOffset + k);
+      g.XX[k] = v[kOffsetOffset + k];
     }
-    for (int k = 0; k < 9; ++k)
+    g.XX[5] = t * dv[kOne] - g.XX[0] - g.XX[3]; // sum omega |x|^2 = t sum (dw/dt)
+    for (int k = 0; k < 8; ++k)
     {
-      g.NX[k] = omega(kNormalOffset + k);
+      g.NX[k] = v[kNormalOffset + k];
     }
-    const int dn = kOffsetDotNormalOffset, sq = kSquaredOffsetOffset;
-    g.XdotNX = { omega(dn), omega(dn + 1), omega(dn + 2) };
-    g.SquaredX = { omega(sq), omega(sq + 1), omega(sq + 2) };
+    g.NX[8] = omega(kPositionDotNormal) - g.NX[0] - g.NX[4]; // the trace: sum omega x . n
+    const int dn = kOffsetDotNormalOffset;
+    g.XdotNX = { v[dn], v[dn + 1], v[dn + 2] };
+    g.SquaredX = { t * dv[kPositionX], t * dv[kPositionY], t * dv[kPositionZ] }; // sum omega |x|^2 x
     WeightedSums s, ds;
     toWeightedSums(sv, sdv, s, ds);
     r.principal = principalCurvaturesOf(s, g, r.sphere, t);
