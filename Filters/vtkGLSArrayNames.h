@@ -22,6 +22,13 @@ constexpr const char* StableKappa = "GLSStableKappa";             // kappa there
 constexpr const char* StablePhi = "GLSStablePhi";                 // phi there (dimensionless)
 constexpr const char* MaxVariation = "GLSMaxVariation";           // the largest nu (dimensionless)
 constexpr const char* MaxVariationScale = "GLSMaxVariationScale"; // its scale (length)
+// The steadiest principal directions (vtkGLSPrincipalDirections; gls::StableDirection): one value per point.
+constexpr const char* StableDirectionScale = "GLSStableDirectionScale"; // where d1 turns least (length)
+constexpr const char* DirectionTurnRate = "GLSDirectionTurnRate";       // how much it turns (radians per log t)
+constexpr const char* Anisotropy = "GLSAnisotropy";                     // (k1 - k2) / (|k1| + |k2|) there
+constexpr const char* StableShapeIndex = "GLSStableShapeIndex";         // the shape index there
+constexpr const char* StableDirection = "GLSStableDirection";           // d1 there (3 components, unit)
+constexpr const char* RidgeValley = "GLSRidgeValley";                   // +1 ridge, -1 valley, 0 neither
 constexpr const char* Sigma = "GLSSigma";                 // field data of the features: the sigma used
 constexpr const char* Dissimilarity = "GLSDissimilarity";
 constexpr const char* Similar = "GLSSimilar";

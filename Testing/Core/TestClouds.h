@@ -24,6 +24,27 @@ struct Cloud
   }
 };
 
+/// A patch of the cylinder x^2 + y^2 = r^2 (angles [-a, a], heights [-h, h]) sampled as a scanner does (one point
+/// jittered in each cell of a grid of `spacing`), with exact normals, outward (or inward when `inward`).
+inline Cloud cylinderPatch(double r, double a, double h, double spacing, unsigned seed, bool inward = false)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> jitter(0.0, 1.0);
+  const int nu = static_cast<int>(std::ceil(2.0 * a * r / spacing));
+  const int nv = static_cast<int>(std::ceil(2.0 * h / spacing));
+  const double side = inward ? -1.0 : 1.0;
+  Cloud c;
+  for (int i = 0; i < nu; ++i)
+  {
+    for (int j = 0; j < nv; ++j)
+    {
+      const double u = -a + 2.0 * a * (i + jitter(rng)) / nu, z = -h + 2.0 * h * (j + jitter(rng)) / nv;
+      c.add(r * std::cos(u), r * std::sin(u), z, side * std::cos(u), side * std::sin(u), 0.0);
+    }
+  }
+  return c;
+}
+
 /// n points on a sphere (Fibonacci lattice), normals outward (or inward when `inward`).
 inline Cloud sphere(std::size_t n, double radius, bool inward = false, double cx = 0, double cy = 0, double cz = 0)
 {

@@ -14,7 +14,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 using namespace glstest;
 
@@ -280,32 +279,6 @@ TEST(ScaleSpaceFilter, BackendFallbackWarnsOnceAndRecordsTheCpu)
     EXPECT_TRUE(identical(pointArray(f->GetPolyDataOutput(), "GLSdEta"), pointArray(cpu->GetPolyDataOutput(), "GLSdEta")));
   }
 }
-
-namespace
-{
-
-/// A patch of the cylinder x^2 + y^2 = r^2 (angles [-a, a], heights [-h, h]) sampled as a scanner does (one point
-/// jittered in each cell of a grid of `spacing`), with exact outward normals.
-Cloud cylinderPatch(double r, double a, double h, double spacing, unsigned seed)
-{
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> jitter(0.0, 1.0);
-  const int nu = static_cast<int>(std::ceil(2.0 * a * r / spacing));
-  const int nv = static_cast<int>(std::ceil(2.0 * h / spacing));
-  Cloud c;
-  for (int i = 0; i < nu; ++i)
-  {
-    for (int j = 0; j < nv; ++j)
-    {
-      const double u = -a + 2.0 * a * (i + jitter(rng)) / nu, z = -h + 2.0 * h * (j + jitter(rng)) / nv;
-      c.points.insert(c.points.end(), { r * std::cos(u), r * std::sin(u), z });
-      c.normals.insert(c.normals.end(), { std::cos(u), std::sin(u), 0.0 });
-    }
-  }
-  return c;
-}
-
-} // namespace
 
 TEST(ScaleSpaceFilter, PrincipalCurvaturesOnACylinderWhenAsked)
 {

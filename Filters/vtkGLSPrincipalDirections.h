@@ -1,0 +1,61 @@
+/**
+ * @class   vtkGLSPrincipalDirections
+ * @brief   Where each point's principal directions are most stable over the scales, and the surface there: fused.
+ *
+ * The principal curvatures and directions of the GLS fit at every scale (the derivative of the fitted normal field
+ * over positions; vtkGLSScaleSpace's StorePrincipalCurvatures, docs/math.md) are reduced point by point as they are
+ * computed, so that nothing is stored per scale (like vtkGLSContinuousFeatures, for clouds of 10^7 points). Among the
+ * pairs of consecutive scales where both are anisotropic (k1 - k2 >= AnisotropyThreshold max(|k1|, |k2|)) with defined
+ * directions, the steadiest is the one whose direction d1 turns least per unit of log t (gls::steadiestDirection).
+ *
+ * Point-data outputs (NaN where no pair of consecutive scales is anisotropic: spheres, planes, umbilics):
+ * - GLSStableDirectionScale (length): sqrt(t_k t_(k+1)) of the steadiest pair.
+ * - GLSDirectionTurnRate (radians per unit of log t): how much d1 turns there.
+ * - GLSAnisotropy (dimensionless, [0, 1]): (k1 - k2) / (|k1| + |k2|) there (1: one curvature is 0, a cylinder).
+ * - GLSStableShapeIndex (dimensionless, [-1, 1]): Koenderink's shape index there (1/2 ridge, -1/2 valley).
+ * - GLSStableDirection (3 components, unit, the active vectors: glyphs show it): d1 there, its largest component
+ *   positive.
+ * - GLSRidgeValley (the active scalars): +1 on a ridge (stable shape index in [3/8, 5/8]), -1 in a valley
+ *   ([-5/8, -3/8]), 0 elsewhere.
+ * Needs the exact evaluation (Evaluation Auto takes it; Multiresolution is refused) and runs on the CPU. Field data:
+ * GLSScales (length).
+ */
+#ifndef vtkGLSPrincipalDirections_h
+#define vtkGLSPrincipalDirections_h
+
+#include "vtkGLSFiltersModule.h"
+#include "vtkGLSScaleFilterBase.h"
+
+class VTKGLSFILTERS_EXPORT vtkGLSPrincipalDirections : public vtkGLSScaleFilterBase
+{
+public:
+  static vtkGLSPrincipalDirections* New();
+  vtkTypeMacro(vtkGLSPrincipalDirections, vtkGLSScaleFilterBase);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// A scale's directions count where k1 - k2 >= AnisotropyThreshold max(|k1|, |k2|) (dimensionless, in
+  /// [0.01, 1]; default 0.2: below it the directions turn with the sampling's noise).
+  vtkSetMacro(AnisotropyThreshold, double);
+  vtkGetMacro(AnisotropyThreshold, double);
+  ///@}
+
+protected:
+  void DescribeSettings(std::vector<SettingRange>& settings) override;
+
+  vtkGLSPrincipalDirections();
+  ~vtkGLSPrincipalDirections() override;
+
+  /// Refuses the multi-resolution evaluation.
+  bool CheckParameters(vtkGLSRun& run) override;
+  SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
+  int ComputeOutputs(vtkGLSRun& run) override;
+
+  double AnisotropyThreshold;
+
+private:
+  vtkGLSPrincipalDirections(const vtkGLSPrincipalDirections&) = delete;
+  void operator=(const vtkGLSPrincipalDirections&) = delete;
+};
+
+#endif
