@@ -34,25 +34,34 @@ double Component(const gls::Vec3& v, int component)
   return component == 0 ? v.x : (component == 1 ? v.y : v.z);
 }
 
+void SetComponent(gls::Vec3& v, int component, double value)
+{
+  (component == 0 ? v.x : (component == 1 ? v.y : v.z)) = value;
+}
+
 const CurvatureArray CurvatureTable[NUMBER_OF_CURVATURE_ARRAYS] = {
-  { "GLSK1", 1, [](const gls::PrincipalCurvatures& c, double, int) { return c.k1; }, "1/length",
+  { "GLSK1", 1, [](const gls::PrincipalCurvatures& c, double, int) { return c.k1; },
+    [](gls::PrincipalCurvatures& c, int, double v) { c.k1 = v; }, "1/length",
     "the larger principal curvature, positive on a sphere with outward normals" },
-  { "GLSK2", 1, [](const gls::PrincipalCurvatures& c, double, int) { return c.k2; }, "1/length",
-    "the smaller principal curvature" },
+  { "GLSK2", 1, [](const gls::PrincipalCurvatures& c, double, int) { return c.k2; },
+    [](gls::PrincipalCurvatures& c, int, double v) { c.k2 = v; }, "1/length", "the smaller principal curvature" },
   { "GLSPrincipalDirection1", 3, [](const gls::PrincipalCurvatures& c, double, int j) { return Component(c.d1, j); },
-    "unit vector", "direction of k1, tangent (its largest component positive); NaN at an umbilic" },
+    [](gls::PrincipalCurvatures& c, int j, double v) { SetComponent(c.d1, j, v); }, "unit vector",
+    "direction of k1, tangent (its largest component positive); NaN at an umbilic" },
   { "GLSPrincipalDirection2", 3, [](const gls::PrincipalCurvatures& c, double, int j) { return Component(c.d2, j); },
-    "unit vector", "direction of k2, eta x d1; NaN at an umbilic" },
+    [](gls::PrincipalCurvatures& c, int j, double v) { SetComponent(c.d2, j, v); }, "unit vector",
+    "direction of k2, eta x d1; NaN at an umbilic" },
   { "GLSMeanCurvature", 1, [](const gls::PrincipalCurvatures& c, double, int) { return gls::meanCurvature(c); },
-    "1/length", "(k1 + k2) / 2, kappa on a sphere" },
+    nullptr, "1/length", "(k1 + k2) / 2, kappa on a sphere" },
   { "GLSGaussianCurvature", 1,
-    [](const gls::PrincipalCurvatures& c, double, int) { return gls::gaussianCurvature(c); }, "1/length^2",
+    [](const gls::PrincipalCurvatures& c, double, int) { return gls::gaussianCurvature(c); }, nullptr, "1/length^2",
     "k1 k2" },
   { "GLSShapeIndex", 1, [](const gls::PrincipalCurvatures& c, double t, int) { return gls::shapeIndex(c, t); },
-    "dimensionless, [-1, 1]", "Koenderink's (2/pi) atan((k1 + k2) / (k1 - k2)): 1 dome, 1/2 ridge, 0 saddle, -1/2 "
-    "valley, -1 cup; NaN where flat at the scale" },
+    nullptr, "dimensionless, [-1, 1]",
+    "Koenderink's (2/pi) atan((k1 + k2) / (k1 - k2)): 1 dome, 1/2 ridge, 0 saddle, -1/2 valley, -1 cup; NaN where "
+    "flat at the scale" },
   { "GLSCurvedness", 1, [](const gls::PrincipalCurvatures& c, double, int) { return gls::curvedness(c); },
-    "1/length", "sqrt((k1^2 + k2^2) / 2)" },
+    nullptr, "1/length", "sqrt((k1^2 + k2^2) / 2)" },
 };
 }
 

@@ -91,6 +91,9 @@ struct CurvatureArray
   int Components;      ///< values per scale (3-vectors scale-major, as the descriptors)
   /// Value `component` at scale t.
   double (*Value)(const gls::PrincipalCurvatures& c, double t, int component);
+  /// Sets value `component` of c from a stored array (consumers read the four base arrays back); null for the
+  /// arrays derived from them.
+  void (*Read)(gls::PrincipalCurvatures& c, int component, double value);
   const char* Units;   ///< unit of the values
   const char* Meaning; ///< one line for the documentation
 };

@@ -59,7 +59,8 @@ vtkSmartPointer<vtkDoubleArray> NewPointArray(const char* name, int components, 
 } // namespace
 
 vtkGLSPrincipalDirections::vtkGLSPrincipalDirections()
-  : AnisotropyThreshold(gls::kSignificantAnisotropy)
+  : ReuseInputScaleSpace(true)
+  , AnisotropyThreshold(gls::kSignificantAnisotropy)
 {
 }
 
@@ -80,6 +81,7 @@ vtkGLSScaleFilterBase::SampleRequest vtkGLSPrincipalDirections::GetSampleRequest
 {
   SampleRequest request;
   request.PrincipalCurvatures = true;
+  request.MayReuseInput = this->ReuseInputScaleSpace;
   request.BytesPerPoint = 8.0 * 8.0; // six arrays, one of three components
   request.What = "the steadiest principal directions";
   request.Advice = "Use fewer points.";
@@ -127,5 +129,6 @@ void vtkGLSPrincipalDirections::DescribeSettings(std::vector<SettingRange>& sett
 void vtkGLSPrincipalDirections::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "ReuseInputScaleSpace: " << this->ReuseInputScaleSpace << "\n";
   os << indent << "AnisotropyThreshold: " << this->AnisotropyThreshold << "\n";
 }

@@ -34,6 +34,15 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
+  /// When on (default) and the input carries the GLSK1, GLSK2, GLSPrincipalDirection1 and 2 arrays of an upstream
+  /// vtkGLSScaleSpace (StorePrincipalCurvatures) with its GLSScales, they are reduced at their scales instead of
+  /// refitting (this filter's scale parameters are then ignored). Off: always refit at this filter's scales.
+  vtkSetMacro(ReuseInputScaleSpace, bool);
+  vtkGetMacro(ReuseInputScaleSpace, bool);
+  vtkBooleanMacro(ReuseInputScaleSpace, bool);
+  ///@}
+
+  ///@{
   /// A scale's directions count where k1 - k2 >= AnisotropyThreshold max(|k1|, |k2|) (dimensionless, in
   /// [0.01, 1]; default 0.2: below it the directions turn with the sampling's noise).
   vtkSetMacro(AnisotropyThreshold, double);
@@ -51,6 +60,7 @@ protected:
   SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
   int ComputeOutputs(vtkGLSRun& run) override;
 
+  bool ReuseInputScaleSpace;
   double AnisotropyThreshold;
 
 private:

@@ -125,7 +125,7 @@ std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::FitAround(
 }
 
 std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Stored(
-  vtkDataSet* input, std::size_t scaleCount, bool descriptors, bool derivatives)
+  vtkDataSet* input, std::size_t scaleCount, bool descriptors, bool derivatives, bool curvatures)
 {
   std::unique_ptr<vtkGLSSampleSource> source(new vtkGLSSampleSource);
   source->PointCount = static_cast<std::size_t>(input->GetNumberOfPoints());
@@ -146,6 +146,22 @@ std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Stored(
       return nullptr;
     }
     source->StoredArrays.emplace_back(id, a);
+  }
+  for (int id = 0; curvatures && id < vtkGLSDescriptors::NUMBER_OF_CURVATURE_ARRAYS; ++id)
+  {
+    const vtkGLSDescriptors::CurvatureArray& c =
+      vtkGLSDescriptors::GetCurvature(static_cast<vtkGLSDescriptors::CurvatureId>(id));
+    if (!c.Read)
+    {
+      continue;
+    }
+    vtkDataArray* a = input->GetPointData()->GetArray(c.Name);
+    if (!a || a->GetNumberOfComponents() != c.Components * static_cast<int>(scaleCount) ||
+      a->GetNumberOfTuples() != input->GetNumberOfPoints())
+    {
+      return nullptr;
+    }
+    source->StoredCurvatures.emplace_back(id, a);
   }
   if (scaleCount == 0)
   {
@@ -194,10 +210,14 @@ bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std:
   const std::size_t n = ids ? ids->size() : this->PointCount;
   const std::size_t S = this->ScaleCount;
   const double nan = gls::quietNaN<double>();
-  std::vector<std::vector<gls::ScaleSample>> buffers(static_cast<std::size_t>(gls::resolveThreadCount(parallel.threads)));
+  const std::size_t threads = static_cast<std::size_t>(gls::resolveThreadCount(parallel.threads));
+  std::vector<std::vector<gls::ScaleSample>> buffers(threads);
+  std::vector<std::vector<gls::PrincipalCurvatures>> curvatureBuffers(threads);
   return gls::parallelFor(n, parallel, [&](std::size_t begin, std::size_t end, int thread) {
     std::vector<gls::ScaleSample>& samples = buffers[static_cast<std::size_t>(thread)];
+    std::vector<gls::PrincipalCurvatures>& curvatures = curvatureBuffers[static_cast<std::size_t>(thread)];
     samples.resize(S);
+    curvatures.assign(this->StoredCurvatures.empty() ? 0 : S, gls::undefinedCurvatures());
     for (std::size_t i = begin; i < end; ++i)
     {
       const std::uint64_t point = ids ? (*ids)[i] : i;
@@ -219,6 +239,19 @@ bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std:
           }
         }
         s.valid = valid;
+        for (const auto& stored : this->StoredCurvatures)
+        {
+          const vtkGLSDescriptors::CurvatureArray& c =
+            vtkGLSDescriptors::GetCurvature(static_cast<vtkGLSDescriptors::CurvatureId>(stored.first));
+          for (int j = 0; j < c.Components; ++j)
+          {
+            c.Read(curvatures[k], j, stored.second->GetComponent(tuple, static_cast<int>(k) * c.Components + j));
+          }
+        }
+      }
+      if (!this->StoredCurvatures.empty())
+      {
+        sink.consumeCurvatures(point, curvatures.data(), thread);
       }
       sink.consume(point, samples.data(), thread);
     }

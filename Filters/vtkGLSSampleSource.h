@@ -40,10 +40,11 @@ public:
     const vtkGLSCloud& cloud, gls::ScaleSpaceSettings settings, const std::vector<std::uint64_t>& only);
 
   /// The arrays a vtkGLSScaleSpace stored for `scaleCount` scales: the descriptors (GLSTau, GLSKappa, GLSFitness)
-  /// and/or the derivatives (GLSdTau, GLSdEta, GLSdKappa), as asked. Null when any asked array is missing or has
+  /// and/or the derivatives (GLSdTau, GLSdEta, GLSdKappa) and/or the principal curvatures (GLSK1, GLSK2,
+  /// GLSPrincipalDirection1 and 2: fed to consumeCurvatures), as asked. Null when any asked array is missing or has
   /// the wrong shape.
   static std::unique_ptr<vtkGLSSampleSource> Stored(
-    vtkDataSet* input, std::size_t scaleCount, bool descriptors, bool derivatives);
+    vtkDataSet* input, std::size_t scaleCount, bool descriptors, bool derivatives, bool curvatures = false);
 
   /// Nothing to feed: an empty piece of a distributed input that goes along with the others.
   static std::unique_ptr<vtkGLSSampleSource> Empty();
@@ -80,6 +81,7 @@ private:
   std::size_t PointCount = 0;
   std::size_t ScaleCount = 0;
   std::vector<std::pair<int, vtkDataArray*>> StoredArrays; ///< (descriptor id, its array), for the stored samples
+  std::vector<std::pair<int, vtkDataArray*>> StoredCurvatures; ///< (curvature array id, its array)
 };
 
 #endif

@@ -200,7 +200,8 @@ bool vtkGLSScaleFilterBase::TakeStoredSamples(vtkGLSRun& run, const SampleReques
   }
   std::unique_ptr<vtkGLSSampleSource> samples = stored.empty()
     ? nullptr
-    : vtkGLSSampleSource::Stored(input, stored.size(), request.Descriptors, request.Derivatives);
+    : vtkGLSSampleSource::Stored(
+        input, stored.size(), request.Descriptors, request.Derivatives, request.PrincipalCurvatures);
   if (!everywhere(samples != nullptr))
   {
     return false;

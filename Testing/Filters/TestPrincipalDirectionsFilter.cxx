@@ -3,6 +3,7 @@
 #include "FilterTestUtilities.h"
 
 #include "vtkGLSPrincipalDirections.h"
+#include "vtkGLSScaleSpace.h"
 
 #include "vtkPointData.h"
 
@@ -107,4 +108,43 @@ TEST(PrincipalDirectionsFilter, RefusesTheMultiresolutionEvaluationAndStoresNoth
   f->Update();
   EXPECT_EQ(errors->Count, 0) << errors->Message;
   EXPECT_EQ(pointArray(f->GetPolyDataOutput(), "GLSRidgeValley").size(), c.size());
+}
+
+TEST(PrincipalDirectionsFilter, ReusesAnUpstreamScaleSpacesCurvatures)
+{
+  // Downstream of a GLS Scale Space that stored the curvatures, the reduction reads them back at its scales: the
+  // same outputs as a fit at those scales, bit for bit (the arrays hold the doubles the fit gave). Without the arrays
+  // (StorePrincipalCurvatures off upstream), it refits at its own scales.
+  const Cloud c = cylinderPatch(1.0, 0.3, 0.3, 0.006, 5);
+  vtkNew<vtkGLSScaleSpace> space;
+  space->SetInputData(makePolyData(c));
+  space->SetScaleUnitsToAbsolute();
+  space->SetMinScale(0.03);
+  space->SetMaxScale(0.06);
+  space->SetNumberOfScales(4);
+  space->StorePrincipalCurvaturesOn();
+  vtkNew<vtkGLSPrincipalDirections> reused;
+  reused->SetInputConnection(space->GetOutputPort());
+  reused->SetScaleUnitsToAbsolute();
+  reused->SetMinScale(0.02); // ignored: the upstream scales are used
+  reused->SetMaxScale(0.03);
+  reused->SetNumberOfScales(7);
+  reused->Update();
+  vtkNew<vtkGLSPrincipalDirections> fitted;
+  fitted->SetInputData(makePolyData(c));
+  fitted->SetScaleUnitsToAbsolute();
+  fitted->SetMinScale(0.03);
+  fitted->SetMaxScale(0.06);
+  fitted->SetNumberOfScales(4);
+  fitted->Update();
+  EXPECT_EQ(fieldArray(reused->GetPolyDataOutput(), "GLSScales"), fieldArray(space->GetPolyDataOutput(), "GLSScales"));
+  for (const char* name : { "GLSStableDirectionScale", "GLSDirectionTurnRate", "GLSAnisotropy", "GLSStableShapeIndex",
+         "GLSStableDirection", "GLSRidgeValley" })
+  {
+    EXPECT_TRUE(identical(pointArray(reused->GetPolyDataOutput(), name), pointArray(fitted->GetPolyDataOutput(), name)))
+      << name;
+  }
+  space->StorePrincipalCurvaturesOff();
+  reused->Update();
+  EXPECT_EQ(fieldArray(reused->GetPolyDataOutput(), "GLSScales").size(), 7u);
 }
