@@ -15,6 +15,9 @@ for rays in 1200 4000; do
   "${1:-build}/bin/glsNormalsBenchmark" --models stanford-bunny,spot,cheburashka --subdivide 2 --samples-along "$rays" \
     --invariance 0 --noisy-points 0 --timing-points 0
 done
+# The principal curvatures' accuracy table, with CGAL's jet fitting beside it (docs/performance.md, "Principal
+# curvatures"; seconds).
+"${1:-build}/bin/glsCurvatureBenchmark"
 # Real scan sizes: the multi-resolution evaluation, L1-L3 and the accuracy table (about 40 minutes on 2 cores;
 # docs/performance.md, "Large scans").
 "${1:-build}/bin/glsLargeScanBenchmark" --case all
