@@ -96,6 +96,9 @@ adaptive = GLSProjection(Input=bandwidth)  # noqa: F405  (the per-point GLSBandw
 # The multi-resolution evaluation (forced: the bunny is below Auto's limit), whose cells reach past the largest scale.
 cells_space = GLSScaleSpace(Input=normals, Evaluation='Multiresolution', Accuracy=0.3, **scales)  # noqa: F405
 cells_features = GLSContinuousFeatures(Input=normals, Evaluation='Multiresolution', **feature_scales)  # noqa: F405
+# The principal curvatures: stored at every scale, and the steadiest directions (fused).
+curvature_space = GLSScaleSpace(Input=normals, StorePrincipalCurvatures=1, **scales)  # noqa: F405
+directions = GLSPrincipalDirections(Input=normals, **scales)  # noqa: F405
 for fused in (fused_variation, fused_similar):
     fused.MemoryBudget = args.memory_budget[0]
 for fused in (fused_features, cells_features):
@@ -105,7 +108,8 @@ saved = {}
 for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_features', tagged_features),
                       ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('refined', refined),
                       ('projection', projection), ('adaptive_projection', adaptive), ('cells_space', cells_space),
-                      ('cells_features', cells_features)):
+                      ('cells_features', cells_features), ('curvature_space', curvature_space),
+                      ('principal_directions', directions)):
     proxy.UpdatePipeline()
     data = servermanager.Fetch(proxy)
     pd = data.GetPointData()

@@ -43,8 +43,9 @@ StableDirection steadiestDirection(const PrincipalCurvatures* c, const double* s
     {
       continue;
     }
-    const double cosine = std::min(1.0, std::abs(dot(a.d1, b.d1)));
-    const double rate = std::acos(cosine) / std::log(scales[k + 1] / scales[k]);
+    // The angle between the lines, from its sine and cosine (well conditioned where it is small, unlike acos).
+    const double angle = std::atan2(std::sqrt(squaredNorm(cross(a.d1, b.d1))), std::abs(dot(a.d1, b.d1)));
+    const double rate = angle / std::log(scales[k + 1] / scales[k]);
     if (!(rate < best.turnRate) && !std::isnan(best.turnRate))
     {
       continue;
