@@ -69,6 +69,16 @@ private:
   const std::vector<std::pair<std::uint64_t, std::uint64_t>>* Requested;
 };
 
+/// The point array `name` of a stored scale space: `components` values per scale for `scaleCount` scales at every
+/// point; null when it is missing or has another shape.
+vtkDataArray* StoredArray(vtkDataSet* input, const char* name, int components, std::size_t scaleCount)
+{
+  vtkDataArray* a = input->GetPointData()->GetArray(name);
+  const bool shaped = a && a->GetNumberOfComponents() == components * static_cast<int>(scaleCount) &&
+    a->GetNumberOfTuples() == input->GetNumberOfPoints();
+  return shaped ? a : nullptr;
+}
+
 }
 
 std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::OfCloud(const vtkGLSCloud& cloud, std::size_t scales)
@@ -139,9 +149,8 @@ std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Stored(
     {
       continue;
     }
-    vtkDataArray* a = input->GetPointData()->GetArray(d.Name);
-    if (!a || a->GetNumberOfComponents() != d.Components * static_cast<int>(scaleCount) ||
-      a->GetNumberOfTuples() != input->GetNumberOfPoints())
+    vtkDataArray* a = StoredArray(input, d.Name, d.Components, scaleCount);
+    if (!a)
     {
       return nullptr;
     }
@@ -155,9 +164,8 @@ std::unique_ptr<vtkGLSSampleSource> vtkGLSSampleSource::Stored(
     {
       continue;
     }
-    vtkDataArray* a = input->GetPointData()->GetArray(c.Name);
-    if (!a || a->GetNumberOfComponents() != c.Components * static_cast<int>(scaleCount) ||
-      a->GetNumberOfTuples() != input->GetNumberOfPoints())
+    vtkDataArray* a = StoredArray(input, c.Name, c.Components, scaleCount);
+    if (!a)
     {
       return nullptr;
     }

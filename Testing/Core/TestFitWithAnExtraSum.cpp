@@ -5,6 +5,7 @@
 // samples against the oriented sphere's own run, bit for bit.
 #include "HeightSpreadMoments.h"
 #include "TestBinning.h"
+#include "TestGrid.h"
 #include "TestClouds.h"
 
 #include "OnePassKernelBody.h"                        // the CPU kernels for any moment set (private to the core)
@@ -64,11 +65,7 @@ TEST(FitWithAnExtraSum, RunsThroughTheExactKernelsAndAddsOnlyItsOwnSum)
   const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 12, gls::ScaleSampling::Quadratic);
   const TestBinning binning(scales);
   const gls::ScaleBinning& b = binning.View;
-  std::vector<double> unitNormals;
-  std::vector<unsigned char> admit;
-  gls::normalizeAndAdmit(c.points.data(), c.normals.data(), c.size(), unitNormals, admit);
-  gls::NeighborGrid grid;
-  grid.build(c.points.data(), unitNormals.data(), c.size(), 0.25 * scales.back(), admit.data());
+  const TestGrid grid(c, 0.25 * scales.back());
   const std::size_t S = scales.size();
   std::vector<gls::MomentsT<HeightSpreadMoments>> bins(S);
   std::vector<gls::Moments> sphereBins(S);
@@ -163,11 +160,7 @@ TEST(FitWithAnExtraSum, RunsThroughTheMultiresolutionWalkWithItsOwnCellSums)
   EXPECT_GT(merged, 50);
   const TestBinning binning(scales);
   const gls::ScaleBinning& b = binning.View;
-  std::vector<double> unitNormals;
-  std::vector<unsigned char> admit;
-  gls::normalizeAndAdmit(c.points.data(), c.normals.data(), c.size(), unitNormals, admit);
-  gls::NeighborGrid grid;
-  grid.build(c.points.data(), unitNormals.data(), c.size(), 0.25 * scales.back(), admit.data());
+  const TestGrid grid(c, 0.25 * scales.back());
   const std::size_t S = scales.size();
   std::vector<gls::AggregateMomentsT<HeightSpreadMoments>> bins(S);
   std::vector<gls::AggregateMoments> sphereBins(S);

@@ -2,6 +2,7 @@
 // scale), and bitwise determinism across thread counts.
 #include "CollectingSink.h"
 #include "TestBinning.h"
+#include "TestGrid.h"
 #include "TestClouds.h"
 
 #include "gls/NeighborGrid.h"
@@ -100,11 +101,7 @@ TEST(OnePass, CpuKernelAgreesWithTheDeviceLoop)
   const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 20, gls::ScaleSampling::Quadratic);
   const TestBinning binning(scales);
   const gls::ScaleBinning& b = binning.View;
-  std::vector<double> unitNormals;
-  std::vector<unsigned char> admit;
-  gls::normalizeAndAdmit(c.points.data(), c.normals.data(), c.size(), unitNormals, admit);
-  gls::NeighborGrid grid;
-  grid.build(c.points.data(), unitNormals.data(), c.size(), 0.25 * scales.back(), admit.data());
+  const TestGrid grid(c, 0.25 * scales.back());
   const std::size_t S = scales.size();
   std::vector<gls::Moments> bins(S);
   std::vector<gls::ScaleSample> device(S), portable(S), fastest(S);
@@ -169,11 +166,7 @@ TEST(OnePass, WindowsOfScalesGiveTheOnePassBitForBit)
   const Cloud c = paraboloid(70, 1.0, 0.7, 0.3, 0.02, 0.1, 12);
   const std::vector<double> scales = gls::sampleScales(0.05, 0.6, 20, gls::ScaleSampling::Quadratic);
   const TestBinning binning(scales);
-  std::vector<double> unitNormals;
-  std::vector<unsigned char> admit;
-  gls::normalizeAndAdmit(c.points.data(), c.normals.data(), c.size(), unitNormals, admit);
-  gls::NeighborGrid grid;
-  grid.build(c.points.data(), unitNormals.data(), c.size(), 0.25 * scales.back(), admit.data());
+  const TestGrid grid(c, 0.25 * scales.back());
   EXPECT_GT(windowsAgainstTheOnePass<1>(c, grid.view(), binning.View), 10000);
   EXPECT_GT(windowsAgainstTheOnePass<2>(c, grid.view(), binning.View), 10000);
   EXPECT_GT(windowsAgainstTheOnePass<3>(c, grid.view(), binning.View), 10000);
