@@ -1,9 +1,10 @@
 #include "vtkGLSPrincipalDirections.h"
 
 #include "vtkGLSArrayNames.h"
+#include "vtkGLSOutputPrecision.h"
 #include "vtkGLSRun.h"
 
-#include "vtkDoubleArray.h"
+#include "vtkDataArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -47,13 +48,10 @@ public:
   void consume(std::uint64_t, const gls::ScaleSample*, int) override {}
 };
 
-vtkSmartPointer<vtkDoubleArray> NewPointArray(const char* name, int components, vtkIdType n)
+/// A point array of doubles (the filter writes doubles: a handful per point).
+vtkSmartPointer<vtkDataArray> NewPointArray(const char* name, int components, vtkIdType n)
 {
-  auto a = vtkSmartPointer<vtkDoubleArray>::New();
-  a->SetName(name);
-  a->SetNumberOfComponents(components);
-  a->SetNumberOfTuples(n);
-  return a;
+  return vtkGLSOutputPrecision::NewArray(name, n, components, vtkAlgorithm::DOUBLE_PRECISION);
 }
 
 } // namespace
@@ -100,18 +98,19 @@ int vtkGLSPrincipalDirections::ComputeOutputs(vtkGLSRun& run)
   SteadiestDirectionSink sink;
   sink.Scales = &run.Scales;
   sink.Significance = this->AnisotropyThreshold;
-  sink.Scale = scale->GetPointer(0);
-  sink.TurnRate = turnRate->GetPointer(0);
-  sink.Anisotropy = anisotropy->GetPointer(0);
-  sink.ShapeIndex = shapeIndex->GetPointer(0);
-  sink.Direction = direction->GetPointer(0);
-  sink.RidgeValley = ridgeValley->GetPointer(0);
+  using vtkGLSOutputPrecision::ValuesOf;
+  sink.Scale = ValuesOf<double>(scale);
+  sink.TurnRate = ValuesOf<double>(turnRate);
+  sink.Anisotropy = ValuesOf<double>(anisotropy);
+  sink.ShapeIndex = ValuesOf<double>(shapeIndex);
+  sink.Direction = ValuesOf<double>(direction);
+  sink.RidgeValley = ValuesOf<double>(ridgeValley);
   if (!this->FeedSamples(run, sink))
   {
     return ABORTED; // no partial arrays
   }
   vtkPointData* pd = run.Output->GetPointData();
-  for (vtkDoubleArray* a : { scale.Get(), turnRate.Get(), anisotropy.Get(), shapeIndex.Get() })
+  for (vtkDataArray* a : { scale.Get(), turnRate.Get(), anisotropy.Get(), shapeIndex.Get() })
   {
     pd->AddArray(a);
   }
