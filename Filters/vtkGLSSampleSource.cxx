@@ -189,35 +189,45 @@ bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std:
   report = gls::RunReport();
   if (this->Engine && this->Cloud->IsMerged())
   {
-    // Each distinct position once; its samples to the input points it stands for.
-    std::vector<std::pair<std::uint64_t, std::uint64_t>> requested;
-    std::vector<std::uint64_t> positions;
-    if (ids)
-    {
-      for (std::uint64_t id : *ids)
-      {
-        requested.emplace_back(this->Cloud->Copies.representative[id], id);
-      }
-      std::sort(requested.begin(), requested.end());
-      for (const auto& r : requested)
-      {
-        if (positions.empty() || positions.back() != r.first)
-        {
-          positions.push_back(r.first);
-        }
-      }
-    }
-    CopiesSink copies(sink, *this->Cloud, ids ? &requested : nullptr);
-    return this->Engine->run(copies, ids ? &positions : nullptr, parallel, report);
+    return this->FeedDistinctPositions(sink, ids, parallel, report);
   }
   if (this->Engine)
   {
     return this->Engine->run(sink, ids, parallel, report);
   }
   report.used = gls::Backend::CPU;
+  return this->FeedStored(sink, ids, parallel);
+}
+
+bool vtkGLSSampleSource::FeedDistinctPositions(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
+  const gls::ParallelOptions& parallel, gls::RunReport& report) const
+{
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> requested;
+  std::vector<std::uint64_t> positions;
+  if (ids)
+  {
+    for (std::uint64_t id : *ids)
+    {
+      requested.emplace_back(this->Cloud->Copies.representative[id], id);
+    }
+    std::sort(requested.begin(), requested.end());
+    for (const auto& r : requested)
+    {
+      if (positions.empty() || positions.back() != r.first)
+      {
+        positions.push_back(r.first);
+      }
+    }
+  }
+  CopiesSink copies(sink, *this->Cloud, ids ? &requested : nullptr);
+  return this->Engine->run(copies, ids ? &positions : nullptr, parallel, report);
+}
+
+bool vtkGLSSampleSource::FeedStored(
+  gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const gls::ParallelOptions& parallel) const
+{
   const std::size_t n = ids ? ids->size() : this->PointCount;
   const std::size_t S = this->ScaleCount;
-  const double nan = gls::quietNaN<double>();
   const std::size_t threads = static_cast<std::size_t>(gls::resolveThreadCount(parallel.threads));
   std::vector<std::vector<gls::ScaleSample>> buffers(threads);
   std::vector<std::vector<gls::PrincipalCurvatures>> curvatureBuffers(threads);
@@ -225,45 +235,61 @@ bool vtkGLSSampleSource::Feed(gls::ScaleSampleSink& sink, const std::vector<std:
     std::vector<gls::ScaleSample>& samples = buffers[static_cast<std::size_t>(thread)];
     std::vector<gls::PrincipalCurvatures>& curvatures = curvatureBuffers[static_cast<std::size_t>(thread)];
     samples.resize(S);
-    curvatures.assign(this->StoredCurvatures.empty() ? 0 : S, gls::undefinedCurvatures());
+    curvatures.resize(this->StoredCurvatures.empty() ? 0 : S);
     for (std::size_t i = begin; i < end; ++i)
     {
       const std::uint64_t point = ids ? (*ids)[i] : i;
-      const vtkIdType tuple = static_cast<vtkIdType>(point);
       for (std::size_t k = 0; k < S; ++k)
       {
-        gls::ScaleSample& s = samples[k];
-        s.tau = s.kappa = s.phi = s.dtau = s.dkappa = s.neighbors = nan;
-        s.eta = s.deta = gls::Vec3{ nan, nan, nan };
-        bool valid = true;
-        for (const auto& stored : this->StoredArrays)
-        {
-          const vtkGLSDescriptors::Descriptor& d = vtkGLSDescriptors::Get(static_cast<vtkGLSDescriptors::Id>(stored.first));
-          for (int c = 0; c < d.Components; ++c)
-          {
-            const double v = stored.second->GetComponent(tuple, static_cast<int>(k) * d.Components + c);
-            vtkGLSDescriptors::SetValue(d, s, c, v);
-            valid = valid && std::isfinite(v);
-          }
-        }
-        s.valid = valid;
-        for (const auto& stored : this->StoredCurvatures)
-        {
-          const vtkGLSDescriptors::CurvatureArray& c =
-            vtkGLSDescriptors::GetCurvature(static_cast<vtkGLSDescriptors::CurvatureId>(stored.first));
-          for (int j = 0; j < c.Components; ++j)
-          {
-            c.Read(curvatures[k], j, stored.second->GetComponent(tuple, static_cast<int>(k) * c.Components + j));
-          }
-        }
+        samples[k] = this->StoredSample(static_cast<vtkIdType>(point), k);
       }
       if (!this->StoredCurvatures.empty())
       {
+        for (std::size_t k = 0; k < S; ++k)
+        {
+          curvatures[k] = this->StoredCurvature(static_cast<vtkIdType>(point), k);
+        }
         sink.consumeCurvatures(point, curvatures.data(), thread);
       }
       sink.consume(point, samples.data(), thread);
     }
   });
+}
+
+gls::ScaleSample vtkGLSSampleSource::StoredSample(vtkIdType tuple, std::size_t k) const
+{
+  const double nan = gls::quietNaN<double>();
+  gls::ScaleSample s;
+  s.tau = s.kappa = s.phi = s.dtau = s.dkappa = s.neighbors = nan;
+  s.eta = s.deta = gls::Vec3{ nan, nan, nan };
+  bool valid = true;
+  for (const auto& stored : this->StoredArrays)
+  {
+    const vtkGLSDescriptors::Descriptor& d = vtkGLSDescriptors::Get(static_cast<vtkGLSDescriptors::Id>(stored.first));
+    for (int c = 0; c < d.Components; ++c)
+    {
+      const double v = stored.second->GetComponent(tuple, static_cast<int>(k) * d.Components + c);
+      vtkGLSDescriptors::SetValue(d, s, c, v);
+      valid = valid && std::isfinite(v);
+    }
+  }
+  s.valid = valid;
+  return s;
+}
+
+gls::PrincipalCurvatures vtkGLSSampleSource::StoredCurvature(vtkIdType tuple, std::size_t k) const
+{
+  gls::PrincipalCurvatures c = gls::undefinedCurvatures();
+  for (const auto& stored : this->StoredCurvatures)
+  {
+    const vtkGLSDescriptors::CurvatureArray& a =
+      vtkGLSDescriptors::GetCurvature(static_cast<vtkGLSDescriptors::CurvatureId>(stored.first));
+    for (int j = 0; j < a.Components; ++j)
+    {
+      a.Read(c, j, stored.second->GetComponent(tuple, static_cast<int>(k) * a.Components + j));
+    }
+  }
+  return c;
 }
 
 gls::EngineFootprint vtkGLSSampleSource::EngineBytes(

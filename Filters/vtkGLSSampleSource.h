@@ -5,6 +5,8 @@
 #ifndef vtkGLSSampleSource_h
 #define vtkGLSSampleSource_h
 
+#include "vtkType.h" // vtkIdType
+
 #include "gls/Backend.h"
 #include "gls/ScaleSpaceEngine.h"
 #include "gls/TiledScaleSpace.h"
@@ -75,6 +77,18 @@ private:
   vtkGLSSampleSource() = default;
   /// A source of the cloud's owned points at `scales` scales, without its engine yet.
   static std::unique_ptr<vtkGLSSampleSource> OfCloud(const vtkGLSCloud& cloud, std::size_t scales);
+  /// Feed of a fit of merged coincident points: each distinct position once, its samples to the input points it
+  /// stands for.
+  bool FeedDistinctPositions(gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids,
+    const gls::ParallelOptions& parallel, gls::RunReport& report) const;
+  /// Feed of the stored arrays: each point's samples (and curvatures, when stored) read back.
+  bool FeedStored(
+    gls::ScaleSampleSink& sink, const std::vector<std::uint64_t>* ids, const gls::ParallelOptions& parallel) const;
+  /// The stored sample of the point `tuple` at scale k: the values read back, NaN for the others; valid when every
+  /// value read back is finite.
+  gls::ScaleSample StoredSample(vtkIdType tuple, std::size_t k) const;
+  /// The stored principal curvatures of the point `tuple` at scale k.
+  gls::PrincipalCurvatures StoredCurvature(vtkIdType tuple, std::size_t k) const;
 
   std::unique_ptr<gls::TiledScaleSpace> Engine; ///< null for an empty piece
   const vtkGLSCloud* Cloud = nullptr;            ///< the fitted cloud (its merge of coincident points)
