@@ -1,11 +1,13 @@
-// The moment set the filters run (OrientedSphereMoments, MomentSet.h): every rule a fitted value declares, checked for
-// every value against its point rule summed over the points one by one. A value added to the set is checked here with
-// no new test: its move of origin, its sums over a cell and their gradient, the merge of its cell statistics, and its
-// moments in the one pass's and the multi-resolution layouts.
+// The moment sets (MomentSet.h: the oriented sphere's, the filters' fit; ShapeOperator.h: the principal curvatures'):
+// every rule a fitted value declares, checked for every value of every set against its point rule summed over the
+// points one by one. A value added to a set, or a set added to the list, is checked here with no new test: its move of
+// origin, its sums over a cell and their gradient, the merge of its cell statistics; and the sphere's moments in the
+// one pass's and the multi-resolution layouts.
 #include "gls/AggregateMoments.h"
 #include "gls/CellMoments.h"
 #include "gls/MomentBins.h"
 #include "gls/MomentSet.h"
+#include "gls/ShapeOperator.h"
 
 #include <gtest/gtest.h>
 
@@ -17,8 +19,8 @@
 namespace
 {
 
-/// The set under test: the one the filters run.
-using Set = gls::OrientedSphereMoments;
+/// The sums of every value of a set.
+template <typename Set>
 using Values = std::array<double, Set::kValues>;
 
 struct Points
@@ -42,10 +44,10 @@ Points cubeOfPoints(std::size_t n, const gls::Vec3& centre, double h, unsigned s
 }
 
 /// sum over the points of weight(i) f(q_i - o, n_i).
-template <typename Weight>
-Values summedValues(const Points& p, const gls::Vec3& o, Weight&& weight)
+template <typename Set, typename Weight>
+Values<Set> summedValues(const Points& p, const gls::Vec3& o, Weight&& weight)
 {
-  Values sum{};
+  Values<Set> sum{};
   for (std::size_t i = 0; i < p.positions.size(); ++i)
   {
     const gls::Vec3 x = p.positions[i] - o;
@@ -60,9 +62,10 @@ Values summedValues(const Points& p, const gls::Vec3& o, Weight&& weight)
 }
 
 /// The cell statistics of the points, formed point by point (addPointToCell) about their centroid.
-Set::Cell cellOf(const Points& p)
+template <typename Set>
+typename Set::Cell cellOf(const Points& p)
 {
-  Set::Cell cell{};
+  typename Set::Cell cell{};
   for (std::size_t i = 0; i < p.positions.size(); ++i)
   {
     cell.count += 1.0;
@@ -77,9 +80,11 @@ Set::Cell cellOf(const Points& p)
   return cell;
 }
 
-void expectValuesNear(const Values& got, const Values& want, double tolerance, const char* what)
+template <std::size_t V>
+void expectValuesNear(const std::array<double, V>& got, const std::array<double, V>& want, double tolerance,
+  const char* what)
 {
-  for (int j = 0; j < Set::kValues; ++j)
+  for (std::size_t j = 0; j < V; ++j)
   {
     EXPECT_NEAR(got[j], want[j], tolerance * (1.0 + std::abs(want[j]))) << what << ", value " << j;
   }
@@ -88,55 +93,66 @@ void expectValuesNear(const Values& got, const Values& want, double tolerance, c
 const gls::Vec3 kCentre{ 0.3, -0.2, 0.5 };
 const gls::Vec3 kOrigin{ -0.1, 0.25, 0.05 };
 
+/// The rules' tests, for every set.
+template <typename Set>
+class MomentSetRules : public ::testing::Test
+{
+};
+using Sets = ::testing::Types<gls::OrientedSphereMoments, gls::ShapeOperatorMoments>;
+TYPED_TEST_SUITE(MomentSetRules, Sets);
+
 } // namespace
 
-TEST(MomentSet, ShiftMovesEveryValuesSumsToAnotherOrigin)
+TYPED_TEST(MomentSetRules, ShiftMovesEveryValuesSumsToAnotherOrigin)
 {
+  using Set = TypeParam;
   // Sums about o, weighted (any weight per point, the same for its values), moved to p: the sums about p.
   const Points pts = cubeOfPoints(200, kCentre, 0.4, 1);
   const auto weight = [](std::size_t i) { return 0.5 + 0.01 * static_cast<double>(i % 17); };
   const gls::Vec3 p{ 0.7, 0.1, -0.3 };
-  Values moved = summedValues(pts, kOrigin, weight);
+  Values<Set> moved = summedValues<Set>(pts, kOrigin, weight);
   const gls::Vec3 u = kOrigin - p;
   Set::shiftValues(u, gls::squaredNorm(u), moved.data());
-  expectValuesNear(moved, summedValues(pts, p, weight), 1e-12, "shiftValues");
+  expectValuesNear(moved, summedValues<Set>(pts, p, weight), 1e-12, "shiftValues");
 }
 
-TEST(MomentSet, CellValuesAreTheSumsOfTheCellsPointsAndTheirGradient)
+TYPED_TEST(MomentSetRules, CellValuesAreTheSumsOfTheCellsPointsAndTheirGradient)
 {
+  using Set = TypeParam;
   // F = sum f(q_i - o, n_i) and H = sum (a . y_i) f(q_i - o, n_i) from the cell's statistics alone.
   const Points pts = cubeOfPoints(300, kCentre, 0.2, 2);
-  const Set::Cell cell = cellOf(pts);
+  const typename Set::Cell cell = cellOf<Set>(pts);
   const gls::Vec3 a{ 0.6, -0.8, 0.3 };
-  Values F{}, H{};
+  Values<Set> F{}, H{};
   Set::cellValues(cell, cell.centroid - kOrigin, a, F.data(), H.data());
-  expectValuesNear(F, summedValues(pts, kOrigin, [](std::size_t) { return 1.0; }), 1e-12, "F");
+  expectValuesNear(F, summedValues<Set>(pts, kOrigin, [](std::size_t) { return 1.0; }), 1e-12, "F");
   const auto along = [&](std::size_t i) { return gls::dot(a, pts.positions[i] - cell.centroid); };
-  expectValuesNear(H, summedValues(pts, kOrigin, along), 1e-12, "H");
+  expectValuesNear(H, summedValues<Set>(pts, kOrigin, along), 1e-12, "H");
   EXPECT_EQ(H[gls::kOne], 0.0);
 }
 
-TEST(MomentSet, MergedCellStatisticsGiveTheSameValuesAsThePoints)
+TYPED_TEST(MomentSetRules, MergedCellStatisticsGiveTheSameValuesAsThePoints)
 {
+  using Set = TypeParam;
   // A parent formed from two children (addChildToCell) gives every value's F and H of all their points.
   const Points left = cubeOfPoints(150, kCentre, 0.1, 3);
   const Points right = cubeOfPoints(90, kCentre + gls::Vec3{ 0.1, 0.02, -0.03 }, 0.1, 4);
   Points both = left;
   both.positions.insert(both.positions.end(), right.positions.begin(), right.positions.end());
   both.normals.insert(both.normals.end(), right.normals.begin(), right.normals.end());
-  const Set::Cell children[2] = { cellOf(left), cellOf(right) };
-  Set::Cell parent{};
+  const typename Set::Cell children[2] = { cellOf<Set>(left), cellOf<Set>(right) };
+  typename Set::Cell parent{};
   parent.count = children[0].count + children[1].count;
   parent.centroid = (1.0 / parent.count) * (children[0].count * children[0].centroid +
     children[1].count * children[1].centroid);
   parent.normalSum = children[0].normalSum + children[1].normalSum;
-  for (const Set::Cell& child : children)
+  for (const typename Set::Cell& child : children)
   {
     Set::addChildToCell(parent, child, child.centroid - parent.centroid);
   }
-  const Set::Cell direct = cellOf(both);
+  const typename Set::Cell direct = cellOf<Set>(both);
   const gls::Vec3 a{ -0.2, 0.5, 0.9 };
-  Values Fm{}, Hm{}, Fd{}, Hd{};
+  Values<Set> Fm{}, Hm{}, Fd{}, Hd{};
   Set::cellValues(parent, parent.centroid - kOrigin, a, Fm.data(), Hm.data());
   Set::cellValues(direct, direct.centroid - kOrigin, a, Fd.data(), Hd.data());
   expectValuesNear(Fm, Fd, 1e-12, "merged F");
@@ -145,6 +161,7 @@ TEST(MomentSet, MergedCellStatisticsGiveTheSameValuesAsThePoints)
 
 TEST(MomentSet, OnePassAndMultiresolutionMomentsGiveTheSameWeightedSums)
 {
+  using Set = gls::OrientedSphereMoments;
   // The one pass stores every value but |x|^2 (its moments are those of d^2); the multi-resolution layout stores all.
   // Both give the weighted sums and their t-derivatives of the points, as the weights summed point by point do.
   const Points pts = cubeOfPoints(400, gls::Vec3{ 0.0, 0.0, 0.0 }, 0.8, 5);
@@ -169,8 +186,8 @@ TEST(MomentSet, OnePassAndMultiresolutionMomentsGiveTheSameWeightedSums)
   }
   ASSERT_GT(gls::neighborCount(onePass), 50.0);
   EXPECT_EQ(gls::neighborCount(onePass), gls::neighborCount(aggregate));
-  const Values sums = summedValues(pts, p, [&](std::size_t i) { return w[i]; });
-  const Values derivatives = summedValues(pts, p, [&](std::size_t i) { return dw[i]; });
+  const Values<Set> sums = summedValues<Set>(pts, p, [&](std::size_t i) { return w[i]; });
+  const Values<Set> derivatives = summedValues<Set>(pts, p, [&](std::size_t i) { return dw[i]; });
   gls::WeightedSums want, wantD;
   gls::toWeightedSums(sums.data(), derivatives.data(), want, wantD);
   for (int layout = 0; layout < 2; ++layout)

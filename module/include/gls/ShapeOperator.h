@@ -14,23 +14,12 @@
 #include "gls/MomentSet.h"
 #include "gls/Numeric.h"
 #include "gls/ScaleSample.h"
+#include "gls/ShapeOperatorCells.h"
 #include "gls/SphereFit.h"
 #include "gls/WeightedSums.h"
 
 namespace gls
 {
-
-/// The values of ShapeOperatorMoments after the oriented sphere's eight (kOne .. kPositionDotNormal, FitValue), in
-/// this order, then |x|^2 last: its omega-values, summed weighted by omega only. The entries of x x^T and n x^T that
-/// their traces give are left out.
-enum ShapeOperatorValue : int
-{
-  kOffsetOffset = kSquaredPosition,                  ///< x x^T as xx, xy, xz, yy, yz (length^2): 5 values (zz: trace)
-  kNormalOffset = kOffsetOffset + 5,                 ///< n x^T, [3 a + b] = n_a x_b for 3 a + b < 8 (length): 8
-  kOffsetDotNormalOffset = kNormalOffset + 8,        ///< (x . n) x (length^2): 3 values
-  kShapeOperatorSquaredPosition = kOffsetDotNormalOffset + 3, ///< |x|^2, last as in every set
-  kShapeOperatorValues                               ///< how many (25)
-};
 
 /// Directions are NaN where the principal curvatures differ by at most this much times 1/t (an umbilic at the
 /// scale of the fit: a sphere, a plane, or a point where the two curvatures cross).
@@ -169,14 +158,64 @@ GLS_INLINE PrincipalCurvatures principalCurvaturesOf(
 }
 
 /// The oriented sphere's moment set with the values its shape operator needs (ShapeOperatorValue): the exact
-/// evaluation's kernels run it as they run the sphere's (it has no cell rules yet: the multi-resolution evaluation
-/// does not take it).
+/// evaluation's kernels run it as they run the sphere's. Its multi-resolution rules (ShapeOperatorCells.h) are checked
+/// against the points; the engine does not run it multi-resolution yet.
 struct ShapeOperatorMoments
 {
   using Sphere = OrientedSphereMoments;
   static constexpr int kValues = kShapeOperatorValues;
   static constexpr int kOmegaValues = kShapeOperatorSquaredPosition - kOffsetOffset; ///< 16
   using Sample = CurvatureSample;
+  using Cell = CurvatureCell;
+
+  /// The sphere's values of f (|x|^2 at its place in the sphere's set), and back.
+  GLS_INLINE static void sphereValuesOf(const double* f, double* sphere)
+  {
+    for (int j = 0; j < kSquaredPosition; ++j)
+    {
+      sphere[j] = f[j];
+    }
+    sphere[kSquaredPosition] = f[kShapeOperatorSquaredPosition];
+  }
+  GLS_INLINE static void setSphereValues(const double* sphere, double* f)
+  {
+    for (int j = 0; j < kSquaredPosition; ++j)
+    {
+      f[j] = sphere[j];
+    }
+    f[kShapeOperatorSquaredPosition] = sphere[kSquaredPosition];
+  }
+
+  /// The move of origin (x + u): the omega-values' from the sphere's sums before they move, then the sphere's.
+  GLS_INLINE static void shiftValues(const Vec3& u, double uu, double* f)
+  {
+    shiftCurvatureValues(u, f);
+    double sphere[Sphere::kValues];
+    sphereValuesOf(f, sphere);
+    Sphere::shiftValues(u, uu, sphere);
+    setSphereValues(sphere, f);
+  }
+
+  GLS_INLINE static void addPointToCell(Cell& cell, const Vec3& y, const Vec3& n)
+  {
+    Sphere::addPointToCell(cell, y, n);
+    addPointToCurvatureCell(cell, y, n);
+  }
+
+  GLS_INLINE static void addChildToCell(Cell& cell, const Cell& child, const Vec3& d)
+  {
+    Sphere::addChildToCell(cell, child, d);
+    addChildToCurvatureCell(cell, child, d);
+  }
+
+  GLS_INLINE static void cellValues(const Cell& cell, const Vec3& x, const Vec3& a, double* F, double* H)
+  {
+    double sphereF[Sphere::kValues], sphereH[Sphere::kValues];
+    Sphere::cellValues(cell, x, a, sphereF, sphereH);
+    setSphereValues(sphereF, F);
+    setSphereValues(sphereH, H);
+    curvatureCellValues(cell, x, a, F, H);
+  }
 
   GLS_INLINE static void pointValues(const Vec3& x, double d2, const Vec3& n, double* f)
   {
@@ -204,13 +243,8 @@ struct ShapeOperatorMoments
   GLS_INLINE static Sample fit(const double* v, const double* dv, double t, double neighbors, double minNeighbors)
   {
     double sv[Sphere::kValues], sdv[Sphere::kValues];
-    for (int j = 0; j < kSquaredPosition; ++j)
-    {
-      sv[j] = v[j];
-      sdv[j] = dv[j];
-    }
-    sv[kSquaredPosition] = v[kShapeOperatorSquaredPosition];
-    sdv[kSquaredPosition] = dv[kShapeOperatorSquaredPosition];
+    sphereValuesOf(v, sv);
+    sphereValuesOf(dv, sdv);
     Sample r;
     r.sphere = Sphere::fit(sv, sdv, t, neighbors, minNeighbors);
     if (!r.sphere.valid)

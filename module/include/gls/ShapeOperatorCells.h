@@ -1,0 +1,218 @@
+// The principal curvatures' values (ShapeOperatorMoments, ShapeOperator.h) as the multi-resolution evaluation needs
+// them: their move of origin, and what a pyramid cell keeps of its points to give their sums and gradient (the rules
+// of MomentSet.h for the 16 omega-values beyond the oriented sphere's). Host/device. Checked value by value against
+// the points summed one by one (Testing/Core/TestMomentSet.cpp, for every set).
+#pragma once
+
+#include "gls/MomentSet.h"
+
+namespace gls
+{
+
+/// The values of ShapeOperatorMoments after the oriented sphere's eight (kOne .. kPositionDotNormal, FitValue), in
+/// this order, then |x|^2 last: its omega-values, summed weighted by omega only. The entries of x x^T and n x^T that
+/// their traces give are left out.
+enum ShapeOperatorValue : int
+{
+  kOffsetOffset = kSquaredPosition,                  ///< x x^T as xx, xy, xz, yy, yz (length^2): 5 values (zz: trace)
+  kNormalOffset = kOffsetOffset + 5,                 ///< n x^T, [3 a + b] = n_a x_b for 3 a + b < 8 (length): 8
+  kOffsetDotNormalOffset = kNormalOffset + 8,        ///< (x . n) x (length^2): 3 values
+  kShapeOperatorSquaredPosition = kOffsetDotNormalOffset + 3, ///< |x|^2, last as in every set
+  kShapeOperatorValues                               ///< how many (25)
+};
+
+/// Where the pair (a, b) of axes sits in a symmetric 3x3 stored as xx, xy, xz, yy, yz, zz.
+GLS_INLINE int pairIndex(int a, int b)
+{
+  const int lo = a < b ? a : b, hi = a < b ? b : a;
+  return lo == 0 ? hi : (lo == 1 ? 2 + hi : 5);
+}
+
+/// Where the triple (a, b, c) sits in a symmetric 3x3x3 stored as xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz.
+GLS_INLINE int tripleIndex(int a, int b, int c)
+{
+  // Sort the three axes.
+  int lo = a, mid = b, hi = c, s = 0;
+  if (lo > mid) { s = lo; lo = mid; mid = s; }
+  if (mid > hi) { s = mid; mid = hi; hi = s; }
+  if (lo > mid) { s = lo; lo = mid; mid = s; }
+  const int first[3] = { 0, 6, 9 }; // where the triples starting with x, y, z begin
+  return first[lo] + pairIndex(mid, hi) - pairIndex(lo, lo);
+}
+
+/// What a pyramid cell keeps for the principal curvatures' values: the oriented sphere's statistics and the third
+/// moments their gradient needs, all about the centroid (y_i = q_i - c).
+struct CurvatureCell : PyramidCell
+{
+  double offsetCubed[10];                ///< sum y_a y_b y_c (tripleIndex; length^3)
+  double normalOffsetOffset[18];         ///< sum n_p y_a y_b at [6 p + pairIndex(a, b)] (length^2)
+  double offsetDotNormalOffsetOffset[6]; ///< sum (y . n) y_a y_b at [pairIndex(a, b)] (length^3)
+};
+
+/// Component i of v.
+GLS_INLINE double axis(const Vec3& v, int i)
+{
+  return i == 0 ? v.x : (i == 1 ? v.y : v.z);
+}
+
+/// The full sum n x^T, [3 p + q] = n_p x_q, from the set's eight entries and the trace sum x . n.
+GLS_INLINE void normalOffsetMatrix(const double* f, double* M)
+{
+  for (int k = 0; k < 8; ++k)
+  {
+    M[k] = f[kNormalOffset + k];
+  }
+  M[8] = f[kPositionDotNormal] - M[0] - M[4];
+}
+
+/// Moves the omega-values' sums from coordinates about o to about p (x_p = x_o + u), from the sums about o of 1, x, n
+/// and x . n (f, before the sphere's own are moved): sum x_a x_b gains u_b sum x_a + u_a sum x_b + u_a u_b W;
+/// sum n_p x_q gains u_q sum n_p; sum (x . n) x gains u sum x . n + (sum x n^T) u + u (u . sum n).
+GLS_INLINE void shiftCurvatureValues(const Vec3& u, double* f)
+{
+  const double W = f[kOne];
+  const double P[3] = { f[kPositionX], f[kPositionY], f[kPositionZ] };
+  const double N[3] = { f[kNormalX], f[kNormalY], f[kNormalZ] };
+  const double U[3] = { u.x, u.y, u.z };
+  double M[9];
+  normalOffsetMatrix(f, M);
+  const double uN = U[0] * N[0] + U[1] * N[1] + U[2] * N[2];
+  const double PN = f[kPositionDotNormal];
+  const int pairs[5][2] = { { 0, 0 }, { 0, 1 }, { 0, 2 }, { 1, 1 }, { 1, 2 } };
+  for (int k = 0; k < 5; ++k)
+  {
+    const int a = pairs[k][0], b = pairs[k][1];
+    f[kOffsetOffset + k] += U[b] * P[a] + U[a] * P[b] + U[a] * U[b] * W;
+  }
+  for (int k = 0; k < 8; ++k)
+  {
+    f[kNormalOffset + k] += U[k % 3] * N[k / 3];
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    // (sum x n^T) u: sum_b u_b sum n_b x_a.
+    const double xnu = M[a] * U[0] + M[3 + a] * U[1] + M[6 + a] * U[2];
+    f[kOffsetDotNormalOffset + a] += U[a] * PN + xnu + U[a] * uN;
+  }
+}
+
+/// Adds one point at offset y from the cell's centroid, with normal n, to the third moments.
+GLS_INLINE void addPointToCurvatureCell(CurvatureCell& cell, const Vec3& y, const Vec3& n)
+{
+  const double Y[3] = { y.x, y.y, y.z }, Nv[3] = { n.x, n.y, n.z };
+  const double yn = dot(y, n);
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int b = a; b < 3; ++b)
+    {
+      const int ab = pairIndex(a, b);
+      for (int c = b; c < 3; ++c)
+      {
+        cell.offsetCubed[tripleIndex(a, b, c)] += Y[a] * Y[b] * Y[c];
+      }
+      for (int p = 0; p < 3; ++p)
+      {
+        cell.normalOffsetOffset[6 * p + ab] += Nv[p] * Y[a] * Y[b];
+      }
+      cell.offsetDotNormalOffsetOffset[ab] += yn * Y[a] * Y[b];
+    }
+  }
+}
+
+/// Adds a child cell whose centroid is at d from the cell's to the third moments (y = y_k + d, sum y_k = 0):
+/// sum y_a y_b y_c gains T_k + C_k,ab d_c + C_k,ac d_b + C_k,bc d_a + m_k d_a d_b d_c; sum n_p y_a y_b gains
+/// its own + (sum n_p y_a) d_b + (sum n_p y_b) d_a + N_p d_a d_b; sum (y . n) y_a y_b gains its own and the terms of
+/// (y_k . n + d . n)(y_k + d)_a (y_k + d)_b.
+GLS_INLINE void addChildToCurvatureCell(CurvatureCell& cell, const CurvatureCell& child, const Vec3& d)
+{
+  const double D[3] = { d.x, d.y, d.z };
+  const double m = child.count;
+  const double* C = child.offsetOffset;
+  const double* Yn = child.offsetNormal; // [3 a + p] = sum y_a n_p
+  const double N[3] = { child.normalSum.x, child.normalSum.y, child.normalSum.z };
+  const double O[3] = { child.offsetOffsetDotNormal.x, child.offsetOffsetDotNormal.y,
+    child.offsetOffsetDotNormal.z };                           // sum (y . n) y
+  const double trace = Yn[0] + Yn[4] + Yn[8];                  // sum y . n
+  const double dN = D[0] * N[0] + D[1] * N[1] + D[2] * N[2];  // d . sum n
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int b = a; b < 3; ++b)
+    {
+      const int ab = pairIndex(a, b);
+      for (int c = b; c < 3; ++c)
+      {
+        const int abc = tripleIndex(a, b, c);
+        cell.offsetCubed[abc] += child.offsetCubed[abc] + C[ab] * D[c] + C[pairIndex(a, c)] * D[b] +
+          C[pairIndex(b, c)] * D[a] + m * D[a] * D[b] * D[c];
+      }
+      double dNyy = 0.0, dNya = 0.0, dNyb = 0.0; // sum (d . n) y_a y_b, sum (d . n) y_a, sum (d . n) y_b
+      for (int p = 0; p < 3; ++p)
+      {
+        cell.normalOffsetOffset[6 * p + ab] += child.normalOffsetOffset[6 * p + ab] + Yn[3 * a + p] * D[b] +
+          Yn[3 * b + p] * D[a] + N[p] * D[a] * D[b];
+        dNyy += D[p] * child.normalOffsetOffset[6 * p + ab];
+        dNya += D[p] * Yn[3 * a + p];
+        dNyb += D[p] * Yn[3 * b + p];
+      }
+      cell.offsetDotNormalOffsetOffset[ab] += child.offsetDotNormalOffsetOffset[ab] + O[a] * D[b] + O[b] * D[a] +
+        trace * D[a] * D[b] + dNyy + dNya * D[b] + dNyb * D[a] + dN * D[a] * D[b];
+    }
+  }
+}
+
+/// The omega-values' sums over a cell's points in coordinates about an origin at -x from its centroid (x = c - o):
+/// F = sum f(x + y_i, n_i), and their gradient along `dir`, H = sum (dir . y_i) f(x + y_i, n_i).
+GLS_INLINE void curvatureCellValues(const CurvatureCell& cell, const Vec3& x, const Vec3& dir, double* F, double* H)
+{
+  const double X[3] = { x.x, x.y, x.z }, A[3] = { dir.x, dir.y, dir.z };
+  const double m = cell.count;
+  const double* C = cell.offsetOffset;
+  const double* Yn = cell.offsetNormal; // [3 a + p] = sum y_a n_p
+  const Vec3 Ca = offsetOffsetTimes(cell, dir), Na = normalOffsetTimes(cell, dir); // sum y (y . dir), sum n (y . dir)
+  const double CA[3] = { Ca.x, Ca.y, Ca.z }, NA[3] = { Na.x, Na.y, Na.z };
+  const double N[3] = { cell.normalSum.x, cell.normalSum.y, cell.normalSum.z };
+  const double O[3] = { cell.offsetOffsetDotNormal.x, cell.offsetOffsetDotNormal.y, cell.offsetOffsetDotNormal.z };
+  const double trace = Yn[0] + Yn[4] + Yn[8];
+  const double xN = X[0] * N[0] + X[1] * N[1] + X[2] * N[2], xNa = X[0] * NA[0] + X[1] * NA[1] + X[2] * NA[2];
+  const double aO = A[0] * O[0] + A[1] * O[1] + A[2] * O[2];
+  const int pairs[5][2] = { { 0, 0 }, { 0, 1 }, { 0, 2 }, { 1, 1 }, { 1, 2 } };
+  for (int k = 0; k < 5; ++k)
+  {
+    const int a = pairs[k][0], b = pairs[k][1];
+    double Tab = 0.0; // sum (dir . y) y_a y_b
+    for (int c = 0; c < 3; ++c)
+    {
+      Tab += A[c] * cell.offsetCubed[tripleIndex(a, b, c)];
+    }
+    F[kOffsetOffset + k] = m * X[a] * X[b] + C[pairIndex(a, b)];
+    H[kOffsetOffset + k] = X[a] * CA[b] + CA[a] * X[b] + Tab;
+  }
+  for (int k = 0; k < 8; ++k)
+  {
+    const int p = k / 3, q = k % 3;
+    double nyy = 0.0; // sum (dir . y) n_p y_q
+    for (int c = 0; c < 3; ++c)
+    {
+      nyy += A[c] * cell.normalOffsetOffset[6 * p + pairIndex(c, q)];
+    }
+    F[kNormalOffset + k] = N[p] * X[q] + Yn[3 * q + p];
+    H[kNormalOffset + k] = NA[p] * X[q] + nyy;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    double xYn = 0.0, xnyy = 0.0, yyn = 0.0; // sum (x . n) y_a, sum (dir . y)(x . n) y_a, sum (dir . y)(y . n) y_a
+    for (int b = 0; b < 3; ++b)
+    {
+      xYn += X[b] * Yn[3 * a + b];
+      for (int c = 0; c < 3; ++c)
+      {
+        xnyy += X[b] * A[c] * cell.normalOffsetOffset[6 * b + pairIndex(c, a)];
+      }
+      yyn += A[b] * cell.offsetDotNormalOffsetOffset[pairIndex(b, a)];
+    }
+    F[kOffsetDotNormalOffset + a] = X[a] * (xN + trace) + xYn + O[a];
+    H[kOffsetDotNormalOffset + a] = X[a] * (xNa + aO) + xnyy + yyn;
+  }
+}
+
+} // namespace gls
