@@ -64,17 +64,6 @@ vtkGLSPrincipalDirections::vtkGLSPrincipalDirections()
 
 vtkGLSPrincipalDirections::~vtkGLSPrincipalDirections() = default;
 
-bool vtkGLSPrincipalDirections::CheckParameters(vtkGLSRun& run)
-{
-  if (this->Evaluation == EVALUATION_MULTIRESOLUTION)
-  {
-    vtkErrorMacro("The principal directions need the exact evaluation: the multi-resolution cells do not keep the "
-                  "sums the curvatures' derivative needs. Set Evaluation to Exact or Auto (which then takes Exact).");
-    return false;
-  }
-  return this->Superclass::CheckParameters(run);
-}
-
 vtkGLSScaleFilterBase::SampleRequest vtkGLSPrincipalDirections::GetSampleRequest(const vtkGLSRun&) const
 {
   SampleRequest request;

@@ -17,7 +17,7 @@
  *   positive.
  * - GLSRidgeValley (the active scalars): +1 on a ridge (stable shape index in [3/8, 5/8]), -1 in a valley
  *   ([-5/8, -3/8]), 0 elsewhere.
- * Needs the exact evaluation (Evaluation Auto takes it; Multiresolution is refused) and runs on the CPU. Field data:
+ * Any Evaluation (Auto: exact for small balls, the multi-resolution one for large ones), on the CPU. Field data:
  * GLSScales (length).
  */
 #ifndef vtkGLSPrincipalDirections_h
@@ -55,8 +55,6 @@ protected:
   vtkGLSPrincipalDirections();
   ~vtkGLSPrincipalDirections() override;
 
-  /// Refuses the multi-resolution evaluation.
-  bool CheckParameters(vtkGLSRun& run) override;
   SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
   int ComputeOutputs(vtkGLSRun& run) override;
 

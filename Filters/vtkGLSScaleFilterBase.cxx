@@ -374,15 +374,14 @@ void vtkGLSScaleFilterBase::ChooseEvaluation(vtkGLSRun& run, gls::ScaleSpaceSett
   const vtkGLSDistributedCloud& dist = run.Distributed;
   const double t = run.Scales.back();
   gls::BallCountEstimate estimate; // only Auto needs it (every rank takes the same branch)
-  // The principal curvatures need the exact evaluation: Auto takes it (Multiresolution was refused before).
-  const bool automatic = this->Evaluation == EVALUATION_AUTO && !settings.principalCurvatures;
+  const bool automatic = this->Evaluation == EVALUATION_AUTO;
   if (automatic)
   {
     estimate = gls::estimateBallCount(run.Cloud.Points.data(), run.Cloud.Size(), run.Cloud.Owned, t);
     estimate.neighbors = dist.Sum(estimate.neighbors);
     estimate.samples = dist.Sum(estimate.samples);
   }
-  const bool cells = (this->Evaluation == EVALUATION_MULTIRESOLUTION && !settings.principalCurvatures) ||
+  const bool cells = this->Evaluation == EVALUATION_MULTIRESOLUTION ||
     (automatic && estimate.mean() > gls::kExactNeighborLimit);
   settings.evaluation = cells ? gls::Evaluation::Multiresolution : gls::Evaluation::Exact;
   run.EvaluationUsed = cells ? "Multiresolution" : "Exact";

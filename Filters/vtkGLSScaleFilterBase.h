@@ -168,8 +168,8 @@ protected:
     bool Derivatives = false;   ///< dtau, deta and dkappa must be read back from stored arrays
     bool VariationWillDo = false; ///< an upstream GLSGeometricVariation (nu) at its GLSScales is enough
     bool MayReuseInput = false; ///< stored arrays may replace a fit (the filter's ReuseInputScaleSpace)
-    /// The fit also computes the principal curvatures (gls::ScaleSpaceSettings::principalCurvatures): exact
-    /// evaluation (Auto resolves to Exact; the filter refuses Multiresolution in its CheckParameters).
+    /// The fit also computes the principal curvatures (gls::ScaleSpaceSettings::principalCurvatures), fed to the
+    /// sink's consumeCurvatures (read back from the stored arrays when they replace a fit).
     bool PrincipalCurvatures = false;
     double BytesPerPointScale = 0.0; ///< output bytes for each (point, scale) pair
     double BytesPerPoint = 0.0;      ///< output bytes for each point, whatever the number of scales

@@ -233,18 +233,6 @@ bool vtkGLSScaleSpace::IsStored(int storeSwitch) const
   }
 }
 
-bool vtkGLSScaleSpace::CheckParameters(vtkGLSRun& run)
-{
-  if (this->StorePrincipalCurvatures && this->Evaluation == EVALUATION_MULTIRESOLUTION)
-  {
-    vtkErrorMacro("StorePrincipalCurvatures needs the exact evaluation: the multi-resolution cells do not keep the "
-                  "sums the curvatures' derivative needs. Set Evaluation to Exact or Auto (which then takes Exact), or "
-                  "turn StorePrincipalCurvatures off.");
-    return false;
-  }
-  return this->Superclass::CheckParameters(run);
-}
-
 vtkGLSScaleFilterBase::SampleRequest vtkGLSScaleSpace::GetSampleRequest(const vtkGLSRun&) const
 {
   // Memory: every stored array is n x S x components values of the output precision (int for the counts).

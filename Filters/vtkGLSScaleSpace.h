@@ -19,7 +19,7 @@
  * - GLSKappaMedian (1/length, one component, the active scalars; with StoreKappa): the median of kappa over the
  *   scales where the fit is defined, NaN where none is: a summary that colours well (a colour map of GLSKappa's
  *   magnitude is NaN wherever a single scale is undefined).
- * With StorePrincipalCurvatures (off by default; the exact evaluation: Auto takes it, Multiresolution is refused):
+ * With StorePrincipalCurvatures (off by default; any Evaluation, on the CPU):
  * the principal curvatures and directions of the fit (the derivative of its normal field over positions, docs/math.md)
  * - GLSK1 >= GLSK2 (1/length): principal curvatures, positive on a sphere with outward normals.
  * - GLSPrincipalDirection1, GLSPrincipalDirection2 (3 per scale, unit): their tangent directions (d1's largest
@@ -68,10 +68,9 @@ public:
 
   ///@{
   /// Also compute and write the principal curvatures and directions at every scale (off by default: 12 more values
-  /// per point and scale, and the fit takes about twice as long): GLSK1, GLSK2, GLSPrincipalDirection1,
-  /// GLSPrincipalDirection2, GLSMeanCurvature, GLSGaussianCurvature, GLSShapeIndex, GLSCurvedness. Needs the exact
-  /// evaluation (Evaluation Auto takes it; Multiresolution is refused with an error) and runs on the CPU (Backend
-  /// CUDA falls back with a warning).
+  /// per point and scale; the exact fit takes about 1.6 times as long): GLSK1, GLSK2, GLSPrincipalDirection1,
+  /// GLSPrincipalDirection2, GLSMeanCurvature, GLSGaussianCurvature, GLSShapeIndex, GLSCurvedness. Any Evaluation (the
+  /// multi-resolution one keeps the curvatures' cell sums too); on the CPU (Backend CUDA falls back with a warning).
   vtkSetMacro(StorePrincipalCurvatures, bool);
   vtkGetMacro(StorePrincipalCurvatures, bool);
   vtkBooleanMacro(StorePrincipalCurvatures, bool);
@@ -97,8 +96,6 @@ protected:
   vtkGLSScaleSpace();
   ~vtkGLSScaleSpace() override;
 
-  /// Refuses StorePrincipalCurvatures with the multi-resolution evaluation.
-  bool CheckParameters(vtkGLSRun& run) override;
   /// The producer of a scale space: it always fits, and its outputs are every stored descriptor.
   SampleRequest GetSampleRequest(const vtkGLSRun& run) const override;
   int ComputeOutputs(vtkGLSRun& run) override;

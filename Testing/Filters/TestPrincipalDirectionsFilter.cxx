@@ -1,5 +1,5 @@
-// vtkGLSPrincipalDirections: ridges and valleys on cylinders, no answer on a sphere, the refusal of the
-// multi-resolution evaluation, and a fused run that stores nothing per scale.
+// vtkGLSPrincipalDirections: ridges and valleys on cylinders (exact and multi-resolution), no answer on a sphere, a
+// fused run that stores nothing per scale, and the reuse of an upstream scale space's curvatures.
 #include "FilterTestUtilities.h"
 
 #include "vtkGLSPrincipalDirections.h"
@@ -16,8 +16,8 @@ using namespace glstest;
 namespace
 {
 
-/// Runs the filter at scales 3 to 5% of a unit radius (five of them).
-vtkSmartPointer<vtkPolyData> steadiest(const Cloud& c)
+/// Runs the filter at scales 3 to 5% of a unit radius (five of them), exactly or with the multi-resolution evaluation.
+vtkSmartPointer<vtkPolyData> steadiest(const Cloud& c, bool multiresolution = false)
 {
   vtkNew<vtkGLSPrincipalDirections> f;
   f->SetInputData(makePolyData(c));
@@ -25,8 +25,10 @@ vtkSmartPointer<vtkPolyData> steadiest(const Cloud& c)
   f->SetMinScale(0.03);
   f->SetMaxScale(0.05);
   f->SetNumberOfScales(5);
+  f->SetEvaluation(multiresolution ? vtkGLSScaleFilterBase::EVALUATION_MULTIRESOLUTION
+                                   : vtkGLSScaleFilterBase::EVALUATION_EXACT);
   f->Update();
-  EXPECT_STREQ(f->GetLastEvaluationUsed(), "Exact");
+  EXPECT_STREQ(f->GetLastEvaluationUsed(), multiresolution ? "Multiresolution" : "Exact");
   return f->GetPolyDataOutput();
 }
 
@@ -35,10 +37,11 @@ vtkSmartPointer<vtkPolyData> steadiest(const Cloud& c)
 TEST(PrincipalDirectionsFilter, CylindersAreRidgesOutsideAndValleysInside)
 {
   const double deg = 3.14159265358979 / 180.0;
-  for (bool inward : { false, true })
+  for (int run = 0; run < 4; ++run)
   {
+    const bool inward = run % 2 == 1, multiresolution = run >= 2;
     const Cloud c = cylinderPatch(1.0, 0.3, 0.3, 0.004, 4, inward);
-    const vtkSmartPointer<vtkPolyData> out = steadiest(c);
+    const vtkSmartPointer<vtkPolyData> out = steadiest(c, multiresolution);
     const auto scale = pointArray(out, "GLSStableDirectionScale"), rate = pointArray(out, "GLSDirectionTurnRate");
     const auto anisotropy = pointArray(out, "GLSAnisotropy"), shape = pointArray(out, "GLSStableShapeIndex");
     const auto direction = pointArray(out, "GLSStableDirection"), ridge = pointArray(out, "GLSRidgeValley");
@@ -66,13 +69,13 @@ TEST(PrincipalDirectionsFilter, CylindersAreRidgesOutsideAndValleysInside)
       }
       ++checked;
     }
-    EXPECT_GT(checked, 100) << inward;
+    EXPECT_GT(checked, 100) << inward << multiresolution;
   }
 }
 
 TEST(PrincipalDirectionsFilter, ASphereHasNoSteadiestDirection)
 {
-  const Cloud c = sphere(20000, 1.0);
+  const Cloud c = sphere(60000, 1.0); // about 13 points in the smallest ball
   const vtkSmartPointer<vtkPolyData> out = steadiest(c);
   for (const char* name : { "GLSStableDirectionScale", "GLSAnisotropy", "GLSRidgeValley" })
   {
@@ -83,19 +86,9 @@ TEST(PrincipalDirectionsFilter, ASphereHasNoSteadiestDirection)
   }
 }
 
-TEST(PrincipalDirectionsFilter, RefusesTheMultiresolutionEvaluationAndStoresNothingPerScale)
+TEST(PrincipalDirectionsFilter, StoresNothingPerScale)
 {
   const Cloud c = sphere(150, 1.0);
-  {
-    vtkNew<vtkGLSPrincipalDirections> f;
-    auto errors = catchErrors(f);
-    f->SetInputData(makePolyData(c));
-    f->SetEvaluationToMultiresolution();
-    f->Update();
-    EXPECT_EQ(errors->Count, 1);
-    EXPECT_NE(errors->Message.find("exact evaluation"), std::string::npos) << errors->Message;
-    EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray("GLSRidgeValley"), nullptr);
-  }
   // 4,000 scales within 16 MiB: a stored scale space would need 100 MiB.
   vtkNew<vtkGLSPrincipalDirections> f;
   auto errors = catchErrors(f);

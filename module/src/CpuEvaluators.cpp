@@ -23,6 +23,42 @@ constexpr std::size_t kMultiresolutionChunk = 4096;
 /// The fewest chunks per thread that a multi-resolution run's larger chunks leave (the load's balance at the end).
 constexpr std::size_t kChunksPerThread = 8;
 
+/// evaluateEachPoint for the curvature set's samples: each point's principal curvatures to the sink's
+/// consumeCurvatures, then its sphere samples to consume.
+template <typename EvaluateAt>
+bool feedEachPointWithCurvatures(const RunPoints& points, std::size_t S, ScaleSampleSink& sink,
+  const ParallelOptions& options, const EvaluateAt& evaluateAt)
+{
+  const std::size_t threads = static_cast<std::size_t>(resolveThreadCount(options.threads));
+  std::vector<std::vector<ScaleSample>> spheres(threads, std::vector<ScaleSample>(S));
+  std::vector<std::vector<PrincipalCurvatures>> curvatures(threads, std::vector<PrincipalCurvatures>(S));
+  const CurvatureSample invalid{ invalidSample<double>(0.0), undefinedCurvatures() };
+  return evaluateEachPoint(points, S, invalid, options, evaluateAt,
+    [&](std::uint64_t id, const CurvatureSample* samples, int t) {
+      std::vector<ScaleSample>& sphere = spheres[static_cast<std::size_t>(t)];
+      std::vector<PrincipalCurvatures>& principal = curvatures[static_cast<std::size_t>(t)];
+      for (std::size_t k = 0; k < S; ++k)
+      {
+        sphere[k] = samples[k].sphere;
+        principal[k] = samples[k].principal;
+      }
+      sink.consumeCurvatures(id, principal.data(), t);
+      sink.consume(id, sphere.data(), t);
+    });
+}
+
+/// The multi-resolution pass's chunk: at least kMultiresolutionChunk points (consecutive points share their walks;
+/// a chunk's first point walks anew: at 256 points per chunk that added 16% more far walks at 3M points), and at
+/// least kChunksPerThread chunks per thread, so that a small run (a sample of scattered points) stays balanced.
+ParallelOptions multiresolutionChunks(const ParallelOptions& options, std::size_t points)
+{
+  const std::size_t threads = static_cast<std::size_t>(resolveThreadCount(options.threads));
+  ParallelOptions cpu = options;
+  const std::size_t balanced = points / (kChunksPerThread * threads);
+  cpu.chunk = std::max(cpu.chunk, std::min(kMultiresolutionChunk, balanced));
+  return cpu;
+}
+
 /// What the exact evaluators read: the grid and the basis.
 class GridEvaluator : public CpuSampleEvaluator
 {
@@ -78,31 +114,13 @@ public:
     std::string&) const override
   {
     const std::size_t S = this->Basis.scaleCount();
-    const std::size_t threads = static_cast<std::size_t>(resolveThreadCount(options.threads));
-    std::vector<std::vector<MomentsT<ShapeOperatorMoments>>> bins(threads);
-    std::vector<std::vector<ScaleSample>> spheres(threads);
-    std::vector<std::vector<PrincipalCurvatures>> curvatures(threads);
-    const CurvatureSample invalid{ invalidSample<double>(0.0), undefinedCurvatures() };
-    aborted = !evaluateEachPoint(
-      points, S, invalid, options,
-      [&](const Vec3& p, int t, CurvatureSample* out) {
-        std::vector<MomentsT<ShapeOperatorMoments>>& b = bins[static_cast<std::size_t>(t)];
-        b.resize(S);
-        evaluateAllScalesOnCpu(this->Grid, p, this->Basis.binning, this->Basis.minNeighbors, b.data(), out);
-      },
-      [&](std::uint64_t id, const CurvatureSample* samples, int t) {
-        std::vector<ScaleSample>& sphere = spheres[static_cast<std::size_t>(t)];
-        std::vector<PrincipalCurvatures>& principal = curvatures[static_cast<std::size_t>(t)];
-        sphere.resize(S);
-        principal.resize(S);
-        for (std::size_t k = 0; k < S; ++k)
-        {
-          sphere[k] = samples[k].sphere;
-          principal[k] = samples[k].principal;
-        }
-        sink.consumeCurvatures(id, principal.data(), t);
-        sink.consume(id, sphere.data(), t);
-      });
+    std::vector<std::vector<MomentsT<ShapeOperatorMoments>>> bins(
+      static_cast<std::size_t>(resolveThreadCount(options.threads)));
+    aborted = !feedEachPointWithCurvatures(points, S, sink, options, [&](const Vec3& p, int t, CurvatureSample* out) {
+      std::vector<MomentsT<ShapeOperatorMoments>>& b = bins[static_cast<std::size_t>(t)];
+      b.resize(S);
+      evaluateAllScalesOnCpu(this->Grid, p, this->Basis.binning, this->Basis.minNeighbors, b.data(), out);
+    });
     return !aborted;
   }
 
@@ -148,14 +166,9 @@ public:
   bool run(const RunPoints& points, ScaleSampleSink& sink, const ParallelOptions& options, bool& aborted,
     std::string&) const override
   {
-    // Consecutive points in pyramid order share their walks (MultiresolutionScratch keeps a thread's last ones), and
-    // a chunk's first point walks anew: at 256 points per chunk that added 16% more far walks at 3M points. At least
-    // kChunksPerThread chunks per thread, so that a small run (a sample of scattered points) stays balanced.
-    const std::size_t threads = static_cast<std::size_t>(resolveThreadCount(options.threads));
-    ParallelOptions cpu = options;
-    const std::size_t balanced = points.count / (kChunksPerThread * threads);
-    cpu.chunk = std::max(cpu.chunk, std::min(kMultiresolutionChunk, balanced));
-    std::vector<MultiresolutionScratch> scratch(threads);
+    // Consecutive points in pyramid order share their walks (MultiresolutionScratch keeps a thread's last ones).
+    const ParallelOptions cpu = multiresolutionChunks(options, points.count);
+    std::vector<MultiresolutionScratch> scratch(static_cast<std::size_t>(resolveThreadCount(options.threads)));
     aborted = !feedEachPoint(points, this->Basis.scaleCount(), sink, cpu, [&](const Vec3& p, int t, ScaleSample* out) {
       evaluateAllScalesMultiresolutionOnCpu(this->Pyramid, p, this->Basis.binning, this->Basis.minNeighbors,
         scratch[static_cast<std::size_t>(t)], out);
@@ -172,6 +185,46 @@ public:
 
 private:
   MultiresolutionView Pyramid;
+  EvaluatorBasis Basis;
+};
+
+/// The multi-resolution pass with the principal curvatures, from the curvature set's cell sums.
+class MultiresolutionCurvatureEvaluator : public CpuSampleEvaluator
+{
+public:
+  MultiresolutionCurvatureEvaluator(
+    const MultiresolutionView& pyramid, const CurvatureCell* cells, const EvaluatorBasis& basis)
+    : Pyramid(pyramid)
+    , Cells(cells)
+    , Basis(basis)
+  {
+  }
+
+  bool run(const RunPoints& points, ScaleSampleSink& sink, const ParallelOptions& options, bool& aborted,
+    std::string&) const override
+  {
+    const ParallelOptions cpu = multiresolutionChunks(options, points.count);
+    std::vector<MultiresolutionScratchT<ShapeOperatorMoments>> scratch(
+      static_cast<std::size_t>(resolveThreadCount(options.threads)));
+    aborted = !feedEachPointWithCurvatures(
+      points, this->Basis.scaleCount(), sink, cpu, [&](const Vec3& p, int t, CurvatureSample* out) {
+        evaluateAllScalesMultiresolutionOnCpu(this->Pyramid, this->Cells, p, this->Basis.binning,
+          this->Basis.minNeighbors, scratch[static_cast<std::size_t>(t)], out);
+      });
+    return !aborted;
+  }
+
+  /// The oriented sphere's samples alone (the multi-resolution pass's).
+  void evaluatePosition(const Vec3& p, ScaleSample* out) const override
+  {
+    MultiresolutionScratch scratch;
+    evaluateAllScalesMultiresolutionOnCpu(
+      this->Pyramid, p, this->Basis.binning, this->Basis.minNeighbors, scratch, out);
+  }
+
+private:
+  MultiresolutionView Pyramid;
+  const CurvatureCell* Cells;
   EvaluatorBasis Basis;
 };
 
@@ -196,6 +249,12 @@ std::unique_ptr<CpuSampleEvaluator> makeMultiresolutionEvaluator(
   const MultiresolutionView& pyramid, const EvaluatorBasis& basis)
 {
   return std::make_unique<MultiresolutionEvaluator>(pyramid, basis);
+}
+
+std::unique_ptr<CpuSampleEvaluator> makeMultiresolutionCurvatureEvaluator(
+  const MultiresolutionView& pyramid, const CurvatureCell* cells, const EvaluatorBasis& basis)
+{
+  return std::make_unique<MultiresolutionCurvatureEvaluator>(pyramid, cells, basis);
 }
 
 } // namespace gls

@@ -14,6 +14,7 @@
 #include "gls/PointScaleSpace.h"
 #include "gls/ScaleSample.h"
 #include "gls/ScaleSpaceEngine.h"
+#include "gls/ShapeOperatorCells.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -125,6 +126,11 @@ std::unique_ptr<CpuSampleEvaluator> makeOnePassCurvatureEvaluator(const GridView
 /// The multi-resolution pass over the pyramid (MultiresolutionKernel.h).
 std::unique_ptr<CpuSampleEvaluator> makeMultiresolutionEvaluator(
   const MultiresolutionView& pyramid, const EvaluatorBasis& basis);
+
+/// The multi-resolution pass with the principal curvatures (ShapeOperatorMoments), from the curvature set's cell
+/// sums (summedCellsOf of the pyramid): each point's curvatures to consumeCurvatures, then its sphere samples.
+std::unique_ptr<CpuSampleEvaluator> makeMultiresolutionCurvatureEvaluator(
+  const MultiresolutionView& pyramid, const CurvatureCell* cells, const EvaluatorBasis& basis);
 
 /// The CUDA one pass on the engine's grid, or on its pyramid (pyramid non-null: with its nodeCount nodes and
 /// cellCount summed cells), in chunks of at most chunkLimit points (0: as the device's memory allows). Its run()

@@ -3,6 +3,7 @@
 #include "SampleEvaluators.h"
 
 #include "gls/KeySort.h"
+#include "gls/MultiresolutionCellSums.h"
 #include "gls/Numeric.h"
 #include "gls/PointBox.h"
 #include "gls/PointScaleSpace.h"
@@ -16,27 +17,6 @@ namespace gls
 {
 namespace
 {
-
-/// Gives every point NaN principal curvatures before its samples (a multi-resolution engine asked for them: its cells
-/// do not keep the sums their derivative needs).
-class UndefinedCurvaturesSink : public ScaleSampleSink
-{
-public:
-  UndefinedCurvaturesSink(ScaleSampleSink& inner, std::size_t scales)
-    : Inner(inner)
-    , Undefined(scales, undefinedCurvatures())
-  {
-  }
-  void consume(std::uint64_t id, const ScaleSample* samples, int thread) override
-  {
-    this->Inner.consumeCurvatures(id, this->Undefined.data(), thread);
-    this->Inner.consume(id, samples, thread);
-  }
-
-private:
-  ScaleSampleSink& Inner;
-  std::vector<PrincipalCurvatures> Undefined;
-};
 
 /// A multi-resolution run given fewer than 1 / kSampleFraction of the points takes them in pyramid order.
 constexpr std::size_t kSampleFraction = 4;
@@ -155,7 +135,11 @@ void ScaleSpaceEngine::chooseEvaluators()
 {
   const EvaluatorBasis basis{ this->binning(), this->Settings.minNeighbors };
   const bool multiresolution = this->Settings.evaluation == Evaluation::Multiresolution;
-  if (multiresolution)
+  if (multiresolution && this->Settings.principalCurvatures)
+  {
+    this->Cpu = makeMultiresolutionCurvatureEvaluator(this->Pyramid.view(), this->CurvatureCells.data(), basis);
+  }
+  else if (multiresolution)
   {
     this->Cpu = makeMultiresolutionEvaluator(this->Pyramid.view(), basis);
   }
@@ -214,6 +198,14 @@ void ScaleSpaceEngine::buildPyramid(const double* points, const double* normals,
   const PyramidLayout layout = pyramidLayout(this->Settings, points, count, admit);
   this->BuildAborted =
     !this->Pyramid.build(points, normals, count, admit, layout, this->Settings.parallel, inputsCopied);
+  if (!this->BuildAborted && this->Settings.principalCurvatures)
+  {
+    // The curvature set's cell sums, by the build's own rule (its threads; no progress of its own: a few percent of
+    // the build).
+    ParallelOptions threads;
+    threads.threads = this->Settings.parallel.threads;
+    this->CurvatureCells = summedCellsOf<ShapeOperatorMoments>(this->Pyramid.view(), threads);
+  }
 }
 
 EngineFootprint ScaleSpaceEngine::footprint(
@@ -251,18 +243,21 @@ EngineFootprint ScaleSpaceEngine::footprint(
   const double nodes = static_cast<double>(counts.nodes);
   const double levels = std::max(n * sizeof(KeyedIndex),
     nodes * sizeof(PyramidNode) + static_cast<double>(counts.cells) * sizeof(PyramidCell));
+  // The curvature set's cell sums, formed once the pyramid is built (counted in the build's phase too, above it).
+  const double curvatureCells =
+    settings.principalCurvatures ? static_cast<double>(counts.cells) * sizeof(CurvatureCell) : 0.0;
   // Running: the admit flags and the levels' scratch gone.
   const double cells = nodes * sizeof(PyramidNode) + static_cast<double>(counts.cells) * sizeof(PyramidCell) +
-    static_cast<double>(counts.top) * 8.0;
-  return { kept + n * sizeof(KeyedIndex) + stored, kept + stored + nodes * 2.0 * 8.0 + levels,
+    static_cast<double>(counts.top) * 8.0 + curvatureCells;
+  return { kept + n * sizeof(KeyedIndex) + stored, kept + stored + nodes * 2.0 * 8.0 + levels + curvatureCells,
     kept - n + stored + cells, n * storage.compactNormalsSaving() };
 }
 
 double ScaleSpaceEngine::memoryBytes() const
 {
   return this->RestPositions.capacity() * sizeof(Vec3) + this->Order.capacity() * sizeof(std::uint32_t) +
-    this->Grid.memoryBytes() +
-    this->Pyramid.memoryBytes();
+    this->Grid.memoryBytes() + this->Pyramid.memoryBytes() +
+    static_cast<double>(this->CurvatureCells.capacity() * sizeof(CurvatureCell));
 }
 
 ScaleBinning ScaleSpaceEngine::binning() const
@@ -313,11 +308,6 @@ bool ScaleSpaceEngine::run(
     r.fallbackReason = "CUDA failed (" + failure + ")";
   }
   r.used = Backend::CPU;
-  if (this->Settings.principalCurvatures && this->Settings.evaluation == Evaluation::Multiresolution)
-  {
-    UndefinedCurvaturesSink undefined(sink, this->Settings.scales.size());
-    return this->Cpu->run(points, undefined, options, aborted, failure);
-  }
   return this->Cpu->run(points, sink, options, aborted, failure);
 }
 

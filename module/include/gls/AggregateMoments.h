@@ -11,14 +11,14 @@
 namespace gls
 {
 
-/// m[k * kValues + j] = sum over the samples of d^(2k) f_j (k = 0, 1, 2) for every value of the moment set S.
-/// Padded to whole 64-byte lines.
+/// m[k * kValues + j] = sum over the samples of d^(2k) f_j (k = 0, 1, 2) for every value of the moment set S (its
+/// omega-values too: their third moment is not read). Padded to whole 64-byte lines.
 template <typename S>
 struct alignas(64) AggregateMomentsT
 {
   using Set = S;
   static constexpr int kValues = S::kValues;
-  static_assert(S::kOmegaValues == 0, "the multi-resolution moments keep no omega-values yet");
+  static constexpr int kWeighted = kValues - 1 - S::kOmegaValues; ///< the values before the omega-values
   double m[wholeCacheLines(3 * kValues)];
 };
 
@@ -73,17 +73,19 @@ GLS_INLINE void addPoint(AggregateMomentsT<S>& a, const Vec3& x, double d2, cons
   addSampleSums(a, f, d2);
 }
 
-/// Every value's sum weighted by w at scale t (v) and by dw/dt (dv), from the moments of the ball of radius t.
+/// Every value's sum weighted by w at scale t (v) and by dw/dt (dv), from the moments of the ball of radius t; an
+/// omega-value's sum weighted by omega (v; its dv is 0), as MomentBins.h's.
 template <typename S>
 GLS_INLINE void weightedValues(const AggregateMomentsT<S>& a, double t, double* v, double* dv)
 {
-  constexpr int V = S::kValues;
+  constexpr int V = S::kValues, W = AggregateMomentsT<S>::kWeighted;
   const WeightPolynomial w = weightPolynomial(t);
   for (int j = 0; j < V; ++j)
   {
     const double a0 = a.m[j], a1 = a.m[V + j], a2 = a.m[2 * V + j];
-    v[j] = a0 + w.c1 * a1 + w.c2 * a2;
-    dv[j] = w.e1 * a1 + w.e2 * a2;
+    const bool omega = j >= W && j < V - 1;
+    v[j] = omega ? w.o0 * a0 + w.o1 * a1 : a0 + w.c1 * a1 + w.c2 * a2;
+    dv[j] = omega ? 0.0 : w.e1 * a1 + w.e2 * a2;
   }
 }
 

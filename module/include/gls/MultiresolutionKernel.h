@@ -169,4 +169,10 @@ void evaluateAllScalesMultiresolutionOnCpu(const MultiresolutionView& v, const V
   double minNeighbors, MultiresolutionScratch& scratch, ScaleSample* out,
   CpuKernelBuild build = CpuKernelBuild::Fastest);
 
+/// The same with the principal curvatures (ShapeOperatorMoments), from the curvature set's cell sums (cells:
+/// summedCellsOf<ShapeOperatorMoments> of the pyramid); out: S curvature samples.
+void evaluateAllScalesMultiresolutionOnCpu(const MultiresolutionView& v, const CurvatureCell* cells, const Vec3& p,
+  const ScaleBinning& b, double minNeighbors, MultiresolutionScratchT<ShapeOperatorMoments>& scratch,
+  CurvatureSample* out, CpuKernelBuild build = CpuKernelBuild::Fastest);
+
 } // namespace gls

@@ -12,6 +12,7 @@
 #include "gls/PointScaleSpace.h"
 #include "gls/ScaleSample.h"
 #include "gls/ScaleSampling.h"
+#include "gls/ShapeOperatorCells.h"
 #include "gls/UninitializedArray.h"
 
 #include <algorithm>
@@ -80,10 +81,10 @@ struct ScaleSpaceSettings
   /// engine falls back to the CPU otherwise (or on any CUDA error), saying why (RunReport).
   Backend backend = Backend::CPU;
   std::size_t deviceChunkLimit = 0; ///< CUDA: at most this many points per device pass (0 = as memory allows)
-  /// Also the principal curvatures and directions at every scale (ShapeOperator.h), to the sink's consumeCurvatures:
-  /// computed by the exact one pass on the CPU (whatever `method` says; a CUDA backend falls back to the CPU, saying
-  /// why). A multi-resolution engine gives NaN curvatures: its cells do not keep the sums the derivative needs (the
-  /// filters refuse that combination). Costs about two and a half times the one pass's moment adds.
+  /// Also the principal curvatures and directions at every scale (ShapeOperator.h), to the sink's consumeCurvatures,
+  /// on the CPU (a CUDA backend falls back, saying why): by the exact one pass (whatever `method` says; about 1.6 times
+  /// the scale space alone) or the multi-resolution pass, whose engine then keeps the curvature set's cell sums too
+  /// (ShapeOperatorCells.h: 496 bytes a summed cell).
   bool principalCurvatures = false;
   /// The exact evaluation's grid lattice when given (a spatial tile of a larger cloud takes the whole cloud's, so that
   /// its sums equal the whole run's bit for bit: TiledScaleSpace); else exactGridLattice of the points.
@@ -226,6 +227,8 @@ private:
   NeighborGrid Grid;                    ///< exact evaluation
   MultiresolutionCloud Pyramid;         ///< multi-resolution evaluation
   bool BuildAborted = false;
+  /// The principal curvatures' cell sums of the pyramid (summedCellsOf), when the settings ask for the curvatures.
+  std::vector<CurvatureCell> CurvatureCells;
   std::unique_ptr<CpuSampleEvaluator> Cpu; ///< always (the fallback of the device's)
   std::unique_ptr<SampleEvaluator> Device; ///< when the backend asks for the device and it can run the settings
   std::string DeviceRefusal;               ///< why the device was asked for but not chosen (empty otherwise)

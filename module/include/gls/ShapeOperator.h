@@ -158,8 +158,8 @@ GLS_INLINE PrincipalCurvatures principalCurvaturesOf(
 }
 
 /// The oriented sphere's moment set with the values its shape operator needs (ShapeOperatorValue): the exact
-/// evaluation's kernels run it as they run the sphere's. Its multi-resolution rules (ShapeOperatorCells.h) are checked
-/// against the points; the engine does not run it multi-resolution yet.
+/// evaluation's kernels run it as they run the sphere's, and the multi-resolution ones with its own cells
+/// (ShapeOperatorCells.h; summedCellsOf).
 struct ShapeOperatorMoments
 {
   using Sphere = OrientedSphereMoments;

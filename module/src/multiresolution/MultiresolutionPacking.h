@@ -37,7 +37,7 @@ GLS_FORCE_INLINE void addInnerSample(
     a.y * a.y, a.y * a.z, a.z * a.z };
   // inner.x[i] += weights[i] * X, every value of a row at a time (four-double vectors while four remain, in the
   // vector builds).
-  constexpr int V = Set::kValues;
+  static constexpr int V = Set::kValues; // static: the lambda below reads it without a capture (clang)
   const auto add = [&weights](double(*sums)[V], int count, const double* X) GLS_INLINE_LAMBDA {
 #if GLS_KERNEL_VECTORS
     Double4 x4[V / 4];
