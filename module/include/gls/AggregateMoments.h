@@ -80,13 +80,21 @@ GLS_INLINE void weightedValues(const AggregateMomentsT<S>& a, double t, double* 
 {
   constexpr int V = S::kValues, W = AggregateMomentsT<S>::kWeighted;
   const WeightPolynomial w = weightPolynomial(t);
-  for (int j = 0; j < V; ++j)
-  {
+  const auto weighted = [&](int j) {
     const double a0 = a.m[j], a1 = a.m[V + j], a2 = a.m[2 * V + j];
-    const bool omega = j >= W && j < V - 1;
-    v[j] = omega ? w.o0 * a0 + w.o1 * a1 : a0 + w.c1 * a1 + w.c2 * a2;
-    dv[j] = omega ? 0.0 : w.e1 * a1 + w.e2 * a2;
+    v[j] = a0 + w.c1 * a1 + w.c2 * a2;
+    dv[j] = w.e1 * a1 + w.e2 * a2;
+  };
+  for (int j = 0; j < W; ++j)
+  {
+    weighted(j);
   }
+  for (int j = W; j < V - 1; ++j)
+  {
+    v[j] = w.o0 * a.m[j] + w.o1 * a.m[V + j];
+    dv[j] = 0.0;
+  }
+  weighted(V - 1); // |x|^2
 }
 
 /// The oriented sphere's weighted sums at scale t (s) and their t-derivatives (ds) from the moments of the ball.

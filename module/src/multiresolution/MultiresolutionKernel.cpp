@@ -12,12 +12,4 @@ void evaluateAllScalesMultiresolutionOnCpu(const MultiresolutionView& v, const V
     v, v.cells, p, b, minNeighbors, s, out, build);
 }
 
-void evaluateAllScalesMultiresolutionOnCpu(const MultiresolutionView& v, const CurvatureCell* cells, const Vec3& p,
-  const ScaleBinning& b, double minNeighbors, MultiresolutionScratchT<ShapeOperatorMoments>& s, CurvatureSample* out,
-  CpuKernelBuild build)
-{
-  multiresolution::evaluateAllScalesMultiresolutionOnCpuFor<ShapeOperatorMoments>(
-    v, cells, p, b, minNeighbors, s, out, build);
-}
-
 } // namespace gls
