@@ -143,31 +143,31 @@ bool FillArrays(const std::vector<int>& stored, bool curvatures, const std::vect
 {
   const int S = static_cast<int>(scales.size());
   std::vector<vtkSmartPointer<vtkDataArray>> arrays;
+  // An array of `components` values per scale for every point, named, its components named, in the output's list.
+  const auto addArray = [&](vtkSmartPointer<vtkDataArray> a, const char* name, int components) {
+    a->SetNumberOfComponents(S * components);
+    a->SetNumberOfTuples(n);
+    a->SetName(name);
+    nameComponents(a, scales, components);
+    arrays.push_back(a);
+  };
   std::vector<typename ArraySink<T>::Column> columns;
   for (int id : stored)
   {
     const vtkGLSDescriptors::Descriptor& d = vtkGLSDescriptors::Get(static_cast<vtkGLSDescriptors::Id>(id));
-    vtkSmartPointer<vtkDataArray> a;
     typename ArraySink<T>::Column column{ &d, nullptr, nullptr };
     if (d.Integer)
     {
       auto ints = vtkSmartPointer<vtkIntArray>::New();
-      ints->SetNumberOfComponents(S * d.Components);
-      ints->SetNumberOfTuples(n);
+      addArray(ints, d.Name, d.Components);
       column.Integers = ints->GetPointer(0);
-      a = ints;
     }
     else
     {
       auto values = vtkSmartPointer<ArrayType>::New();
-      values->SetNumberOfComponents(S * d.Components);
-      values->SetNumberOfTuples(n);
+      addArray(values, d.Name, d.Components);
       column.Values = values->GetPointer(0);
-      a = values;
     }
-    a->SetName(d.Name);
-    nameComponents(a, scales, d.Components);
-    arrays.push_back(a);
     columns.push_back(column);
   }
   std::vector<typename ArraySink<T>::CurvatureColumn> curvatureColumns;
@@ -176,11 +176,7 @@ bool FillArrays(const std::vector<int>& stored, bool curvatures, const std::vect
     const vtkGLSDescriptors::CurvatureArray& c =
       vtkGLSDescriptors::GetCurvature(static_cast<vtkGLSDescriptors::CurvatureId>(id));
     auto values = vtkSmartPointer<ArrayType>::New();
-    values->SetNumberOfComponents(S * c.Components);
-    values->SetNumberOfTuples(n);
-    values->SetName(c.Name);
-    nameComponents(values, scales, c.Components);
-    arrays.push_back(values);
+    addArray(values, c.Name, c.Components);
     curvatureColumns.push_back({ &c, values->GetPointer(0) });
   }
   ArraySink<T> sink(scales, std::move(columns), std::move(curvatureColumns),

@@ -36,21 +36,6 @@ struct Site
   double smallestRadius; ///< of curvature over the evaluated points (length)
 };
 
-/// Errors of one method: curvature relative to max|k_true|, direction in degrees.
-struct Errors
-{
-  std::vector<double> curvature, direction;
-  void add(const gls::PrincipalCurvatures& got, const gls::PrincipalCurvatures& want)
-  {
-    const double largest = std::max(std::abs(want.k1), std::abs(want.k2));
-    this->curvature.push_back(std::max(std::abs(got.k1 - want.k1), std::abs(got.k2 - want.k2)) / largest);
-    if (want.k1 - want.k2 >= 0.2 * largest)
-    {
-      this->direction.push_back(std::isfinite(got.d1.x) ? angleDegrees(got.d1, want.d1) : 90.0);
-    }
-  }
-};
-
 #ifdef GLS_BENCHMARK_WITH_CGAL
 /// CGAL's degree-2 jet (Monge form) over the points within t of p, its normal towards n; in this project's sign
 /// convention (positive on a sphere with outward normals: CGAL's Monge coefficients have the opposite sign).
@@ -88,14 +73,7 @@ void row(const Site& site, double pointsInSmallestBall, double noiseFraction, un
   const double density = pointsInSmallestBall / (3.14159265358979 * scales[0] * scales[0]);
   // The noise: a fraction of the noise-free patch's diagonal.
   const Patch clean = samplePatch(site.surface, site.u, site.v, site.du, site.dv, density, seed);
-  double low[3] = { 1e300, 1e300, 1e300 }, high[3] = { -1e300, -1e300, -1e300 };
-  for (std::size_t i = 0; i < clean.cloud.points.size(); ++i)
-  {
-    low[i % 3] = std::min(low[i % 3], clean.cloud.points[i]);
-    high[i % 3] = std::max(high[i % 3], clean.cloud.points[i]);
-  }
-  const double diagonal = std::sqrt((high[0] - low[0]) * (high[0] - low[0]) + (high[1] - low[1]) *
-    (high[1] - low[1]) + (high[2] - low[2]) * (high[2] - low[2]));
+  const double diagonal = boxDiagonal(clean.cloud.points);
   const Patch patch = noiseFraction > 0.0
     ? samplePatch(site.surface, site.u, site.v, site.du, site.dv, density, seed, noiseFraction * diagonal)
     : clean;
@@ -116,7 +94,7 @@ void row(const Site& site, double pointsInSmallestBall, double noiseFraction, un
   b.inverseCellWidth = table.inverseCellWidth;
   std::vector<gls::MomentsT<gls::ShapeOperatorMoments>> bins(3);
   std::vector<gls::CurvatureSample> out(3);
-  Errors gls, peer;
+  CurvatureErrors gls, peer;
   const gls::Vec3 centre = site.surface.X(site.u, site.v);
   for (std::size_t i = 0; i < patch.cloud.size(); i += 7)
   {

@@ -150,6 +150,25 @@ inline Surface saddle()
     [](double u, double v) { return unit(gls::Vec3{ -u, v, 1.0 }); } };
 }
 
+/// The errors of estimated principal curvatures against the true ones: both curvatures' relative to max|k_true|, and
+/// d1's angle (degrees; 90 where it is NaN) where the true ones differ by a fifth of the larger at least.
+struct CurvatureErrors
+{
+  std::vector<double> curvature, direction;
+  /// Adds one estimate; true when its directions were compared.
+  bool add(const gls::PrincipalCurvatures& got, const gls::PrincipalCurvatures& want)
+  {
+    const double largest = std::max(std::abs(want.k1), std::abs(want.k2));
+    this->curvature.push_back(std::max(std::abs(got.k1 - want.k1), std::abs(got.k2 - want.k2)) / largest);
+    if (!(want.k1 - want.k2 >= 0.2 * largest))
+    {
+      return false;
+    }
+    this->direction.push_back(std::isfinite(got.d1.x) ? angleDegrees(got.d1, want.d1) : 90.0);
+    return true;
+  }
+};
+
 /// The 99th percentile (the value below which 99% lie; 0 for none).
 inline double percentile99(std::vector<double> v)
 {

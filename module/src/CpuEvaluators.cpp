@@ -104,11 +104,12 @@ public:
   }
 };
 
-/// The one pass with the principal curvatures: a point's curvatures to consumeCurvatures, then its sphere samples.
-class OnePassCurvatureEvaluator : public GridEvaluator
+/// The one pass with the principal curvatures: a point's curvatures to consumeCurvatures, then its sphere samples
+/// (evaluatePosition: the one pass's sphere samples alone).
+class OnePassCurvatureEvaluator : public OnePassEvaluator
 {
 public:
-  using GridEvaluator::GridEvaluator;
+  using OnePassEvaluator::OnePassEvaluator;
 
   bool run(const RunPoints& points, ScaleSampleSink& sink, const ParallelOptions& options, bool& aborted,
     std::string&) const override
@@ -122,13 +123,6 @@ public:
       evaluateAllScalesOnCpu(this->Grid, p, this->Basis.binning, this->Basis.minNeighbors, b.data(), out);
     });
     return !aborted;
-  }
-
-  /// The oriented sphere's samples alone (the one pass's).
-  void evaluatePosition(const Vec3& p, ScaleSample* out) const override
-  {
-    std::vector<Moments> b(this->Basis.scaleCount());
-    evaluateAllScalesOnCpu(this->Grid, p, this->Basis.binning, this->Basis.minNeighbors, b.data(), out);
   }
 };
 
@@ -183,20 +177,20 @@ public:
       this->Pyramid, p, this->Basis.binning, this->Basis.minNeighbors, scratch, out);
   }
 
-private:
+protected:
   MultiresolutionView Pyramid;
   EvaluatorBasis Basis;
 };
 
-/// The multi-resolution pass with the principal curvatures, from the curvature set's cell sums.
-class MultiresolutionCurvatureEvaluator : public CpuSampleEvaluator
+/// The multi-resolution pass with the principal curvatures, from the curvature set's cell sums (evaluatePosition:
+/// the multi-resolution pass's sphere samples alone).
+class MultiresolutionCurvatureEvaluator : public MultiresolutionEvaluator
 {
 public:
   MultiresolutionCurvatureEvaluator(
     const MultiresolutionView& pyramid, const CurvatureCell* cells, const EvaluatorBasis& basis)
-    : Pyramid(pyramid)
+    : MultiresolutionEvaluator(pyramid, basis)
     , Cells(cells)
-    , Basis(basis)
   {
   }
 
@@ -214,18 +208,8 @@ public:
     return !aborted;
   }
 
-  /// The oriented sphere's samples alone (the multi-resolution pass's).
-  void evaluatePosition(const Vec3& p, ScaleSample* out) const override
-  {
-    MultiresolutionScratch scratch;
-    evaluateAllScalesMultiresolutionOnCpu(
-      this->Pyramid, p, this->Basis.binning, this->Basis.minNeighbors, scratch, out);
-  }
-
 private:
-  MultiresolutionView Pyramid;
   const CurvatureCell* Cells;
-  EvaluatorBasis Basis;
 };
 
 } // namespace

@@ -21,15 +21,6 @@ double anisotropyOf(const PrincipalCurvatures& c)
   return (c.k1 - c.k2) / (std::abs(c.k1) + std::abs(c.k2));
 }
 
-/// The unit vector with its largest component positive.
-Vec3 canonical(const Vec3& v)
-{
-  const Vec3 u = (1.0 / std::sqrt(squaredNorm(v))) * v;
-  const double ax = std::abs(u.x), ay = std::abs(u.y), az = std::abs(u.z);
-  const double largest = ax >= ay && ax >= az ? u.x : (ay >= az ? u.y : u.z);
-  return largest < 0.0 ? -1.0 * u : u;
-}
-
 } // namespace
 
 StableDirection steadiestDirection(const PrincipalCurvatures* c, const double* scales, int S, double significance)
@@ -54,7 +45,7 @@ StableDirection steadiestDirection(const PrincipalCurvatures* c, const double* s
     best.turnRate = rate;
     best.anisotropy = 0.5 * (anisotropyOf(a) + anisotropyOf(b));
     best.shapeIndex = 0.5 * (shapeIndex(a, scales[k]) + shapeIndex(b, scales[k + 1]));
-    best.direction = canonical(a.d1 + (dot(a.d1, b.d1) < 0.0 ? -1.0 : 1.0) * b.d1);
+    best.direction = canonicalDirection(a.d1 + (dot(a.d1, b.d1) < 0.0 ? -1.0 : 1.0) * b.d1);
     const double si = best.shapeIndex;
     best.ridgeValley = si >= kRidgeShapeIndexLow && si <= kRidgeShapeIndexHigh
       ? 1.0

@@ -74,6 +74,16 @@ GLS_INLINE Vec3 orthogonalUnit(const Vec3& n)
   return (1.0 / squareRoot(squaredNorm(v))) * v;
 }
 
+/// The unit vector along the line of v (non-zero) with its largest component positive: the sign convention of
+/// the principal directions, which are lines.
+GLS_INLINE Vec3 canonicalDirection(const Vec3& v)
+{
+  const Vec3 u = (1.0 / squareRoot(squaredNorm(v))) * v;
+  const double ax = absolute(u.x), ay = absolute(u.y), az = absolute(u.z);
+  const double largest = ax >= ay && ax >= az ? u.x : (ay >= az ? u.y : u.z);
+  return largest < 0.0 ? -1.0 * u : u;
+}
+
 /// The principal curvatures of the symmetric 2x2 shape operator [[a, b], [b, c]] in the tangent basis (b1, b2) of
 /// eta, at scale t: its eigenvalues k1 >= k2 and eigenvectors.
 GLS_INLINE PrincipalCurvatures principalOf(double a, double b, double c, const Vec3& b1, const Vec3& b2,
@@ -93,16 +103,8 @@ GLS_INLINE PrincipalCurvatures principalOf(double a, double b, double c, const V
   // (b, k1 - a) and (k1 - c, b) are both eigenvectors of k1 where non-zero: the longer, for its precision.
   const double u1 = b, v1 = pc.k1 - a, u2 = pc.k1 - c, v2 = b;
   const bool first = u1 * u1 + v1 * v1 >= u2 * u2 + v2 * v2;
-  const Vec3 d = first ? u1 * b1 + v1 * b2 : u2 * b1 + v2 * b2;
-  Vec3 d1 = (1.0 / squareRoot(squaredNorm(d))) * d;
-  const double ax = absolute(d1.x), ay = absolute(d1.y), az = absolute(d1.z);
-  const double largest = ax >= ay && ax >= az ? d1.x : (ay >= az ? d1.y : d1.z);
-  if (largest < 0.0)
-  {
-    d1 = -1.0 * d1;
-  }
-  pc.d1 = d1;
-  pc.d2 = cross(eta, d1);
+  pc.d1 = canonicalDirection(first ? u1 * b1 + v1 * b2 : u2 * b1 + v2 * b2);
+  pc.d2 = cross(eta, pc.d1);
   return pc;
 }
 

@@ -49,12 +49,6 @@ struct CurvatureCell : PyramidCell
   double offsetDotNormalOffsetOffset[6]; ///< sum (y . n) y_a y_b at [pairIndex(a, b)] (length^3)
 };
 
-/// Component i of v.
-GLS_INLINE double axis(const Vec3& v, int i)
-{
-  return i == 0 ? v.x : (i == 1 ? v.y : v.z);
-}
-
 /// The full sum n x^T, [3 p + q] = n_p x_q, from the set's eight entries and the trace sum x . n.
 GLS_INLINE void normalOffsetMatrix(const double* f, double* M)
 {
