@@ -29,6 +29,12 @@ constexpr const char* Anisotropy = "GLSAnisotropy";                     // (k1 -
 constexpr const char* StableShapeIndex = "GLSStableShapeIndex";         // the shape index there
 constexpr const char* StableDirection = "GLSStableDirection";           // d1 there (3 components, unit)
 constexpr const char* RidgeValley = "GLSRidgeValley";                   // +1 ridge, -1 valley, 0 neither
+// vtkGLSPrincipalDirections' DirectionScale: the principal curvatures at one chosen scale, for glyphs.
+constexpr const char* DirectionScale = "GLSDirectionScale";             // field data: that scale (length)
+constexpr const char* DirectionAtScale1 = "GLSPrincipalDirection1AtScale"; // d1 there (3 components, unit)
+constexpr const char* DirectionAtScale2 = "GLSPrincipalDirection2AtScale"; // d2 there (3 components, unit)
+constexpr const char* K1AtScale = "GLSK1AtScale";                       // k1 there (1/length)
+constexpr const char* K2AtScale = "GLSK2AtScale";                       // k2 there (1/length)
 constexpr const char* Sigma = "GLSSigma";                 // field data of the features: the sigma used
 constexpr const char* Dissimilarity = "GLSDissimilarity";
 constexpr const char* Similar = "GLSSimilar";

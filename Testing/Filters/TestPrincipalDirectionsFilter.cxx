@@ -141,3 +141,124 @@ TEST(PrincipalDirectionsFilter, ReusesAnUpstreamScaleSpacesCurvatures)
   reused->Update();
   EXPECT_EQ(fieldArray(reused->GetPolyDataOutput(), "GLSScales").size(), 7u);
 }
+
+TEST(PrincipalDirectionsFilter, WritesTheCurvaturesOfAChosenScaleForGlyphs)
+{
+  // DirectionScale picks the analysed scale nearest to it (in log t): its k1, k2, d1 and d2 are the upstream scale
+  // space's at that scale, bit for bit, and d1 becomes the active vectors. Off (0) by default; a scale outside the
+  // analysed ones is refused with an error and an empty output.
+  const Cloud c = cylinderPatch(1.0, 0.3, 0.3, 0.006, 6);
+  vtkNew<vtkGLSScaleSpace> space;
+  space->SetInputData(makePolyData(c));
+  space->SetScaleUnitsToAbsolute();
+  space->SetMinScale(0.03);
+  space->SetMaxScale(0.06);
+  space->SetNumberOfScales(4);
+  space->StorePrincipalCurvaturesOn();
+  space->Update();
+  const std::vector<double> scales = fieldArray(space->GetPolyDataOutput(), "GLSScales");
+  ASSERT_EQ(scales.size(), 4u);
+  vtkNew<vtkGLSPrincipalDirections> f;
+  auto errors = catchErrors(f);
+  f->SetInputConnection(space->GetOutputPort());
+  f->Update();
+  EXPECT_EQ(f->GetPolyDataOutput()->GetPointData()->GetArray("GLSK1AtScale"), nullptr);
+  EXPECT_STREQ(f->GetPolyDataOutput()->GetPointData()->GetVectors()->GetName(), "GLSStableDirection");
+  const std::size_t S = scales.size();
+  const auto k1 = pointArray(space->GetPolyDataOutput(), "GLSK1"), k2 = pointArray(space->GetPolyDataOutput(), "GLSK2");
+  const auto d1 = pointArray(space->GetPolyDataOutput(), "GLSPrincipalDirection1");
+  const auto d2 = pointArray(space->GetPolyDataOutput(), "GLSPrincipalDirection2");
+  const double diagonal = space->GetPolyDataOutput()->GetLength();
+  for (std::size_t chosen : { std::size_t(0), std::size_t(2), std::size_t(3) })
+  {
+    // Absolute, 1% off the scale; then relative to the diagonal, 1% off the other way.
+    for (int relative = 0; relative < 2; ++relative)
+    {
+      if (relative)
+      {
+        f->SetScaleUnitsToRelativeToDiagonal();
+        f->SetDirectionScale(scales[chosen] * (chosen == 3 ? 1.0 : 1.01) / diagonal);
+      }
+      else
+      {
+        f->SetScaleUnitsToAbsolute();
+        f->SetDirectionScale(scales[chosen] * (chosen == 0 ? 1.0 : 0.99));
+      }
+      f->Update();
+      ASSERT_EQ(errors->Count, 0) << errors->Message;
+      vtkPolyData* out = f->GetPolyDataOutput();
+      EXPECT_EQ(fieldArray(out, "GLSDirectionScale"), std::vector<double>{ scales[chosen] });
+      EXPECT_STREQ(out->GetPointData()->GetVectors()->GetName(), "GLSPrincipalDirection1AtScale");
+      const auto ck1 = pointArray(out, "GLSK1AtScale"), ck2 = pointArray(out, "GLSK2AtScale");
+      const auto cd1 = pointArray(out, "GLSPrincipalDirection1AtScale");
+      const auto cd2 = pointArray(out, "GLSPrincipalDirection2AtScale");
+      ASSERT_EQ(ck1.size(), c.size());
+      ASSERT_EQ(cd2.size(), 3 * c.size());
+      std::vector<double> wk1, wk2, wd1, wd2;
+      for (std::size_t i = 0; i < c.size(); ++i)
+      {
+        wk1.push_back(k1[i * S + chosen]);
+        wk2.push_back(k2[i * S + chosen]);
+        for (int a = 0; a < 3; ++a)
+        {
+          wd1.push_back(d1[3 * (i * S + chosen) + a]);
+          wd2.push_back(d2[3 * (i * S + chosen) + a]);
+        }
+      }
+      EXPECT_TRUE(identical(ck1, wk1)) << chosen << relative;
+      EXPECT_TRUE(identical(ck2, wk2)) << chosen << relative;
+      EXPECT_TRUE(identical(cd1, wd1)) << chosen << relative;
+      EXPECT_TRUE(identical(cd2, wd2)) << chosen << relative;
+    }
+  }
+  f->SetScaleUnitsToAbsolute();
+  for (double outside : { scales.front() * 0.98, scales.back() * 1.02 })
+  {
+    f->SetDirectionScale(outside);
+    f->Update();
+    EXPECT_EQ(errors->Count, 1) << outside;
+    EXPECT_NE(errors->Message.find("outside the analysed scales"), std::string::npos) << errors->Message;
+    EXPECT_EQ(f->GetPolyDataOutput()->GetNumberOfPoints(), 0);
+    errors->Count = 0;
+  }
+}
+
+TEST(PrincipalDirectionsFilter, SinglePrecisionWritesTheDoublesRounded)
+{
+  // OutputPrecision Single: every array float32, each value the float nearest the double the default run writes.
+  const Cloud c = cylinderPatch(1.0, 0.3, 0.3, 0.008, 7);
+  vtkNew<vtkGLSPrincipalDirections> f;
+  f->SetInputData(makePolyData(c));
+  f->SetScaleUnitsToAbsolute();
+  f->SetMinScale(0.04);
+  f->SetMaxScale(0.06);
+  f->SetNumberOfScales(3);
+  f->SetDirectionScale(0.05);
+  f->Update();
+  vtkNew<vtkPolyData> doubles;
+  doubles->DeepCopy(f->GetPolyDataOutput());
+  f->SetOutputPrecision(vtkAlgorithm::SINGLE_PRECISION);
+  f->Update();
+  int compared = 0;
+  for (const char* name : { "GLSStableDirectionScale", "GLSDirectionTurnRate", "GLSAnisotropy", "GLSStableShapeIndex",
+         "GLSStableDirection", "GLSRidgeValley", "GLSK1AtScale", "GLSK2AtScale", "GLSPrincipalDirection1AtScale",
+         "GLSPrincipalDirection2AtScale" })
+  {
+    EXPECT_EQ(doubles->GetPointData()->GetArray(name)->GetDataType(), VTK_DOUBLE) << name;
+    EXPECT_EQ(f->GetPolyDataOutput()->GetPointData()->GetArray(name)->GetDataType(), VTK_FLOAT) << name;
+    const auto wide = pointArray(doubles, name), narrow = pointArray(f->GetPolyDataOutput(), name);
+    ASSERT_EQ(wide.size(), narrow.size()) << name;
+    for (std::size_t i = 0; i < wide.size(); ++i)
+    {
+      EXPECT_TRUE(narrow[i] == static_cast<double>(static_cast<float>(wide[i])) ||
+        (std::isnan(narrow[i]) && std::isnan(wide[i])))
+        << name << " " << i;
+    }
+    ++compared;
+  }
+  EXPECT_EQ(compared, 10);
+  f->SetOutputPrecision(7);
+  auto errors = catchErrors(f);
+  f->Update();
+  EXPECT_EQ(errors->Count, 1);
+}

@@ -92,7 +92,7 @@ class PluginProxies(unittest.TestCase):
         simple.LoadPlugin(PLUGIN, remote=False, ns=globals())  # a fresh dict passed as ns stays empty
         for name in ('GLSNormalEstimation', 'GLSScaleSpace', 'GLSGeometricVariation', 'GLSContinuousFeatures',
                      'GLSMultiScaleDissimilarity', 'GLSScaleProfiles', 'GLSScaleSpaceImage', 'GLSPointCloudReader',
-                     'GLSAdaptiveBandwidth', 'GLSProjection'):
+                     'GLSAdaptiveBandwidth', 'GLSProjection', 'GLSPrincipalDirections'):
             NS[name] = globals()[name]
         cls.points, cls.normals = sphere(3000, 2.0)
 
@@ -201,6 +201,41 @@ class PluginProxies(unittest.TestCase):
         self.assertTrue(np.all(array(out, 'GLSSimilar') == 1))
         self.assertTrue(np.all(array(out, 'GLSPertinentScaleCount') == 0))
         for p in (d, f, v, src):
+            simple.Delete(p)
+
+    def test_principal_directions_at_a_chosen_scale_show_as_glyphs(self):
+        # A cylinder of radius 1 (outward normals): at the chosen scale k1 = 1 and d1 goes around it, so ParaView's
+        # Glyph (lines, oriented by the active vectors the filter sets) draws every line across the axis.
+        u, z = np.meshgrid(np.arange(-0.3, 0.3, 0.008), np.arange(-0.3, 0.3, 0.008))
+        u, z = u.ravel(), z.ravel()
+        normals = np.stack([np.cos(u), np.sin(u), 0 * u], axis=1)
+        src = producer(polydata(normals + np.stack([0 * u, 0 * u, z], axis=1), normals))
+        d = NS['GLSPrincipalDirections'](Input=src, ScaleUnits='Absolute', MinScale=0.05, MaxScale=0.1,
+                                         NumberOfScales=4, DirectionScale=0.07)
+        out = fetch(d)
+        scales = vtk_to_numpy(out.GetFieldData().GetArray('GLSScales'))
+        chosen = out.GetFieldData().GetArray('GLSDirectionScale').GetValue(0)
+        self.assertEqual(chosen, scales[np.argmin(np.abs(np.log(scales / 0.07)))])
+        self.assertEqual(out.GetPointData().GetVectors().GetName(), 'GLSPrincipalDirection1AtScale')
+        inside = (np.abs(u) < 0.2) & (np.abs(z) < 0.2)
+        np.testing.assert_allclose(array(out, 'GLSK1AtScale')[inside], 1.0, atol=0.03)
+        np.testing.assert_allclose(array(out, 'GLSK2AtScale')[inside], 0.0, atol=0.03)
+        glyphs = simple.Glyph(Input=d, GlyphType='Line', OrientationArray=['POINTS', 'GLSPrincipalDirection1AtScale'],
+                              ScaleArray=['POINTS', 'No scale array'], ScaleFactor=0.01, GlyphMode='All Points')
+        lines = fetch(glyphs)
+        per_glyph = lines.GetNumberOfPoints() // len(u)  # the line source's points, one line a point
+        self.assertEqual(lines.GetNumberOfPoints(), per_glyph * len(u))
+        self.assertGreaterEqual(per_glyph, 2)
+        ends = vtk_to_numpy(lines.GetPoints().GetData()).reshape(-1, per_glyph, 3)
+        centres, along = ends.mean(axis=1), ends[:, -1] - ends[:, 0]
+        along /= np.linalg.norm(along, axis=1)[:, None]
+        centre_u = np.arctan2(centres[:, 1], centres[:, 0])
+        within = (np.abs(centre_u) < 0.2) & (np.abs(centres[:, 2]) < 0.2)
+        self.assertGreater(within.sum(), 1000)
+        self.assertLess(np.abs(along[within, 2]).max(), math.sin(math.radians(2)))  # across the axis
+        radial = np.stack([np.cos(centre_u), np.sin(centre_u), 0 * centre_u], axis=1)[within]
+        self.assertLess(np.abs((along[within] * radial).sum(axis=1)).max(), math.sin(math.radians(2)))  # tangent
+        for p in (glyphs, d, src):
             simple.Delete(p)
 
     def test_normals_on_a_sphere_point_outward(self):
