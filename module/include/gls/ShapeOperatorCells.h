@@ -21,23 +21,20 @@ enum ShapeOperatorValue : int
   kShapeOperatorValues                               ///< how many (25)
 };
 
-/// Where the pair (a, b) of axes sits in a symmetric 3x3 stored as xx, xy, xz, yy, yz, zz.
+/// Where the pair (a, b) of axes sits in a symmetric 3x3 stored as xx, xy, xz, yy, yz, zz (a table: these indices
+/// sit in the cells' inner loops).
 GLS_INLINE int pairIndex(int a, int b)
 {
-  const int lo = a < b ? a : b, hi = a < b ? b : a;
-  return lo == 0 ? hi : (lo == 1 ? 2 + hi : 5);
+  constexpr int index[3][3] = { { 0, 1, 2 }, { 1, 3, 4 }, { 2, 4, 5 } };
+  return index[a][b];
 }
 
 /// Where the triple (a, b, c) sits in a symmetric 3x3x3 stored as xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz.
 GLS_INLINE int tripleIndex(int a, int b, int c)
 {
-  // Sort the three axes.
-  int lo = a, mid = b, hi = c, s = 0;
-  if (lo > mid) { s = lo; lo = mid; mid = s; }
-  if (mid > hi) { s = mid; mid = hi; hi = s; }
-  if (lo > mid) { s = lo; lo = mid; mid = s; }
-  const int first[3] = { 0, 6, 9 }; // where the triples starting with x, y, z begin
-  return first[lo] + pairIndex(mid, hi) - pairIndex(lo, lo);
+  constexpr int index[3][3][3] = { { { 0, 1, 2 }, { 1, 3, 4 }, { 2, 4, 5 } }, { { 1, 3, 4 }, { 3, 6, 7 }, { 4, 7, 8 } },
+    { { 2, 4, 5 }, { 4, 7, 8 }, { 5, 8, 9 } } };
+  return index[a][b][c];
 }
 
 /// What a pyramid cell keeps for the principal curvatures' values: the oriented sphere's statistics and the third
@@ -155,7 +152,8 @@ GLS_INLINE void addChildToCurvatureCell(CurvatureCell& cell, const CurvatureCell
 }
 
 /// The omega-values' sums over a cell's points in coordinates about an origin at -x from its centroid (x = c - o):
-/// F = sum f(x + y_i, n_i), and their gradient along `dir`, H = sum (dir . y_i) f(x + y_i, n_i).
+/// F = sum f(x + y_i, n_i), and their gradient along `dir`, H = sum (dir . y_i) f(x + y_i, n_i). The third moments
+/// are contracted with dir once (K, T) and shared by the values that read them.
 GLS_INLINE void curvatureCellValues(const CurvatureCell& cell, const Vec3& x, const Vec3& dir, double* F, double* H)
 {
   const double X[3] = { x.x, x.y, x.z }, A[3] = { dir.x, dir.y, dir.z };
@@ -169,43 +167,41 @@ GLS_INLINE void curvatureCellValues(const CurvatureCell& cell, const Vec3& x, co
   const double trace = Yn[0] + Yn[4] + Yn[8];
   const double xN = X[0] * N[0] + X[1] * N[1] + X[2] * N[2], xNa = X[0] * NA[0] + X[1] * NA[1] + X[2] * NA[2];
   const double aO = A[0] * O[0] + A[1] * O[1] + A[2] * O[2];
+  // K[p][q] = sum (dir . y) n_p y_q; L[a] = sum (dir . y)(y . n) y_a.
+  double K[3][3], L[3];
+  for (int q = 0; q < 3; ++q)
+  {
+    for (int p = 0; p < 3; ++p)
+    {
+      const double* nyy = cell.normalOffsetOffset + 6 * p;
+      K[p][q] = A[0] * nyy[pairIndex(0, q)] + A[1] * nyy[pairIndex(1, q)] + A[2] * nyy[pairIndex(2, q)];
+    }
+    const double* yyn = cell.offsetDotNormalOffsetOffset;
+    L[q] = A[0] * yyn[pairIndex(0, q)] + A[1] * yyn[pairIndex(1, q)] + A[2] * yyn[pairIndex(2, q)];
+  }
   const int pairs[5][2] = { { 0, 0 }, { 0, 1 }, { 0, 2 }, { 1, 1 }, { 1, 2 } };
   for (int k = 0; k < 5; ++k)
   {
     const int a = pairs[k][0], b = pairs[k][1];
-    double Tab = 0.0; // sum (dir . y) y_a y_b
-    for (int c = 0; c < 3; ++c)
-    {
-      Tab += A[c] * cell.offsetCubed[tripleIndex(a, b, c)];
-    }
+    const double* yyy = cell.offsetCubed;
+    const double Tab = A[0] * yyy[tripleIndex(a, b, 0)] + A[1] * yyy[tripleIndex(a, b, 1)] +
+      A[2] * yyy[tripleIndex(a, b, 2)]; // sum (dir . y) y_a y_b
     F[kOffsetOffset + k] = m * X[a] * X[b] + C[pairIndex(a, b)];
     H[kOffsetOffset + k] = X[a] * CA[b] + CA[a] * X[b] + Tab;
   }
   for (int k = 0; k < 8; ++k)
   {
     const int p = k / 3, q = k % 3;
-    double nyy = 0.0; // sum (dir . y) n_p y_q
-    for (int c = 0; c < 3; ++c)
-    {
-      nyy += A[c] * cell.normalOffsetOffset[6 * p + pairIndex(c, q)];
-    }
     F[kNormalOffset + k] = N[p] * X[q] + Yn[3 * q + p];
-    H[kNormalOffset + k] = NA[p] * X[q] + nyy;
+    H[kNormalOffset + k] = NA[p] * X[q] + K[p][q];
   }
   for (int a = 0; a < 3; ++a)
   {
-    double xYn = 0.0, xnyy = 0.0, yyn = 0.0; // sum (x . n) y_a, sum (dir . y)(x . n) y_a, sum (dir . y)(y . n) y_a
-    for (int b = 0; b < 3; ++b)
-    {
-      xYn += X[b] * Yn[3 * a + b];
-      for (int c = 0; c < 3; ++c)
-      {
-        xnyy += X[b] * A[c] * cell.normalOffsetOffset[6 * b + pairIndex(c, a)];
-      }
-      yyn += A[b] * cell.offsetDotNormalOffsetOffset[pairIndex(b, a)];
-    }
+    // sum (x . n) y_a, sum (dir . y)(x . n) y_a
+    const double xYn = X[0] * Yn[3 * a] + X[1] * Yn[3 * a + 1] + X[2] * Yn[3 * a + 2];
+    const double xnyy = X[0] * K[0][a] + X[1] * K[1][a] + X[2] * K[2][a];
     F[kOffsetDotNormalOffset + a] = X[a] * (xN + trace) + xYn + O[a];
-    H[kOffsetDotNormalOffset + a] = X[a] * (xNa + aO) + xnyy + yyn;
+    H[kOffsetDotNormalOffset + a] = X[a] * (xNa + aO) + xnyy + L[a];
   }
 }
 
