@@ -22,7 +22,9 @@ ANALYZE, WORK = sys.argv[1], sys.argv[2]
 DEFAULT_ARRAYS = {'Normals': 'float', 'NormalQuality': 'float', 'GLSFeature': 'float',
                   'GLSPertinentScaleCount': 'unsigned char', 'GLSStableScale': 'float', 'GLSStableTau': 'float',
                   'GLSStableKappa': 'float', 'GLSStablePhi': 'float', 'GLSMaxVariation': 'float',
-                  'GLSMaxVariationScale': 'float'}
+                  'GLSMaxVariationScale': 'float', 'GLSStableDirectionScale': 'float', 'GLSAnisotropy': 'float',
+                  'GLSStableShapeIndex': 'float', 'GLSStableDirection': 'float'}
+DIRECTION_ARRAYS = ('GLSStableDirectionScale', 'GLSAnisotropy', 'GLSStableShapeIndex', 'GLSStableDirection')
 PER_SCALE_ARRAYS = ('GLSTau', 'GLSEta', 'GLSKappa', 'GLSFitness', 'GLSdTau', 'GLSdEta', 'GLSdKappa',
                     'GLSNeighborCount', 'GLSGeometricVariation', 'GLSPertinentScales')
 
@@ -70,7 +72,8 @@ class MainJob(unittest.TestCase):
         self.assertNotIn('warning', result.stderr)  # the demo warns about none of its own choices
         self.assertIn('adaptive bandwidth', result.stderr)
         files = {s: os.path.join(out, 'stanford-bunny' + s) for s in
-                 ('-gls.vtp', '-features.png', '-profiles.png', '-denoising.png', '-scale-space.png', '-gls.pvsm')}
+                 ('-gls.vtp', '-features.png', '-shape-index.png', '-profiles.png', '-denoising.png',
+                  '-scale-space.png', '-gls.pvsm')}
         for f in files.values():
             self.assertTrue(os.path.isfile(f), f)
         pd = read_vtp(files['-gls.vtp'])
@@ -86,7 +89,8 @@ class MainJob(unittest.TestCase):
         self.assertLess(np.median(feature), 0.3)
         self.assertGreater(np.percentile(feature, 95), 0.6)
         self.assertGreater(feature.std(), 0.15)
-        for png in (files['-features.png'], files['-profiles.png'], files['-denoising.png'],
+        self.assertIn('principal directions: ', result.stdout)
+        for png in (files['-features.png'], files['-shape-index.png'], files['-profiles.png'], files['-denoising.png'],
                     files['-scale-space.png']):
             background, colours = image_stats(png)
             self.assertLess(background, 0.95, png)
@@ -127,12 +131,21 @@ class MainJob(unittest.TestCase):
         self.assertFalse(os.path.exists(os.path.join(WORK, 'sphere-scale-space.png')))
         self.assertTrue(os.path.isfile(os.path.join(WORK, 'sphere-denoising.png')))
         np.testing.assert_allclose(vtk_to_numpy(pd.GetPointData().GetArray('GLSFeature')), 0.0, atol=1e-9)
+        # A sphere is umbilic at every scale: no steadiest principal direction anywhere (NaN), the picture all grey.
+        for name in DIRECTION_ARRAYS:
+            self.assertTrue(np.all(np.isnan(vtk_to_numpy(pd.GetPointData().GetArray(name)))), name)
+        self.assertTrue(os.path.isfile(os.path.join(WORK, 'sphere-shape-index.png')))
 
         csv = os.path.join(WORK, 'ball.csv')
         write_sphere(csv, 4000, 1.0, False, ',', header='x,y,z')
-        result = run(csv, '--output-dir', WORK, '--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2')
+        result = run(csv, '--output-dir', WORK, '--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2',
+                     '--no-directions')
         self.assertEqual(result.returncode, 0, failure_text(result))
+        self.assertNotIn('principal directions', result.stdout)
+        self.assertFalse(os.path.exists(os.path.join(WORK, 'ball-shape-index.png')))
         pd = read_vtp(os.path.join(WORK, 'ball-gls.vtp'))
+        for name in DIRECTION_ARRAYS:
+            self.assertIsNone(pd.GetPointData().GetArray(name), name)
         kappa = vtk_to_numpy(pd.GetPointData().GetArray('GLSStableKappa'))
         self.assertLess(abs(np.median(kappa) - 1.0), 0.02)  # estimated, MST-oriented normals: outward
 
@@ -196,9 +209,10 @@ class MainJob(unittest.TestCase):
             self.assertEqual(pd.GetPointData().GetArray(name).GetDataTypeAsString(), kind, name)
         self.assertEqual(pd.GetPoints().GetData().GetDataTypeAsString(), 'float')
         # 12 bytes of positions, 12 of normals and 8 float32 summaries, the rounded ones' low bits zero,
-        # zlib-compressed, one poly-vertex cell: at most 40 bytes a point on points in random order (issue 40).
+        # zlib-compressed, one poly-vertex cell: at most 40 bytes a point on points in random order (issue 40; with
+        # --no-directions), and 6 float32 values of the principal directions: 13 more (measured 50.8 in all).
         size = os.path.getsize(vtp) / 1e6
-        self.assertLessEqual(size, 40.0)
+        self.assertLessEqual(size, 53.0)
         self.assertIn('%.1f bytes per point' % size, result.stdout)
         # A torus of tube radius 0.3: kappa at the most stable scale is about the mean curvature, between the outer
         # (1/0.3 + 1/1.3) / 2 = 2.05 and the inner (1/0.3 - 1/0.7) / 2 = 0.95 equators' (a ball of radius t on the
@@ -207,19 +221,32 @@ class MainJob(unittest.TestCase):
         self.assertGreater(np.nanpercentile(kappa, 1), (1 / 0.3 - 1 / 0.7) / 2 - 0.1)
         self.assertLess(np.nanpercentile(kappa, 99), (1 / 0.3 + 1 / 1.3) / 2 + 0.1)
         self.assertAlmostEqual(np.nanmedian(kappa), 1 / 0.3 / 2 + 0.0, delta=0.25)
+        # Its principal curvatures are 1/0.3 around the tube and cos v / (1 + 0.3 cos v) along it (v: the angle
+        # around the tube): at each point's steadiest scale, the shape index (2/pi) atan((k1 + k2) / (k1 - k2))
+        # (measured: p99 error 0.035) and d1 along the tube's cross-section (p99 0.66 degree).
+        points = vtk_to_numpy(pd.GetPoints().GetData()).astype(float)
+        u = np.arctan2(points[:, 1], points[:, 0])
+        v = np.arctan2(points[:, 2], np.hypot(points[:, 0], points[:, 1]) - 1.0)
+        k1, k2 = 1 / 0.3, np.cos(v) / (1 + 0.3 * np.cos(v))
+        shape = vtk_to_numpy(pd.GetPointData().GetArray('GLSStableShapeIndex'))
+        self.assertLess(np.percentile(np.abs(shape - 2 / np.pi * np.arctan((k1 + k2) / (k1 - k2))), 99), 0.06)
+        direction = vtk_to_numpy(pd.GetPointData().GetArray('GLSStableDirection'))
+        around = np.stack([-np.sin(v) * np.cos(u), -np.sin(v) * np.sin(u), np.cos(v)], axis=1)
+        cosine = np.abs((direction * around).sum(axis=1))
+        self.assertGreater(np.percentile(cosine, 1), math.cos(math.radians(2.0)))
 
     def test_per_scale_beyond_the_budget_is_refused_before_any_stage(self):
         out = os.path.join(WORK, 'refused')
         result = run('--output-dir', out, '--per-scale', '--memory-budget', '0.9')
         self.assertEqual(result.returncode, 2, failure_text(result))
-        # 0.9 GiB: the fixed part and the summaries fit, every scale's arrays do not, 8 scales of them would.
+        # 0.9 GiB: the fixed part and the summaries fit, every scale's arrays do not, 7 scales of them would.
         per_point = gls_memory.default_bytes_per_point(35947)
         fitting = int(((0.9 * gls_memory.GIB - gls_memory.FIXED_BYTES) / 35947 - per_point)
                       // gls_memory.PER_SCALE_BYTES_PER_POINT_SCALE)
-        self.assertEqual(fitting, 8)
+        self.assertEqual(fitting, 7)
         self.assertIn('gls-analyze: storing every scale (--per-scale) of 35947 points at 20 scales needs about 1.0 '
                       'GiB, above the 0.9 GiB --memory-budget: drop --per-scale (the per-point summaries need about '
-                      '0.8 GiB), or keep it with --scales 8', result.stderr)
+                      '0.8 GiB), or keep it with --scales 7', result.stderr)
         self.assertNotIn('%', result.stderr)  # no stage reported progress
         self.assertEqual(os.listdir(out), [])
         # Below what the summaries need too: no advice to drop --per-scale.

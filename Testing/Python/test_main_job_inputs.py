@@ -20,7 +20,7 @@ from shapes import sphere
 
 ANALYZE, WORK, DATA = sys.argv[1], sys.argv[2], sys.argv[3]
 QUICK = ('--scales', '5', '--min-scale', '0.05', '--max-scale', '0.2')  # a few scales: the sphere needs no more
-RESULT_SUFFIXES = ('-gls.vtp', '-features.png', '-profiles.png', '-denoising.png', '-gls.pvsm')
+RESULT_SUFFIXES = ('-gls.vtp', '-features.png', '-shape-index.png', '-profiles.png', '-denoising.png', '-gls.pvsm')
 
 
 def run(*args):

@@ -2,17 +2,21 @@
 
     gls-analyze [input] [--output-dir DIR] [--scales N] [--min-scale F] [--max-scale F] [--absolute-scales]
                 [--sigma S] [--noise F]
-                [--per-scale] [--full-precision] [--query ID] [--memory-budget GIB]
+                [--per-scale] [--full-precision] [--query ID] [--memory-budget GIB] [--no-directions]
 
 Reads a point cloud or mesh (PLY, OBJ, STL, VTP, a text file: XYZ/PTS/CSV/TXT, a scanner's file: LAS, PTX, PCD;
 default: the bundled bunny scan), estimates oriented normals when the file has none, analyses N quadratic scales
 from --min-scale to --max-scale (fractions of the bounding-box diagonal, or lengths with --absolute-scales) in one
 fused pass that stores nothing per scale (the continuous
-features and the per-point scale summary; memory is checked first), and writes to the output directory:
+features and the per-point scale summary; memory is checked first), then the principal directions in a second fused
+pass (each point's steadiest direction over the scales and the shape index there), and writes to the output
+directory:
   <name>-gls.vtp        the points, the input's arrays, normals, GLSFeature and the per-point summaries (float32
                         rounded to a relative 1.2e-4, compressed: about 39 bytes a point on a cloud); every
                         scale's arrays too with --per-scale
   <name>-features.png   the continuous features on the cloud (colour map, scalar bar, title)
+  <name>-shape-index.png  the shape index at each point's steadiest principal direction (ridges, valleys, saddles,
+                        caps, cups; grey where no scale is anisotropic); not with --no-directions
   <name>-profiles.png   kappa and nu against 300 scales for a few selected points (GLS Scale Profiles; the
                         paper's Figures 2-3 style)
   <name>-denoising.png  before/after of the denoising (GLS Adaptive Bandwidth + GLS Projection) on the cloud,
@@ -92,6 +96,9 @@ def parse_arguments(argv):
     p.add_argument('--memory-budget', type=float, default=None,
                    help='GiB the analysis may use (default: the memory available when it starts); checked before '
                         'any stage runs')
+    p.add_argument('--no-directions', action='store_true',
+                   help='skip the principal directions (their fused pass costs about as much as the features\' '
+                        'one) and the shape-index picture')
     p.add_argument('--noise', type=float, default=0.0,
                    help='denoising picture: Gaussian noise added along the normals first, standard deviation as a '
                         'fraction of the diagonal, >= 0 (default 0: denoise the input as it is)')
@@ -175,6 +182,39 @@ def per_scale_pipeline(args, upstream, watch, budget):
     return summary_pipeline(args, variation, watch, budget)
 
 
+# The principal directions' arrays the output keeps (GLS Principal Directions; its turn rate and ridge/valley map,
+# which the shape index gives, are left out).
+DIRECTION_ARRAYS = ('GLSStableDirectionScale', 'GLSAnisotropy', 'GLSStableShapeIndex', 'GLSStableDirection')
+
+
+def principal_directions(args, upstream, watch, budget):
+    """DIRECTION_ARRAYS of GLS Principal Directions at the analysis' scales (a fused pass, float32 arrays), or None
+    with --no-directions; the filter's output is released once they are taken."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    if args.no_directions:
+        return None
+    start = time.time()
+    proxy = watch.watch(gls_filter('GLSPrincipalDirections', registrationName='Directions', Input=upstream,
+                                   Normals=NORMALS, NumberOfScales=args.scales, OutputPrecision='Single',
+                                   MemoryBudget=gls_memory.filter_budget_mib(budget), **scale_range(args)),
+                        'principal directions')
+    watch.update(proxy)
+    pd = gls_io.output_of(proxy).GetPointData()
+    arrays = [pd.GetArray(name) for name in DIRECTION_ARRAYS]
+    if any(a is None for a in arrays):
+        raise AnalysisError('the principal directions gave no arrays (see the messages above)')
+    ridge_valley = vtk_to_numpy(pd.GetArray('GLSRidgeValley'))
+    defined = np.isfinite(ridge_valley)
+    print('principal directions: %.2f s; a steadiest direction at %.1f%% of the points (the rest isotropic at every '
+          'scale: spheres, planes), %.1f%% on ridges, %.1f%% in valleys'
+          % (time.time() - start, 100.0 * np.count_nonzero(defined) / max(len(ridge_valley), 1),
+             100.0 * np.count_nonzero(ridge_valley == 1) / max(len(ridge_valley), 1),
+             100.0 * np.count_nonzero(ridge_valley == -1) / max(len(ridge_valley), 1)))
+    del ridge_valley, defined, pd
+    gls_io.release_output(proxy)
+    return arrays
+
+
 def query_dissimilarity(args, upstream, watch, count, merged):
     """GLSDissimilarity of every point to --query (a point id of the input file; a fused pass at the analysis'
     scales), or None."""
@@ -203,7 +243,8 @@ def analyze(args, outputs):
     # (a 10^8-point file takes minutes to read); every file is checked again once read, with its distinct points.
     announced = gls_io.announced_point_count(args.input)
     if announced:
-        gls_memory.check(announced, args.scales, args.per_scale, args.memory_budget, announced=True)
+        gls_memory.check(announced, args.scales, args.per_scale, args.memory_budget, announced=True,
+                         directions=not args.no_directions)
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
     watch = gls_watch.Watch()
     watch.handle_interruptions()
@@ -219,7 +260,8 @@ def analyze(args, outputs):
     analysed = merged.polydata if merged is not None else data
     if analysed.GetNumberOfPoints() < 2:
         raise gls_io.InputError('%s: all %d points are at one position: nothing to analyse' % (args.input, count))
-    needed, budget = gls_memory.check(analysed.GetNumberOfPoints(), args.scales, args.per_scale, args.memory_budget)
+    needed, budget = gls_memory.check(analysed.GetNumberOfPoints(), args.scales, args.per_scale, args.memory_budget,
+                                      directions=not args.no_directions)
     print('memory: about %.1f GiB needed%s' % (needed / gls_memory.GIB, '' if budget is None else
                                               ' (%.1f GiB %s)' % (budget / gls_memory.GIB, 'budget' if
                                                                   args.memory_budget is not None else 'available')))
@@ -257,6 +299,8 @@ def analyze(args, outputs):
     dissimilarity = query_dissimilarity(args, upstream, watch, count, merged)
     if dissimilarity is not None:
         pd.AddArray(dissimilarity)
+    for array in principal_directions(args, upstream, watch, budget) or ():
+        pd.AddArray(array)
 
     picks = gls_profiles.select_profile_points(feature, vtk_to_numpy(pd.GetArray('GLSPertinentScaleCount')))
     if merged is not None:
@@ -280,8 +324,12 @@ def analyze(args, outputs):
         result.Initialize()
         gls_io.release_output(features)
     writing = outputs.write_in_background('-gls.vtp', output)  # compressed while the pictures are made
-    gls_render.render_features(outputs.path('-features.png'), output,
-                               'GLS continuous features: %s (%d points)' % (outputs.name, count))
+    gls_render.render_point_array(outputs.path('-features.png'), output, gls_render.FEATURES,
+                                  'GLS continuous features: %s (%d points)' % (outputs.name, count))
+    if not args.no_directions:
+        gls_render.render_point_array(outputs.path('-shape-index.png'), output, gls_render.SHAPE_INDEX,
+                                      'GLS shape index where the principal directions are steadiest: %s (%d points)'
+                                      % (outputs.name, count))
 
     # The profiles' fits read the picked points' neighbourhoods only (at the analysis' scales, as lengths, with its
     # minimum neighbour count), summed exactly: a few points, whatever the cloud's size.

@@ -21,10 +21,18 @@ import math
 # cannot be cut into smaller tiles at the job's default scales (to 8% of the diagonal: each tile's band of neighbours
 # holds most of the cloud), so the estimate is its untiled ask: a cloud a filter of the job would refuse is refused
 # before any stage runs. Measured: docs/main-job.md, "Memory, checked first".
+# The principal directions' fused pass (GLS Principal Directions, after the features; not with --no-directions) holds
+# more: its engine keeps the curvatures' cell sums (ShapeOperatorCells.h) and its float32 outputs sit beside the
+# features' summaries. Measured: a 2.50 GiB peak at 10^7 points of the bunny (the job without it: 1.85 GiB), 850 MiB
+# + 180 bytes a point, rounded up to DIRECTIONS_BYTES_PER_POINT; its growth with density (a denser pyramid, more
+# summed cells a point) was not measured at 10^8 points: DIRECTIONS_DENSITY_BYTES_PER_POINT scales the fused pass's by
+# the ratio of the two passes' bytes (an extrapolation; docs/main-job.md, "Memory, checked first").
 FIXED_BYTES = 850.0 * 1024.0 ** 2
 NORMALS_BYTES_PER_POINT = 161.0
 FUSED_BYTES_PER_POINT = 139.0
 DENSITY_BYTES_PER_POINT = 19.0
+DIRECTIONS_BYTES_PER_POINT = 190.0
+DIRECTIONS_DENSITY_BYTES_PER_POINT = 26.0
 # With --per-scale: bytes per point and scale on top (the scale space, nu, and their copy in the written file).
 PER_SCALE_BYTES_PER_POINT_SCALE = 240.0
 GIB = 1024.0 ** 3
@@ -79,34 +87,40 @@ def filter_budget_mib(budget):
     return max(FILTER_SHARE * (budget - held), MIB) / MIB
 
 
-def default_bytes_per_point(points):
-    """The default path's bytes a point for a cloud of `points` points: the normals' NORMALS_BYTES_PER_POINT, or the
+def default_bytes_per_point(points, directions=True):
+    """The default path's bytes a point for a cloud of `points` points: the normals' NORMALS_BYTES_PER_POINT, the
     fused pass's FUSED_BYTES_PER_POINT up to 10^7 points and DENSITY_BYTES_PER_POINT more for each tenfold beyond (a
-    denser cloud's pyramid holds more nodes a point), whichever is larger."""
-    fused = FUSED_BYTES_PER_POINT + DENSITY_BYTES_PER_POINT * max(0.0, math.log10(max(points, 1) / 1e7))
+    denser cloud's pyramid holds more nodes a point), or with `directions` the principal directions' pass's
+    (DIRECTIONS_BYTES_PER_POINT, DIRECTIONS_DENSITY_BYTES_PER_POINT), whichever is largest."""
+    tenfolds = max(0.0, math.log10(max(points, 1) / 1e7))
+    fused = FUSED_BYTES_PER_POINT + DENSITY_BYTES_PER_POINT * tenfolds
+    if directions:
+        fused = max(fused, DIRECTIONS_BYTES_PER_POINT + DIRECTIONS_DENSITY_BYTES_PER_POINT * tenfolds)
     return max(NORMALS_BYTES_PER_POINT, fused)
 
 
-def needed_bytes(points, scales, per_scale):
-    """The estimated peak (bytes) of the main job on `points` points at `scales` scales."""
-    per_point = default_bytes_per_point(points) + (PER_SCALE_BYTES_PER_POINT_SCALE * scales if per_scale else 0.0)
+def needed_bytes(points, scales, per_scale, directions=True):
+    """The estimated peak (bytes) of the main job on `points` points at `scales` scales (with the principal
+    directions unless `directions` is False: --no-directions)."""
+    per_point = default_bytes_per_point(points, directions) + \
+        (PER_SCALE_BYTES_PER_POINT_SCALE * scales if per_scale else 0.0)
     return FIXED_BYTES + points * per_point
 
 
-def check(points, scales, per_scale, budget_gib=None, announced=False):
+def check(points, scales, per_scale, budget_gib=None, announced=False, directions=True):
     """Raises BudgetError when the estimate exceeds the budget (GiB; default: the memory available now, plus what
     this process already holds: the estimate is the job's whole peak, and after reading a 10^8-point file the job
     holds a few GiB of it). Returns (needed bytes, budget bytes or None). `announced`: the count is the file's
     header's (checked before the file is read; the message says so)."""
     budget = budget_gib * GIB if budget_gib is not None else machine_budget_bytes()
-    needed = needed_bytes(points, scales, per_scale)
+    needed = needed_bytes(points, scales, per_scale, directions)
     if budget is None or needed <= budget:
         return needed, budget
     where = '--memory-budget' if budget_gib is not None else 'available'
     counted = ' (as the file\'s header announces)' if announced else ''
-    default = needed_bytes(points, scales, False)
+    default = needed_bytes(points, scales, False, directions)
     if per_scale and default <= budget:
-        fitting = int(math.floor(((budget - FIXED_BYTES) / points - default_bytes_per_point(points))
+        fitting = int(math.floor(((budget - FIXED_BYTES) / points - default_bytes_per_point(points, directions))
                                  / PER_SCALE_BYTES_PER_POINT_SCALE))
         advice = 'drop --per-scale (the per-point summaries need about %.1f GiB)' % (default / GIB)
         if fitting >= 2:
@@ -114,6 +128,11 @@ def check(points, scales, per_scale, budget_gib=None, announced=False):
         raise BudgetError('storing every scale (--per-scale) of %d points%s at %d scales needs about %.1f GiB, '
                            'above the %.1f GiB %s: %s' % (points, counted, scales, needed / GIB, budget / GIB,
                                                            where, advice))
+    without = needed_bytes(points, scales, per_scale, False)
+    if directions and without <= budget:
+        raise BudgetError('the analysis of %d points%s needs about %.1f GiB with the principal directions, above the '
+                           '%.1f GiB %s: add --no-directions (without them it needs about %.1f GiB)'
+                           % (points, counted, needed / GIB, budget / GIB, where, without / GIB))
     raise BudgetError('the analysis of %d points%s needs about %.1f GiB, above the %.1f GiB %s: analyse a part of '
                        'the cloud, or a machine with more memory' % (points, counted, default / GIB, budget / GIB,
                                                                        where))

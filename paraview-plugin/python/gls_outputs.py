@@ -139,14 +139,18 @@ def _write_and_exit(path, polydata, parent):
 # The default output's GLS arrays (docs/main-job.md, "The default arrays"): float32 (most of them then rounded:
 # SUMMARY_MANTISSA_BITS), the count as uint8; the per-scale arrays only with --per-scale.
 SUMMARY_FLOAT32 = ('Normals', 'NormalQuality', 'GLSFeature', 'GLSStableScale', 'GLSStableTau', 'GLSStableKappa',
-                   'GLSStablePhi', 'GLSMaxVariation', 'GLSMaxVariationScale', 'GLSDissimilarity')
+                   'GLSStablePhi', 'GLSMaxVariation', 'GLSMaxVariationScale', 'GLSDissimilarity',
+                   'GLSStableDirectionScale', 'GLSAnisotropy', 'GLSStableShapeIndex', 'GLSStableDirection')
 SUMMARY_UINT8 = ('GLSPertinentScaleCount',)
 # Mantissa bits kept of those float32 arrays (of float32's 23), rounded to nearest: a relative error of at most 2^-13
 # (1.2e-4) for the descriptors, a hundred times below the multi-resolution evaluation's own error (docs/performance.md,
-# "Accuracy against exact": p99 of 0.02 for f, 0.01 for t kappa and phi), and 2^-17 for the normals' components
-# (under 0.001 degree). The zeroed low bits compress: 39 bytes a point instead of 47. --full-precision keeps them.
+# "Accuracy against exact": p99 of 0.02 for f, 0.01 for t kappa and phi; the steadiest principal direction's
+# components too, under 0.01 degree), and 2^-17 for the normals' components (under 0.001 degree: later fits read them).
+# The zeroed low bits compress: 39 bytes a point instead of 47 without the principal directions. --full-precision
+# keeps them.
 SUMMARY_MANTISSA_BITS = {'Normals': 16, 'NormalQuality': 12, 'GLSFeature': 12, 'GLSStableTau': 12,
-                         'GLSStableKappa': 12, 'GLSStablePhi': 12, 'GLSMaxVariation': 12, 'GLSDissimilarity': 12}
+                         'GLSStableKappa': 12, 'GLSStablePhi': 12, 'GLSMaxVariation': 12, 'GLSDissimilarity': 12,
+                         'GLSAnisotropy': 12, 'GLSStableShapeIndex': 12, 'GLSStableDirection': 12}
 # Arrays of the analysis left out of the default output (the normal estimation's neighbour count).
 SUMMARY_DROPPED = ('NormalNeighbors',)
 # Points are written as float32 when its rounding (2^-24 of the largest coordinate) stays below this fraction of the

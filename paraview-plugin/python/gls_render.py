@@ -1,7 +1,8 @@
 """The main job's render-view pictures: the part every picture shares (scalar bar, title, camera, screenshot), and
-the features picture. A camera chosen from the data: it looks along the direction in which the points spread least
-(the view that shows the most of them), from the side most normals face; a terrain-like cloud (that direction
-within 30 degrees of Z, and its spread under a fifth of the largest: eigenvalues 1:25) is seen from above, north up.
+the pictures of a point array (the features, the shape index). A camera chosen from the data: it looks along the
+direction in which the points spread least (the view that shows the most of them), from the side most normals face;
+a terrain-like cloud (that direction within 30 degrees of Z, and its spread under a fifth of the largest: eigenvalues
+1:25) is seen from above, north up.
 Clouds above MAX_SHOWN_POINTS are drawn from every k-th point, as the picture's title says."""
 import math
 
@@ -65,29 +66,46 @@ def save_picture(path, view, lut, bar_title, title, font_size, resolution, dolly
     simple.Delete(text)
 
 
-def render_features(path, polydata, title):
-    """The continuous features on the data: its surface when it has polygons, else the points (drawn as vertex
-    cells made for the picture, whatever cells the data has; every k-th point above MAX_SHOWN_POINTS, said in the
-    title). Returns the stride k."""
+class Colouring(object):
+    """How a picture colours one point array: its name, ParaView's preset, the range, the scalar bar's title, and
+    the colour of NaN values (RGB in [0, 1])."""
+
+    def __init__(self, array, preset, value_range, bar_title, nan_colour=(0.5, 0.5, 0.5)):
+        self.array, self.preset, self.range = array, preset, value_range
+        self.bar_title, self.nan_colour = bar_title, nan_colour
+
+
+# The main job's pictures of a point array: the continuous features, and the shape index at each point's steadiest
+# principal direction (NaN grey: no anisotropic scale there, spheres and planes).
+FEATURES = Colouring('GLSFeature', 'Inferno (matplotlib)', (0.0, 1.0), 'GLS feature f')
+SHAPE_INDEX = Colouring('GLSStableShapeIndex', 'Cool to Warm', (-1.0, 1.0),
+                        'shape index (-1 cup, -1/2 valley, 0 saddle, 1/2 ridge, 1 cap)', (0.75, 0.75, 0.75))
+
+
+def render_point_array(path, polydata, colouring, title):
+    """A point array on the data, coloured as `colouring` says: its surface when it has polygons, else the points
+    (drawn as vertex cells made for the picture, whatever cells the data has; every k-th point above
+    MAX_SHOWN_POINTS, said in the title). Returns the stride k."""
     from paraview import simple
     from vtkmodules.util.numpy_support import vtk_to_numpy
+    name = colouring.array
     surface = gls_cloud.has_surface(polydata)
     points = vtk_to_numpy(polydata.GetPoints().GetData())
     normals_array = polydata.GetPointData().GetArray('Normals')
     normals = vtk_to_numpy(normals_array) if normals_array is not None else None
-    feature = vtk_to_numpy(polydata.GetPointData().GetArray('GLSFeature'))
+    values = vtk_to_numpy(polydata.GetPointData().GetArray(name))
     stray = polydata.GetPointData().GetArray('GLSStray')
     if stray is not None and not surface:
         # The stray points the filters left out (far from the rest): not drawn, so that the picture frames the cloud.
         kept = vtk_to_numpy(stray) == 0
         hidden = np.count_nonzero(~kept)
         title += ' (%d stray point%s not shown)' % (hidden, '' if hidden == 1 else 's')
-        points, feature = points[kept], feature[kept]
+        points, values = points[kept], values[kept]
         normals = normals[kept] if normals is not None else None
     stride = 1 if surface else gls_cloud.stride_for(len(points), MAX_SHOWN_POINTS)
     if stride > 1:
         title += ' (%s shown)' % gls_cloud.every_kth_note(stride)
-    shown = polydata if surface else gls_cloud.vertex_cloud(points[::stride], {'GLSFeature': feature[::stride]})
+    shown = polydata if surface else gls_cloud.vertex_cloud(points[::stride], {name: values[::stride]})
     source = gls_cloud.producer(shown)
     view = simple.CreateRenderView()
     view.ViewSize = [1200, 900]
@@ -96,13 +114,14 @@ def render_features(path, polydata, title):
     if not surface:
         display.SetRepresentationType('Points')
         display.PointSize = 3 if len(points) // stride < 200000 else 2
-    simple.ColorBy(display, ('POINTS', 'GLSFeature'))
-    lut = simple.GetColorTransferFunction('GLSFeature')
-    lut.ApplyPreset('Inferno (matplotlib)', True)
-    lut.RescaleTransferFunction(0.0, 1.0)
+    simple.ColorBy(display, ('POINTS', name))
+    lut = simple.GetColorTransferFunction(name)
+    lut.ApplyPreset(colouring.preset, True)
+    lut.RescaleTransferFunction(*colouring.range)
+    lut.NanColor = list(colouring.nan_colour)
     display.SetScalarBarVisibility(view, True)
     aim_camera(view, points, normals)
-    save_picture(path, view, lut, 'GLS feature f', title, 22, [1200, 900])
+    save_picture(path, view, lut, colouring.bar_title, title, 22, [1200, 900])
     simple.Delete(view)
     simple.Delete(source)
     return stride
