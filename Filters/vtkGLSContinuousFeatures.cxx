@@ -3,6 +3,7 @@
 #include "vtkGLSArrayNames.h"
 #include "vtkGLSOutputPrecision.h"
 #include "vtkGLSRun.h"
+#include "vtkGLSSteadiestDirections.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkIntArray.h"
@@ -16,6 +17,7 @@
 #include "gls/Descriptors.h"
 #include "gls/ScaleAnalysis.h"
 #include "gls/ScaleSpaceEngine.h"
+#include "gls/SinkPair.h"
 #include "gls/VariationSink.h"
 
 #include <algorithm>
@@ -67,6 +69,8 @@ constexpr double kSummaryValueArrays = 6.0;
 vtkGLSContinuousFeatures::vtkGLSContinuousFeatures()
   : ReuseInputScaleSpace(true)
   , ScaleSummary(false)
+  , DirectionSummary(false)
+  , AnisotropyThreshold(gls::kSignificantAnisotropy)
   , SigmaMode(SIGMA_RELATIVE)
   , Sigma(0.1)
   , TargetMedianFeature(0.28)
@@ -88,6 +92,12 @@ bool vtkGLSContinuousFeatures::CheckParameters(vtkGLSRun& run)
   {
     vtkErrorMacro("Sigma must be a positive finite number (it is " << this->Sigma
                                                                   << "): it is the scale of tanh(nu / Sigma).");
+    return false;
+  }
+  if (this->DirectionSummary && !this->ScaleSummary)
+  {
+    vtkErrorMacro("DirectionSummary writes the steadiest principal directions beside the scale summary: turn "
+                  "ScaleSummary on too, or use GLS Principal Directions (vtkGLSPrincipalDirections) alone.");
     return false;
   }
   if (this->SigmaMode == SIGMA_RELATIVE && !(this->TargetMedianFeature > 0.0 && this->TargetMedianFeature < 1.0))
@@ -117,7 +127,14 @@ vtkGLSScaleFilterBase::SampleRequest vtkGLSContinuousFeatures::GetSampleRequest(
     const double rows = std::min(kSigmaSampleSize, static_cast<double>(run.Input->GetNumberOfPoints()));
     request.BytesPerScale = 2.0 * rows * sizeof(double);
   }
-  request.What = this->ScaleSummary ? "the continuous features and their scale summary" : "the continuous features";
+  if (this->DirectionSummary)
+  {
+    request.PrincipalCurvatures = true;
+    request.BytesPerPoint += vtkGLSSteadiestDirections::kSteadiestValues * value;
+  }
+  request.What = this->DirectionSummary
+    ? "the continuous features, their scale summary and the steadiest principal directions"
+    : (this->ScaleSummary ? "the continuous features and their scale summary" : "the continuous features");
   request.Advice = "Use fewer scales (NumberOfScales), or an absolute sigma (SigmaMode Absolute), whose sample "
                    "of nu is not needed.";
   return request;
@@ -198,7 +215,17 @@ bool vtkGLSContinuousFeatures::ComputeFeatureAndSummary(vtkGLSRun& run, double s
     out.maxVariationScale = ValuesOf<Real>(maxNuScale);
     gls::ScaleSummarySinkT<Real> sink(
       t, gls::resolveThreadCount(this->NumberOfThreads), this->Weights(), sigma, measure, out);
-    if (!this->FeedSamples(run, sink, nullptr, 0.05, 1.0))
+    // DirectionSummary: the steadiest principal directions from the same fit, beside the summary.
+    using namespace vtkGLSSteadiestDirections;
+    const auto steadiest = this->DirectionSummary ? NewArrays(kSteadiestArrays, n, precision)
+                                                  : std::vector<vtkSmartPointer<vtkDataArray>>();
+    const bool completed = !this->DirectionSummary
+      ? this->FeedSamples(run, sink, nullptr, 0.05, 1.0)
+      : WithSink(precision, t, this->AnisotropyThreshold, -1, steadiest, {}, [&](gls::ScaleSampleSink& directions) {
+          gls::SinkPair both(sink, directions);
+          return this->FeedSamples(run, both, nullptr, 0.05, 1.0);
+        });
+    if (!completed)
     {
       return false;
     }
@@ -208,6 +235,7 @@ bool vtkGLSContinuousFeatures::ComputeFeatureAndSummary(vtkGLSRun& run, double s
     {
       pd->AddArray(array);
     }
+    vtkGLSSteadiestDirections::AddTo(pd, steadiest, false); // GLSFeature stays the active scalars
     return true;
   };
   return single ? summarize(0.0f) : summarize(0.0);
@@ -288,6 +316,7 @@ void vtkGLSContinuousFeatures::DescribeSettings(std::vector<SettingRange>& setti
   settings.push_back({ "FeatureMeasure", static_cast<double>(this->FeatureMeasure), static_cast<double>(SCALE), static_cast<double>(LOG_SCALE) });
   settings.push_back({ "OutputPrecision", static_cast<double>(this->OutputPrecision),
     static_cast<double>(vtkAlgorithm::SINGLE_PRECISION), static_cast<double>(vtkAlgorithm::DOUBLE_PRECISION) });
+  settings.push_back({ "AnisotropyThreshold", this->AnisotropyThreshold, 0.01, 1.0 });
 }
 
 void vtkGLSContinuousFeatures::PrintSelf(ostream& os, vtkIndent indent)
@@ -295,6 +324,8 @@ void vtkGLSContinuousFeatures::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ReuseInputScaleSpace: " << this->ReuseInputScaleSpace << "\n";
   os << indent << "ScaleSummary: " << this->ScaleSummary << "\n";
+  os << indent << "DirectionSummary: " << this->DirectionSummary << "\n";
+  os << indent << "AnisotropyThreshold: " << this->AnisotropyThreshold << "\n";
   os << indent << "SigmaMode: " << (this->SigmaMode == SIGMA_RELATIVE ? "Relative" : "Absolute") << "\n";
   os << indent << "Sigma: " << this->Sigma << "\n";
   os << indent << "TargetMedianFeature: " << this->TargetMedianFeature << "\n";

@@ -26,6 +26,11 @@
  * nu, dimensionless) and GLSMaxVariationScale (length). Each is NaN (the count 0) where nu is NaN at every scale.
  * This is what the main job keeps of the scale space by default: memory O(N) whatever the number of scales.
  *
+ * With DirectionSummary on as well, the same pass also computes the principal curvatures at every scale and writes each
+ * point's steadiest principal direction, the arrays of vtkGLSPrincipalDirections (GLSStableDirectionScale,
+ * GLSDirectionTurnRate, GLSAnisotropy, GLSStableShapeIndex, GLSStableDirection, GLSRidgeValley; NaN where no pair of
+ * consecutive scales is anisotropic): one fit for both, where the two filters would fit twice.
+ *
  * OutputPrecision SINGLE_PRECISION writes these arrays (but the count) as float32: half their memory, for clouds of
  * 10^8 points.
  */
@@ -65,6 +70,22 @@ public:
   vtkSetMacro(ScaleSummary, bool);
   vtkGetMacro(ScaleSummary, bool);
   vtkBooleanMacro(ScaleSummary, bool);
+  ///@}
+
+  ///@{
+  /// With ScaleSummary on, also write each point's steadiest principal direction in the same pass (see the class
+  /// documentation; default off). On without ScaleSummary is refused with an error. Upstream stored arrays serve when
+  /// they hold the principal curvatures too (vtkGLSScaleSpace's StorePrincipalCurvatures); else the filter fits.
+  vtkSetMacro(DirectionSummary, bool);
+  vtkGetMacro(DirectionSummary, bool);
+  vtkBooleanMacro(DirectionSummary, bool);
+  ///@}
+
+  ///@{
+  /// A scale's principal directions count where k1 - k2 >= AnisotropyThreshold max(|k1|, |k2|) (DirectionSummary;
+  /// dimensionless, in [0.01, 1]; default 0.2, as vtkGLSPrincipalDirections').
+  vtkSetMacro(AnisotropyThreshold, double);
+  vtkGetMacro(AnisotropyThreshold, double);
   ///@}
 
   enum SigmaModeType
@@ -135,6 +156,8 @@ protected:
 
   bool ReuseInputScaleSpace;
   bool ScaleSummary;
+  bool DirectionSummary;
+  double AnisotropyThreshold;
   int SigmaMode;
   double Sigma;
   double TargetMedianFeature;

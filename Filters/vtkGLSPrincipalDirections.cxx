@@ -3,6 +3,7 @@
 #include "vtkGLSArrayNames.h"
 #include "vtkGLSOutputPrecision.h"
 #include "vtkGLSRun.h"
+#include "vtkGLSSteadiestDirections.h"
 
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -12,111 +13,12 @@
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 
-#include "gls/DirectionStability.h"
-#include "gls/ScaleSpaceEngine.h"
-
 #include <cmath>
-#include <iterator>
-#include <type_traits>
 #include <vector>
 
 vtkStandardNewMacro(vtkGLSPrincipalDirections);
 
-namespace
-{
-
-/// An output array: its name and components (one value per component and point).
-struct OutputArray
-{
-  const char* Name;
-  int Components;
-};
-
-/// The steadiest direction's arrays, in the order of SteadiestValues.
-constexpr OutputArray kSteadiestArrays[] = { { vtkGLSArrayNames::StableDirectionScale, 1 },
-  { vtkGLSArrayNames::DirectionTurnRate, 1 }, { vtkGLSArrayNames::Anisotropy, 1 },
-  { vtkGLSArrayNames::StableShapeIndex, 1 }, { vtkGLSArrayNames::StableDirection, 3 },
-  { vtkGLSArrayNames::RidgeValley, 1 } };
-constexpr int kSteadiestValues = 8;
-
-/// DirectionScale's arrays, in the order of ChosenValues.
-constexpr OutputArray kChosenArrays[] = { { vtkGLSArrayNames::K1AtScale, 1 }, { vtkGLSArrayNames::K2AtScale, 1 },
-  { vtkGLSArrayNames::DirectionAtScale1, 3 }, { vtkGLSArrayNames::DirectionAtScale2, 3 } };
-constexpr int kChosenValues = 8;
-
-/// Reduces each point's principal curvatures over the scales to its steadiest direction (and copies those of the
-/// chosen scale), into output arrays of Real (float or double: OutputPrecision).
-template <typename Real>
-class SteadiestDirectionSink : public gls::ScaleSampleSink
-{
-public:
-  const std::vector<double>* Scales = nullptr;
-  double Significance = gls::kSignificantAnisotropy;
-  Real* Steadiest[std::size(kSteadiestArrays)] = {};
-  /// DirectionScale's: the scale's index (-1: none) and its arrays.
-  int ChosenScale = -1;
-  Real* Chosen[std::size(kChosenArrays)] = {};
-
-  void consumeCurvatures(std::uint64_t id, const gls::PrincipalCurvatures* c, int) override
-  {
-    const gls::StableDirection s = gls::steadiestDirection(
-      c, this->Scales->data(), static_cast<int>(this->Scales->size()), this->Significance);
-    const double steadiest[kSteadiestValues] = { s.scale, s.turnRate, s.anisotropy, s.shapeIndex, s.direction.x,
-      s.direction.y, s.direction.z, s.ridgeValley };
-    Write(kSteadiestArrays, this->Steadiest, steadiest, id);
-    if (this->ChosenScale >= 0)
-    {
-      const gls::PrincipalCurvatures& k = c[this->ChosenScale];
-      const double chosen[kChosenValues] = { k.k1, k.k2, k.d1.x, k.d1.y, k.d1.z, k.d2.x, k.d2.y, k.d2.z };
-      Write(kChosenArrays, this->Chosen, chosen, id);
-    }
-  }
-
-  void consume(std::uint64_t, const gls::ScaleSample*, int) override {}
-
-private:
-  /// Point id's values, one array after the other.
-  template <std::size_t N>
-  static void Write(const OutputArray (&arrays)[N], Real* const (&values)[N], const double* v, std::uint64_t id)
-  {
-    for (std::size_t a = 0; a < N; ++a)
-    {
-      const int m = arrays[a].Components;
-      for (int j = 0; j < m; ++j)
-      {
-        values[a][m * id + j] = static_cast<Real>(*v++);
-      }
-    }
-  }
-};
-
-/// The arrays of `list` for n points at `precision`.
-template <std::size_t N>
-std::vector<vtkSmartPointer<vtkDataArray>> NewArrays(const OutputArray (&list)[N], vtkIdType n, int precision)
-{
-  std::vector<vtkSmartPointer<vtkDataArray>> arrays;
-  for (const OutputArray& a : list)
-  {
-    arrays.push_back(vtkGLSOutputPrecision::NewArray(a.Name, n, a.Components, precision));
-  }
-  return arrays;
-}
-
-/// The values written per point by the arrays of `list`.
-template <std::size_t N>
-constexpr int ValueCount(const OutputArray (&list)[N])
-{
-  int count = 0;
-  for (const OutputArray& a : list)
-  {
-    count += a.Components;
-  }
-  return count;
-}
-static_assert(ValueCount(kSteadiestArrays) == kSteadiestValues && ValueCount(kChosenArrays) == kChosenValues,
-  "the sink's values and the arrays agree");
-
-} // namespace
+using namespace vtkGLSSteadiestDirections;
 
 vtkGLSPrincipalDirections::vtkGLSPrincipalDirections()
   : ReuseInputScaleSpace(true)
@@ -179,33 +81,13 @@ int vtkGLSPrincipalDirections::ComputeOutputs(vtkGLSRun& run)
   const auto steadiest = NewArrays(kSteadiestArrays, n, precision);
   const auto chosen =
     chosenScale >= 0 ? NewArrays(kChosenArrays, n, precision) : std::vector<vtkSmartPointer<vtkDataArray>>();
-  const auto reduce = [&](auto&& sink) {
-    using Real = std::remove_pointer_t<std::decay_t<decltype(sink.Steadiest[0])>>;
-    sink.Scales = &run.Scales;
-    sink.Significance = this->AnisotropyThreshold;
-    sink.ChosenScale = chosenScale;
-    for (std::size_t a = 0; a < steadiest.size(); ++a)
-    {
-      sink.Steadiest[a] = vtkGLSOutputPrecision::ValuesOf<Real>(steadiest[a]);
-    }
-    for (std::size_t a = 0; a < chosen.size(); ++a)
-    {
-      sink.Chosen[a] = vtkGLSOutputPrecision::ValuesOf<Real>(chosen[a]);
-    }
-    return this->FeedSamples(run, sink);
-  };
-  if (!(vtkGLSOutputPrecision::IsSingle(precision) ? reduce(SteadiestDirectionSink<float>())
-                                                    : reduce(SteadiestDirectionSink<double>())))
+  if (!WithSink(precision, run.Scales, this->AnisotropyThreshold, chosenScale, steadiest, chosen,
+        [&](gls::ScaleSampleSink& sink) { return this->FeedSamples(run, sink); }))
   {
     return ABORTED; // no partial arrays
   }
   vtkPointData* pd = run.Output->GetPointData();
-  for (const auto& a : steadiest)
-  {
-    pd->AddArray(a);
-  }
-  pd->SetActiveVectors(vtkGLSArrayNames::StableDirection);
-  pd->SetActiveScalars(vtkGLSArrayNames::RidgeValley);
+  AddTo(pd, steadiest, true);
   if (chosenScale >= 0)
   {
     for (const auto& a : chosen)

@@ -1,5 +1,8 @@
 // The principal curvatures' accuracy table (docs/performance.md, "Principal curvatures"): per analytic shape and place
-// (AnalyticSurfaces.h, exact normals, scanner-like sampling), sampling density (points in the smallest ball) and noise
+// (AnalyticSurfaces.h, scanner-like sampling), normals (exact, or estimated from the sampled positions as GLS Normal
+// Estimation does: PCA of the 16 nearest points, its default, or of 64; oriented here by the exact normal), sampling
+// density
+// (points in the smallest ball) and noise
 // (0 and 0.1% of the sampled patch's diagonal, along the normals), at t = 3, 4 and 5% of the smallest radius of
 // curvature: p99 of |k - k_true| / max|k_true| and p99 of the angle of d1 to the true one where
 // |k1 - k2| >= 0.2 max|k|. With CGAL's jet fitting (Monge form of degree 2 over the points within t, oriented by the
@@ -9,6 +12,7 @@
 #include "AnalyticSurfaces.h"
 
 #include "gls/NeighborGrid.h"
+#include "gls/NormalEstimation.h"
 #include "gls/PointScaleSpace.h"
 #include "gls/ScaleSampling.h"
 #include "gls/ShapeOperator.h"
@@ -64,8 +68,36 @@ gls::PrincipalCurvatures cgalJet(const gls::GridView& g, const gls::Vec3& p, dou
 }
 #endif
 
+/// Where the normals GLS reads come from.
+enum class Normals
+{
+  Exact,   ///< the surface's
+  Pca16,   ///< GLS Normal Estimation's defaults: PCA of the 16 nearest points, no refinement
+  Pca64    ///< its NumberOfNeighbors 64: a larger neighbourhood, for noisy scans
+};
+
+const char* nameOf(Normals n)
+{
+  return n == Normals::Exact ? "exact" : n == Normals::Pca16 ? "PCA 16" : "PCA 64";
+}
+
+/// The normals estimated from the cloud's points as GLS Normal Estimation does (`how`), oriented by the exact ones;
+/// NaN where undefined.
+std::vector<double> estimatedNormals(const Cloud& cloud, Normals how)
+{
+  gls::NormalEstimationSettings settings;
+  settings.orientation = gls::NormalOrientation::AgreeWithReference;
+  settings.reference = cloud.normals.data();
+  settings.k = how == Normals::Pca64 ? 64 : 16;
+  settings.reachWanted = false;
+  settings.graphDegreeWanted = false;
+  gls::NormalEstimationResult result;
+  gls::estimateNormals(cloud.points.data(), cloud.size(), settings, result);
+  return result.normals;
+}
+
 /// One row: GLS (and CGAL) at the points of the patch within the largest scale of the site.
-void row(const Site& site, double pointsInSmallestBall, double noiseFraction, unsigned seed)
+void row(const Site& site, double pointsInSmallestBall, double noiseFraction, Normals normals, unsigned seed)
 {
   const std::vector<double> scales{ 0.03 * site.smallestRadius, 0.04 * site.smallestRadius,
     0.05 * site.smallestRadius };
@@ -74,9 +106,14 @@ void row(const Site& site, double pointsInSmallestBall, double noiseFraction, un
   // The noise: a fraction of the noise-free patch's diagonal.
   const Patch clean = samplePatch(site.surface, site.u, site.v, site.du, site.dv, density, seed);
   const double diagonal = boxDiagonal(clean.cloud.points);
-  const Patch patch = noiseFraction > 0.0
+  Patch patch = noiseFraction > 0.0
     ? samplePatch(site.surface, site.u, site.v, site.du, site.dv, density, seed, noiseFraction * diagonal)
     : clean;
+  const std::vector<double> exactNormals = patch.cloud.normals; // the jets' orientation (they read no normals)
+  if (normals != Normals::Exact)
+  {
+    patch.cloud.normals = estimatedNormals(patch.cloud, normals);
+  }
   gls::NeighborGrid grid;
   grid.build(patch.cloud.points.data(), patch.cloud.normals.data(), patch.cloud.size(), t / 4.0);
   std::vector<double> squared;
@@ -109,13 +146,14 @@ void row(const Site& site, double pointsInSmallestBall, double noiseFraction, un
     {
       gls.add(out[k].principal, want);
 #ifdef GLS_BENCHMARK_WITH_CGAL
-      const gls::Vec3 n{ patch.cloud.normals[3 * i], patch.cloud.normals[3 * i + 1], patch.cloud.normals[3 * i + 2] };
+      const gls::Vec3 n{ exactNormals[3 * i], exactNormals[3 * i + 1], exactNormals[3 * i + 2] };
       peer.add(cgalJet(grid.view(), p, scales[k], n), want);
 #endif
     }
   }
-  std::printf("| %-9s (%4.2f, %4.2f) | %5.0f | %5.2f%% | %7.3f%% | %8.3f | %7.3f%% | %8.3f | %6zu |\n",
-    site.surface.name.c_str(), site.u, site.v, pointsInSmallestBall, 100.0 * noiseFraction,
+  std::printf("| %-9s (%4.2f, %4.2f) | %-7s | %5.0f | %5.2f%% | %7.3f%% | %8.3f | %7.3f%% | %8.3f | %6zu |\n",
+    site.surface.name.c_str(), site.u, site.v, nameOf(normals), pointsInSmallestBall,
+    100.0 * noiseFraction,
     100.0 * percentile99(gls.curvature), percentile99(gls.direction),
     peer.curvature.empty() ? std::nan("") : 100.0 * percentile99(peer.curvature),
     peer.direction.empty() ? std::nan("") : percentile99(peer.direction), gls.curvature.size());
@@ -145,8 +183,8 @@ int main(int argc, char* argv[])
 #else
   std::printf("peer: CGAL not found at build time (its columns are NaN)\n");
 #endif
-  std::printf("| %-22s | %5s | %6s | %8s | %8s | %8s | %8s | %6s |\n", "shape (u, v)", "pts", "noise", "GLS k",
-    "GLS dir", "jet k", "jet dir", "values");
+  std::printf("| %-22s | %-7s | %5s | %6s | %8s | %8s | %8s | %8s | %6s |\n", "shape (u, v)", "normals", "pts",
+    "noise", "GLS k", "GLS dir", "jet k", "jet dir", "values");
   std::printf("| p99 of |k - k_true| / max|k_true| and of the direction error (degrees) at t = 3, 4, 5%% of the "
               "smallest radius |\n");
   unsigned seed = 1;
@@ -156,7 +194,11 @@ int main(int argc, char* argv[])
     {
       for (double noise : { 0.0, 0.001 })
       {
-        row(s, points, noise, seed++);
+        for (Normals normals : { Normals::Exact, Normals::Pca16, Normals::Pca64 })
+        {
+          row(s, points, noise, normals, seed);
+        }
+        ++seed;
       }
     }
   }

@@ -1,7 +1,7 @@
 // Real scan sizes: the multi-resolution evaluation against the exact one pass (docs/performance.md, "Large scans").
 //
-//   glsLargeScanBenchmark [--case L1|L2|L3|normals|accuracy|all (all)] [--models bunny,rocker-arm] [--threads T (2)]
-//                         [--points N (L1: 10000000; L2 and accuracy: 1000000)] [--sizes a,b,... (L3)]
+//   glsLargeScanBenchmark [--case L1|L2|L3|normals|directions|accuracy|all (all)] [--models bunny,rocker-arm]
+//                         [--threads T (2)] [--points N (L1: 10000000; L2 and accuracy: 1000000)] [--sizes a,b,... (L3)]
 //                         [--accuracies e1,e2,... (0.1,0.2,0.3)] [--subset M (accuracy: every point)]
 //                         [--distances k1,k2,... (linearized: 10,0; accuracy: 10)] [--rounds R (2)]
 //
@@ -21,6 +21,10 @@
 //       targets at the default accuracy (and linearizedDistance). With --subset M, every (N / M)-th point only (both
 //       runs), so that 10M points can be compared: the exact pass costs O(N) per point. With --distances, each
 //       accuracy at each linearizedDistance K (the far cells' effect on the errors).
+//   directions: N = 10M, Evaluation Auto, float32 outputs as the main job asks, each run in its own process: the
+//       fused features with their scale summary, the same with DirectionSummary (the steadiest principal directions
+//       from the same fit: the main job's default pass) and GLS Principal Directions alone: wall time, peak memory
+//       and the ratio of the first two (the principal curvatures' cost at scale; no target: reported).
 //   linearized (not in all): N = 10M, the core engine alone at the default accuracy with each linearizedDistance K
 //       (0: no linearized far cells), alternately for R rounds in one process: build and run times side by side.
 #include "CommaList.h"
@@ -28,9 +32,11 @@
 
 #include "vtkGLSContinuousFeatures.h"
 #include "vtkGLSNormalEstimation.h"
+#include "vtkGLSPrincipalDirections.h"
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkSmartPointer.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -152,6 +158,74 @@ int caseL1(const std::vector<std::string>& models, long long n, int threads, dou
         wall >= 0.0 && wall < 60.0 && peak < 4096.0 ? "PASS" : "FAIL");
       return wall >= 0.0 ? 0 : 1;
     });
+  }
+  return 0;
+}
+
+int caseDirections(const std::vector<std::string>& models, long long n, int threads, double accuracy)
+{
+  std::printf("\n== directions: %lld points, Evaluation Auto, %d threads, each run in its own process: the fused "
+              "features with their summary (the main job's pass with --no-directions), the same with "
+              "DirectionSummary (its default pass), and GLS Principal Directions alone\n", n, threads);
+  std::printf("%-12s %12s %10s %12s %10s %8s %12s %10s\n", "model", "features s", "peak MiB", "+directions",
+    "peak MiB", "ratio", "alone s", "peak MiB");
+  for (const std::string& model : models)
+  {
+    double wall[3] = { -1.0, -1.0, -1.0 }, peak[3] = { 0.0, 0.0, 0.0 };
+    for (int pass = 0; pass < 3; ++pass)
+    {
+      // The child reports through a pipe: its time and peak.
+      int channel[2];
+      if (pipe(channel) != 0)
+      {
+        return 1;
+      }
+      inChild([&] {
+        close(channel[0]);
+        auto cloud = sampleMeshSurface(modelPath(model), n, 1);
+        if (!cloud)
+        {
+          return 1;
+        }
+        vtkSmartPointer<vtkGLSScaleFilterBase> filter;
+        if (pass < 2)
+        {
+          vtkNew<vtkGLSContinuousFeatures> features;
+          features->ScaleSummaryOn();
+          features->SetDirectionSummary(pass == 1);
+          features->SetOutputPrecision(vtkAlgorithm::SINGLE_PRECISION);
+          filter = features;
+        }
+        else
+        {
+          vtkNew<vtkGLSPrincipalDirections> directions;
+          directions->SetOutputPrecision(vtkAlgorithm::SINGLE_PRECISION);
+          filter = directions;
+        }
+        filter->SetInputData(cloud);
+        filter->SetNumberOfScales(kScales);
+        filter->SetNumberOfThreads(threads);
+        filter->SetAccuracy(accuracy);
+        const double t0 = now();
+        filter->Update();
+        const bool done =
+          vtkPolyData::SafeDownCast(filter->GetOutputDataObject(0))->GetPointData()->GetArray("GLSRidgeValley");
+        double measured[2] = { done || pass == 0 ? now() - t0 : -1.0, peakMemoryMiB() };
+        const bool sent = write(channel[1], measured, sizeof measured) == static_cast<ssize_t>(sizeof measured);
+        close(channel[1]);
+        return sent && measured[0] >= 0.0 ? 0 : 1;
+      });
+      close(channel[1]);
+      double measured[2];
+      if (read(channel[0], measured, sizeof measured) == static_cast<ssize_t>(sizeof measured))
+      {
+        wall[pass] = measured[0];
+        peak[pass] = measured[1];
+      }
+      close(channel[0]);
+    }
+    std::printf("%-12s %12.1f %10.0f %12.1f %10.0f %7.2fx %12.1f %10.0f\n", model.c_str(), wall[0], peak[0], wall[1],
+      peak[1], wall[0] > 0.0 ? wall[1] / wall[0] : std::nan(""), wall[2], peak[2]);
   }
   return 0;
 }
@@ -718,7 +792,7 @@ int main(int argc, char* argv[])
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--case L1|L2|L3|normals|accuracy|linearized|all] [--models a,b] [--threads T] [--points N] "
+        "usage: %s [--case L1|L2|L3|normals|directions|accuracy|linearized|all] [--models a,b] [--threads T] [--points N] "
         "[--sizes a,b] [--accuracies e1,e2] [--subset M] [--distances k1,k2] [--rounds R]\n",
         argv[0]);
       return 2;
@@ -740,6 +814,10 @@ int main(int argc, char* argv[])
   if (which == "normals" || which == "all")
   {
     caseNormals(models, points > 0 ? points : 10000000, threads);
+  }
+  if (which == "directions" || which == "all")
+  {
+    caseDirections(models, points > 0 ? points : 10000000, threads, accuracy);
   }
   if (which == "accuracy" || which == "all")
   {

@@ -1,7 +1,9 @@
 // vtkGLSPrincipalDirections: ridges and valleys on cylinders (exact and multi-resolution), no answer on a sphere, a
-// fused run that stores nothing per scale, and the reuse of an upstream scale space's curvatures.
+// fused run that stores nothing per scale, the reuse of an upstream scale space's curvatures, a chosen scale's
+// directions, float32 outputs; and the same arrays from vtkGLSContinuousFeatures' fused pass (DirectionSummary).
 #include "FilterTestUtilities.h"
 
+#include "vtkGLSContinuousFeatures.h"
 #include "vtkGLSPrincipalDirections.h"
 #include "vtkGLSScaleSpace.h"
 
@@ -261,4 +263,73 @@ TEST(PrincipalDirectionsFilter, SinglePrecisionWritesTheDoublesRounded)
   auto errors = catchErrors(f);
   f->Update();
   EXPECT_EQ(errors->Count, 1);
+}
+
+TEST(PrincipalDirectionsFilter, TheFeaturesPassWritesTheSameDirectionsInOneFit)
+{
+  // GLS Continuous Features with ScaleSummary and DirectionSummary: the steadiest directions of GLS Principal
+  // Directions at the same scales, bit for bit (the same fit of the curvatures), exact and multi-resolution, beside
+  // the features and summary of the pass without them (the same sphere fit: equal to rounding, 1e-12 relative).
+  const Cloud c = cylinderPatch(1.0, 0.3, 0.3, 0.006, 8);
+  for (const bool multiresolution : { false, true })
+  {
+    const int evaluation = multiresolution ? vtkGLSScaleFilterBase::EVALUATION_MULTIRESOLUTION
+                                           : vtkGLSScaleFilterBase::EVALUATION_EXACT;
+    const auto configure = [&](vtkGLSScaleFilterBase* f) {
+      f->SetInputData(makePolyData(c));
+      f->SetScaleUnitsToAbsolute();
+      f->SetMinScale(0.03);
+      f->SetMaxScale(0.06);
+      f->SetNumberOfScales(4);
+      f->SetEvaluation(evaluation);
+    };
+    vtkNew<vtkGLSPrincipalDirections> directions;
+    configure(directions);
+    directions->Update();
+    vtkNew<vtkGLSContinuousFeatures> plain, fused;
+    for (vtkGLSContinuousFeatures* f : { plain.Get(), fused.Get() })
+    {
+      configure(f);
+      f->ScaleSummaryOn();
+    }
+    fused->DirectionSummaryOn();
+    plain->Update();
+    fused->Update();
+    EXPECT_STREQ(fused->GetLastEvaluationUsed(), multiresolution ? "Multiresolution" : "Exact");
+    EXPECT_EQ(plain->GetPolyDataOutput()->GetPointData()->GetArray("GLSStableShapeIndex"), nullptr);
+    EXPECT_STREQ(fused->GetPolyDataOutput()->GetPointData()->GetScalars()->GetName(), "GLSFeature");
+    for (const char* name : { "GLSStableDirectionScale", "GLSDirectionTurnRate", "GLSAnisotropy",
+           "GLSStableShapeIndex", "GLSStableDirection", "GLSRidgeValley" })
+    {
+      EXPECT_TRUE(identical(pointArray(fused->GetPolyDataOutput(), name),
+        pointArray(directions->GetPolyDataOutput(), name)))
+        << name << multiresolution;
+    }
+    long finite = 0;
+    for (const char* name : { "GLSFeature", "GLSStableScale", "GLSStableKappa", "GLSMaxVariation" })
+    {
+      const auto a = pointArray(plain->GetPolyDataOutput(), name), b = pointArray(fused->GetPolyDataOutput(), name);
+      ASSERT_EQ(a.size(), b.size()) << name;
+      for (std::size_t i = 0; i < a.size(); ++i)
+      {
+        if (std::isnan(a[i]))
+        {
+          EXPECT_TRUE(std::isnan(b[i])) << name << " " << i;
+          continue;
+        }
+        EXPECT_NEAR(b[i], a[i], 1e-12 * std::max(1.0, std::abs(a[i]))) << name << " " << i;
+        ++finite;
+      }
+    }
+    EXPECT_GT(finite, 1000);
+  }
+  // DirectionSummary without ScaleSummary: refused, not ignored.
+  vtkNew<vtkGLSContinuousFeatures> alone;
+  auto errors = catchErrors(alone);
+  alone->SetInputData(makePolyData(c));
+  alone->DirectionSummaryOn();
+  alone->Update();
+  EXPECT_EQ(errors->Count, 1);
+  EXPECT_NE(errors->Message.find("turn ScaleSummary on"), std::string::npos) << errors->Message;
+  EXPECT_EQ(alone->GetPolyDataOutput()->GetNumberOfPoints(), 0);
 }

@@ -8,9 +8,8 @@ Reads a point cloud or mesh (PLY, OBJ, STL, VTP, a text file: XYZ/PTS/CSV/TXT, a
 default: the bundled bunny scan), estimates oriented normals when the file has none, analyses N quadratic scales
 from --min-scale to --max-scale (fractions of the bounding-box diagonal, or lengths with --absolute-scales) in one
 fused pass that stores nothing per scale (the continuous
-features and the per-point scale summary; memory is checked first), then the principal directions in a second fused
-pass (each point's steadiest direction over the scales and the shape index there), and writes to the output
-directory:
+features, the per-point scale summary and, unless --no-directions, each point's steadiest principal direction over
+the scales and the shape index there; memory is checked first), and writes to the output directory:
   <name>-gls.vtp        the points, the input's arrays, normals, GLSFeature and the per-point summaries (float32
                         rounded to a relative 1.2e-4, compressed: about 39 bytes a point on a cloud); every
                         scale's arrays too with --per-scale
@@ -162,11 +161,13 @@ def scale_range(args, **more):
 
 
 def summary_pipeline(args, upstream, watch, budget):
-    """The default path: one fused pass (GLS Continuous Features with ScaleSummary) that stores nothing per scale,
-    within what `budget` (bytes, or None) leaves (its fit cut into spatial tiles if need be)."""
+    """The default path: one fused pass (GLS Continuous Features with ScaleSummary, and DirectionSummary unless
+    --no-directions) that stores nothing per scale, within what `budget` (bytes, or None) leaves (its fit cut into
+    spatial tiles if need be)."""
     sigma = {} if args.sigma is None else {'SigmaMode': 'Absolute', 'Sigma': args.sigma}
     return watch.watch(gls_filter('GLSContinuousFeatures', registrationName='Features', Input=upstream,
                                   Normals=NORMALS, NumberOfScales=args.scales, ScaleSummary=1,
+                                  DirectionSummary=0 if args.no_directions else 1,
                                   OutputPrecision='Single', MemoryBudget=gls_memory.filter_budget_mib(budget),
                                   **scale_range(args, **sigma)),
                        'features and summary')
@@ -182,37 +183,18 @@ def per_scale_pipeline(args, upstream, watch, budget):
     return summary_pipeline(args, variation, watch, budget)
 
 
-# The principal directions' arrays the output keeps (GLS Principal Directions; its turn rate and ridge/valley map,
-# which the shape index gives, are left out).
-DIRECTION_ARRAYS = ('GLSStableDirectionScale', 'GLSAnisotropy', 'GLSStableShapeIndex', 'GLSStableDirection')
-
-
-def principal_directions(args, upstream, watch, budget):
-    """DIRECTION_ARRAYS of GLS Principal Directions at the analysis' scales (a fused pass, float32 arrays), or None
-    with --no-directions; the filter's output is released once they are taken."""
+def report_directions(args, pd):
+    """Prints what the fused pass found of the steadiest principal directions (DirectionSummary; not with
+    --no-directions)."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
     if args.no_directions:
-        return None
-    start = time.time()
-    proxy = watch.watch(gls_filter('GLSPrincipalDirections', registrationName='Directions', Input=upstream,
-                                   Normals=NORMALS, NumberOfScales=args.scales, OutputPrecision='Single',
-                                   MemoryBudget=gls_memory.filter_budget_mib(budget), **scale_range(args)),
-                        'principal directions')
-    watch.update(proxy)
-    pd = gls_io.output_of(proxy).GetPointData()
-    arrays = [pd.GetArray(name) for name in DIRECTION_ARRAYS]
-    if any(a is None for a in arrays):
-        raise AnalysisError('the principal directions gave no arrays (see the messages above)')
+        return
     ridge_valley = vtk_to_numpy(pd.GetArray('GLSRidgeValley'))
-    defined = np.isfinite(ridge_valley)
-    print('principal directions: %.2f s; a steadiest direction at %.1f%% of the points (the rest isotropic at every '
-          'scale: spheres, planes), %.1f%% on ridges, %.1f%% in valleys'
-          % (time.time() - start, 100.0 * np.count_nonzero(defined) / max(len(ridge_valley), 1),
-             100.0 * np.count_nonzero(ridge_valley == 1) / max(len(ridge_valley), 1),
-             100.0 * np.count_nonzero(ridge_valley == -1) / max(len(ridge_valley), 1)))
-    del ridge_valley, defined, pd
-    gls_io.release_output(proxy)
-    return arrays
+    share = lambda count: 100.0 * count / max(len(ridge_valley), 1)  # noqa: E731
+    print('principal directions: a steadiest direction at %.1f%% of the points (the rest isotropic at every scale: '
+          'spheres, planes), %.1f%% on ridges, %.1f%% in valleys'
+          % (share(np.count_nonzero(np.isfinite(ridge_valley))), share(np.count_nonzero(ridge_valley == 1)),
+             share(np.count_nonzero(ridge_valley == -1))))
 
 
 def query_dissimilarity(args, upstream, watch, count, merged):
@@ -299,8 +281,7 @@ def analyze(args, outputs):
     dissimilarity = query_dissimilarity(args, upstream, watch, count, merged)
     if dissimilarity is not None:
         pd.AddArray(dissimilarity)
-    for array in principal_directions(args, upstream, watch, budget) or ():
-        pd.AddArray(array)
+    report_directions(args, pd)
 
     picks = gls_profiles.select_profile_points(feature, vtk_to_numpy(pd.GetArray('GLSPertinentScaleCount')))
     if merged is not None:

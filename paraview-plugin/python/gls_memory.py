@@ -21,12 +21,12 @@ import math
 # cannot be cut into smaller tiles at the job's default scales (to 8% of the diagonal: each tile's band of neighbours
 # holds most of the cloud), so the estimate is its untiled ask: a cloud a filter of the job would refuse is refused
 # before any stage runs. Measured: docs/main-job.md, "Memory, checked first".
-# The principal directions' fused pass (GLS Principal Directions, after the features; not with --no-directions) holds
-# more: its engine keeps the curvatures' cell sums (ShapeOperatorCells.h) and its float32 outputs sit beside the
-# features' summaries. Measured: a 2.50 GiB peak at 10^7 points of the bunny (the job without it: 1.85 GiB), 850 MiB
-# + 180 bytes a point, rounded up to DIRECTIONS_BYTES_PER_POINT; its growth with density (a denser pyramid, more
-# summed cells a point) was not measured at 10^8 points: DIRECTIONS_DENSITY_BYTES_PER_POINT scales the fused pass's by
-# the ratio of the two passes' bytes (an extrapolation; docs/main-job.md, "Memory, checked first").
+# With the principal directions (the fused pass's DirectionSummary; not with --no-directions) the pass holds more: its
+# engine keeps the curvatures' cell sums (ShapeOperatorCells.h) and the directions' float32 outputs (32 bytes a point)
+# sit beside the summaries. Measured: a 2.50 GiB peak at 10^7 points of the bunny (the job without them: 1.84 GiB),
+# 850 MiB + 180 bytes a point, rounded up to DIRECTIONS_BYTES_PER_POINT; its growth with density (a denser pyramid,
+# more summed cells a point) was not measured at 10^8 points: DIRECTIONS_DENSITY_BYTES_PER_POINT scales the fused
+# pass's by the ratio of the two (an extrapolation; docs/main-job.md, "Memory, checked first").
 FIXED_BYTES = 850.0 * 1024.0 ** 2
 NORMALS_BYTES_PER_POINT = 161.0
 FUSED_BYTES_PER_POINT = 139.0

@@ -151,8 +151,9 @@ SUMMARY_UINT8 = ('GLSPertinentScaleCount',)
 SUMMARY_MANTISSA_BITS = {'Normals': 16, 'NormalQuality': 12, 'GLSFeature': 12, 'GLSStableTau': 12,
                          'GLSStableKappa': 12, 'GLSStablePhi': 12, 'GLSMaxVariation': 12, 'GLSDissimilarity': 12,
                          'GLSAnisotropy': 12, 'GLSStableShapeIndex': 12, 'GLSStableDirection': 12}
-# Arrays of the analysis left out of the default output (the normal estimation's neighbour count).
-SUMMARY_DROPPED = ('NormalNeighbors',)
+# Arrays of the analysis left out of the default output (the normal estimation's neighbour count; the principal
+# directions' turn rate, and their ridge/valley map, which GLSStableShapeIndex gives).
+SUMMARY_DROPPED = ('NormalNeighbors', 'GLSDirectionTurnRate', 'GLSRidgeValley')
 # Points are written as float32 when its rounding (2^-24 of the largest coordinate) stays below this fraction of the
 # typical point spacing; otherwise (georeferenced coordinates far from the origin) as doubles.
 FLOAT32_POINT_ROUNDING = 0.01
