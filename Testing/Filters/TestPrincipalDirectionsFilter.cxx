@@ -12,21 +12,43 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
+#include <vector>
 
 using namespace glstest;
 
 namespace
 {
 
+/// The arrays of each point's steadiest direction (GLS Principal Directions, and the features' DirectionSummary).
+const char* const kSteadiestArrays[] = { "GLSStableDirectionScale", "GLSDirectionTurnRate", "GLSAnisotropy",
+  "GLSStableShapeIndex", "GLSStableDirection", "GLSRidgeValley" };
+
+/// Sets `count` scales from `min` to `max`, lengths.
+void setAbsoluteScales(vtkGLSScaleFilterBase* f, double min, double max, int count)
+{
+  f->SetScaleUnitsToAbsolute();
+  f->SetMinScale(min);
+  f->SetMaxScale(max);
+  f->SetNumberOfScales(count);
+}
+
+/// GLS Scale Space of the cloud at four scales from 0.03 to 0.06, storing the principal curvatures.
+vtkSmartPointer<vtkGLSScaleSpace> curvatureSpace(const Cloud& c)
+{
+  auto space = vtkSmartPointer<vtkGLSScaleSpace>::New();
+  space->SetInputData(makePolyData(c));
+  setAbsoluteScales(space, 0.03, 0.06, 4);
+  space->StorePrincipalCurvaturesOn();
+  return space;
+}
+
 /// Runs the filter at scales 3 to 5% of a unit radius (five of them), exactly or with the multi-resolution evaluation.
 vtkSmartPointer<vtkPolyData> steadiest(const Cloud& c, bool multiresolution = false)
 {
   vtkNew<vtkGLSPrincipalDirections> f;
   f->SetInputData(makePolyData(c));
-  f->SetScaleUnitsToAbsolute();
-  f->SetMinScale(0.03);
-  f->SetMaxScale(0.05);
-  f->SetNumberOfScales(5);
+  setAbsoluteScales(f, 0.03, 0.05, 5);
   f->SetEvaluation(multiresolution ? vtkGLSScaleFilterBase::EVALUATION_MULTIRESOLUTION
                                    : vtkGLSScaleFilterBase::EVALUATION_EXACT);
   f->Update();
@@ -95,10 +117,7 @@ TEST(PrincipalDirectionsFilter, StoresNothingPerScale)
   vtkNew<vtkGLSPrincipalDirections> f;
   auto errors = catchErrors(f);
   f->SetInputData(makePolyData(c));
-  f->SetScaleUnitsToAbsolute();
-  f->SetMinScale(0.8);
-  f->SetMaxScale(1.5);
-  f->SetNumberOfScales(4000);
+  setAbsoluteScales(f, 0.8, 1.5, 4000);
   f->SetMemoryBudget(16.0);
   f->Update();
   EXPECT_EQ(errors->Count, 0) << errors->Message;
@@ -111,30 +130,17 @@ TEST(PrincipalDirectionsFilter, ReusesAnUpstreamScaleSpacesCurvatures)
   // same outputs as a fit at those scales, bit for bit (the arrays hold the doubles the fit gave). Without the arrays
   // (StorePrincipalCurvatures off upstream), it refits at its own scales.
   const Cloud c = cylinderPatch(1.0, 0.3, 0.3, 0.006, 5);
-  vtkNew<vtkGLSScaleSpace> space;
-  space->SetInputData(makePolyData(c));
-  space->SetScaleUnitsToAbsolute();
-  space->SetMinScale(0.03);
-  space->SetMaxScale(0.06);
-  space->SetNumberOfScales(4);
-  space->StorePrincipalCurvaturesOn();
+  const auto space = curvatureSpace(c);
   vtkNew<vtkGLSPrincipalDirections> reused;
   reused->SetInputConnection(space->GetOutputPort());
-  reused->SetScaleUnitsToAbsolute();
-  reused->SetMinScale(0.02); // ignored: the upstream scales are used
-  reused->SetMaxScale(0.03);
-  reused->SetNumberOfScales(7);
+  setAbsoluteScales(reused, 0.02, 0.03, 7); // ignored: the upstream scales are used
   reused->Update();
   vtkNew<vtkGLSPrincipalDirections> fitted;
   fitted->SetInputData(makePolyData(c));
-  fitted->SetScaleUnitsToAbsolute();
-  fitted->SetMinScale(0.03);
-  fitted->SetMaxScale(0.06);
-  fitted->SetNumberOfScales(4);
+  setAbsoluteScales(fitted, 0.03, 0.06, 4);
   fitted->Update();
   EXPECT_EQ(fieldArray(reused->GetPolyDataOutput(), "GLSScales"), fieldArray(space->GetPolyDataOutput(), "GLSScales"));
-  for (const char* name : { "GLSStableDirectionScale", "GLSDirectionTurnRate", "GLSAnisotropy", "GLSStableShapeIndex",
-         "GLSStableDirection", "GLSRidgeValley" })
+  for (const char* name : kSteadiestArrays)
   {
     EXPECT_TRUE(identical(pointArray(reused->GetPolyDataOutput(), name), pointArray(fitted->GetPolyDataOutput(), name)))
       << name;
@@ -150,13 +156,7 @@ TEST(PrincipalDirectionsFilter, WritesTheCurvaturesOfAChosenScaleForGlyphs)
   // space's at that scale, bit for bit, and d1 becomes the active vectors. Off (0) by default; a scale outside the
   // analysed ones is refused with an error and an empty output.
   const Cloud c = cylinderPatch(1.0, 0.3, 0.3, 0.006, 6);
-  vtkNew<vtkGLSScaleSpace> space;
-  space->SetInputData(makePolyData(c));
-  space->SetScaleUnitsToAbsolute();
-  space->SetMinScale(0.03);
-  space->SetMaxScale(0.06);
-  space->SetNumberOfScales(4);
-  space->StorePrincipalCurvaturesOn();
+  const auto space = curvatureSpace(c);
   space->Update();
   const std::vector<double> scales = fieldArray(space->GetPolyDataOutput(), "GLSScales");
   ASSERT_EQ(scales.size(), 4u);
@@ -231,10 +231,7 @@ TEST(PrincipalDirectionsFilter, SinglePrecisionWritesTheDoublesRounded)
   const Cloud c = cylinderPatch(1.0, 0.3, 0.3, 0.008, 7);
   vtkNew<vtkGLSPrincipalDirections> f;
   f->SetInputData(makePolyData(c));
-  f->SetScaleUnitsToAbsolute();
-  f->SetMinScale(0.04);
-  f->SetMaxScale(0.06);
-  f->SetNumberOfScales(3);
+  setAbsoluteScales(f, 0.04, 0.06, 3);
   f->SetDirectionScale(0.05);
   f->Update();
   vtkNew<vtkPolyData> doubles;
@@ -242,9 +239,13 @@ TEST(PrincipalDirectionsFilter, SinglePrecisionWritesTheDoublesRounded)
   f->SetOutputPrecision(vtkAlgorithm::SINGLE_PRECISION);
   f->Update();
   int compared = 0;
-  for (const char* name : { "GLSStableDirectionScale", "GLSDirectionTurnRate", "GLSAnisotropy", "GLSStableShapeIndex",
-         "GLSStableDirection", "GLSRidgeValley", "GLSK1AtScale", "GLSK2AtScale", "GLSPrincipalDirection1AtScale",
+  std::vector<const char*> names(std::begin(kSteadiestArrays), std::end(kSteadiestArrays));
+  for (const char* chosen : { "GLSK1AtScale", "GLSK2AtScale", "GLSPrincipalDirection1AtScale",
          "GLSPrincipalDirection2AtScale" })
+  {
+    names.push_back(chosen);
+  }
+  for (const char* name : names)
   {
     EXPECT_EQ(doubles->GetPointData()->GetArray(name)->GetDataType(), VTK_DOUBLE) << name;
     EXPECT_EQ(f->GetPolyDataOutput()->GetPointData()->GetArray(name)->GetDataType(), VTK_FLOAT) << name;
@@ -277,10 +278,7 @@ TEST(PrincipalDirectionsFilter, TheFeaturesPassWritesTheSameDirectionsInOneFit)
                                            : vtkGLSScaleFilterBase::EVALUATION_EXACT;
     const auto configure = [&](vtkGLSScaleFilterBase* f) {
       f->SetInputData(makePolyData(c));
-      f->SetScaleUnitsToAbsolute();
-      f->SetMinScale(0.03);
-      f->SetMaxScale(0.06);
-      f->SetNumberOfScales(4);
+      setAbsoluteScales(f, 0.03, 0.06, 4);
       f->SetEvaluation(evaluation);
     };
     vtkNew<vtkGLSPrincipalDirections> directions;
@@ -298,8 +296,7 @@ TEST(PrincipalDirectionsFilter, TheFeaturesPassWritesTheSameDirectionsInOneFit)
     EXPECT_STREQ(fused->GetLastEvaluationUsed(), multiresolution ? "Multiresolution" : "Exact");
     EXPECT_EQ(plain->GetPolyDataOutput()->GetPointData()->GetArray("GLSStableShapeIndex"), nullptr);
     EXPECT_STREQ(fused->GetPolyDataOutput()->GetPointData()->GetScalars()->GetName(), "GLSFeature");
-    for (const char* name : { "GLSStableDirectionScale", "GLSDirectionTurnRate", "GLSAnisotropy",
-           "GLSStableShapeIndex", "GLSStableDirection", "GLSRidgeValley" })
+    for (const char* name : kSteadiestArrays)
     {
       EXPECT_TRUE(identical(pointArray(fused->GetPolyDataOutput(), name),
         pointArray(directions->GetPolyDataOutput(), name)))

@@ -35,13 +35,31 @@ view.ResetCamera()
 Render(view)
 SaveScreenshot(os.path.join(out, 'denoised.png'), view, ImageResolution=[800, 600])
 
+# The principal directions of one chosen scale as glyphs (lines along d1, the filter's active vectors) over the scan.
+directions = GLSPrincipalDirections(registrationName='GLS Principal Directions', Input=normals,  # noqa: F405
+                                    NumberOfScales=8, DirectionScale=0.02)
+glyphs = Glyph(registrationName='Glyph', Input=directions, GlyphType='Line',  # noqa: F405
+               OrientationArray=['POINTS', 'GLSPrincipalDirection1AtScale'], ScaleArray=['POINTS', 'No scale array'],
+               ScaleFactor=0.004, GlyphMode='Every Nth Point', Stride=5)
+Hide(denoised, view)
+directions_display = Show(directions, view)
+ColorBy(directions_display, ('POINTS', 'GLSStableShapeIndex'))
+glyphs_display = Show(glyphs, view)
+ColorBy(glyphs_display, None)
+view.ResetCamera()
+Render(view)
+SaveScreenshot(os.path.join(out, 'directions.png'), view, ImageResolution=[800, 600])
+with open(os.path.join(out, 'glyph-points.txt'), 'w') as f:
+    f.write('%d\n' % glyphs.GetDataInformation().GetNumberOfPoints())
+Hide(directions, view)
+Hide(glyphs, view)
+
 theta = [2 * math.pi * i / 300 for i in range(300)]
 flower = PolyLineSource(registrationName='Flower curve', Closed=1,  # noqa: F405
                         Points=[c for t in theta for c in ((1 + 0.25 * math.cos(5 * t)) * math.cos(t),
                                                             (1 + 0.25 * math.cos(5 * t)) * math.sin(t), 0.0)])
 image = GLSScaleSpaceImage(registrationName='GLS Scale Space Image', Input=flower,  # noqa: F405
                            ScaleUnits='Absolute', MinScale=0.05, MaxScale=3.0)
-Hide(denoised, view)
 image_display = Show(image, view)
 image_display.SetRepresentationType('Slice')
 ColorBy(image_display, ('POINTS', 'GLSScaledKappa'))

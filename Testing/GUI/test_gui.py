@@ -1,6 +1,7 @@
 """GUI smoke test (pvpython): starts the real `paraview` client under Xvfb with gui_session.py, then checks that
-the screenshots (features, denoised scan, scale-space image) are not blank, that the scale-space image and the
-profiles chart got their data, and that every GLS filter is in the pipeline.
+the screenshots (features, denoised scan, principal directions with glyphs, scale-space image) are not blank, that
+the scale-space image, the glyphs and the profiles chart got their data, and that every GLS filter is in the
+pipeline.
 
     pvpython test_gui.py <plugin.so> <bunny.obj> <work dir>"""
 import os
@@ -45,8 +46,13 @@ def check_screenshot(name, min_colours):
 
 
 # The features, the denoised scan and the scale-space image (Slice representation).
-for name in ('gui.png', 'denoised.png', 'image.png'):
+for name in ('gui.png', 'denoised.png', 'directions.png', 'image.png'):
     check_screenshot(name, 200)
+# The glyphs of the chosen scale's directions: a line (two points or more) for every 5th of the 35,947 points.
+glyph_file = os.path.join(work, 'glyph-points.txt')
+glyph_points = int(open(glyph_file).read()) if os.path.isfile(glyph_file) else 0
+if glyph_points < 2 * (35947 // 5):
+    failures.append('the principal directions show %d glyph points, fewer than a line per 5th point' % glyph_points)
 points_file = os.path.join(work, 'image-points.txt')
 shown = int(open(points_file).read()) if os.path.isfile(points_file) else 0
 if shown != 1000 * 200:
@@ -62,7 +68,7 @@ pipeline = os.path.join(work, 'pipeline.txt')
 names = open(pipeline).read().split('\n') if os.path.isfile(pipeline) else []
 for expected in ('GLS Normal Estimation', 'GLS Scale Space', 'GLS Geometric Variation', 'GLS Continuous Features',
                  'GLS Dissimilarity', 'GLS Adaptive Bandwidth', 'GLS Projection', 'GLS Scale Profiles',
-                 'GLS Scale Space Image'):
+                 'GLS Scale Space Image', 'GLS Principal Directions', 'Glyph'):
     if expected not in names:
         failures.append('%r missing from the pipeline %s' % (expected, names))
 
