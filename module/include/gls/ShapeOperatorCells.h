@@ -87,26 +87,30 @@ GLS_INLINE void shiftCurvatureValues(const Vec3& u, double* f)
   }
 }
 
-/// Adds one point at offset y from the cell's centroid, with normal n, to the third moments.
+/// Adds one point at offset y from the cell's centroid, with normal n, to the third moments: its six products
+/// y_a y_b (pairIndex order) times y_c, n_p and y . n, written out (the walks form finer cells from their points).
 GLS_INLINE void addPointToCurvatureCell(CurvatureCell& cell, const Vec3& y, const Vec3& n)
 {
-  const double Y[3] = { y.x, y.y, y.z }, Nv[3] = { n.x, n.y, n.z };
+  const double yy[6] = { y.x * y.x, y.x * y.y, y.x * y.z, y.y * y.y, y.y * y.z, y.z * y.z };
+  double* T = cell.offsetCubed; // xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz
+  T[0] += yy[0] * y.x;
+  T[1] += yy[0] * y.y;
+  T[2] += yy[0] * y.z;
+  T[3] += yy[1] * y.y;
+  T[4] += yy[1] * y.z;
+  T[5] += yy[2] * y.z;
+  T[6] += yy[3] * y.y;
+  T[7] += yy[3] * y.z;
+  T[8] += yy[4] * y.z;
+  T[9] += yy[5] * y.z;
+  const double Nv[3] = { n.x, n.y, n.z };
   const double yn = dot(y, n);
-  for (int a = 0; a < 3; ++a)
+  for (int ab = 0; ab < 6; ++ab)
   {
-    for (int b = a; b < 3; ++b)
-    {
-      const int ab = pairIndex(a, b);
-      for (int c = b; c < 3; ++c)
-      {
-        cell.offsetCubed[tripleIndex(a, b, c)] += Y[a] * Y[b] * Y[c];
-      }
-      for (int p = 0; p < 3; ++p)
-      {
-        cell.normalOffsetOffset[6 * p + ab] += Nv[p] * Y[a] * Y[b];
-      }
-      cell.offsetDotNormalOffsetOffset[ab] += yn * Y[a] * Y[b];
-    }
+    cell.normalOffsetOffset[ab] += Nv[0] * yy[ab];
+    cell.normalOffsetOffset[6 + ab] += Nv[1] * yy[ab];
+    cell.normalOffsetOffset[12 + ab] += Nv[2] * yy[ab];
+    cell.offsetDotNormalOffsetOffset[ab] += yn * yy[ab];
   }
 }
 

@@ -18,7 +18,19 @@ template <typename Set>
 GLS_FORCE_INLINE void addPackedSums(AggregateMomentsT<Set>& a, const double* f, double d2)
 {
 #if GLS_KERNEL_VECTORS
-  addTimesPowers(a.m, f, Set::kValues, Set::kValues, false, d2, d2 * d2);
+  if constexpr (Set::kOmegaValues == 0)
+  {
+    addTimesPowers(a.m, f, Set::kValues, Set::kValues, false, d2, d2 * d2);
+  }
+  else
+  {
+    // The omega-values' third moment is never read (weightedValues): their two powers only, then |x|^2's three.
+    constexpr int V = Set::kValues, W = AggregateMomentsT<Set>::kWeighted;
+    const double d4 = d2 * d2;
+    addTimesPowers(a.m, f, W, V, false, d2, d4);
+    addTimesPowers(a.m + W, f + W, V - 1 - W, V, false, d2, d4, false);
+    addTimesPowers(a.m + V - 1, f + V - 1, 1, V, false, d2, d4);
+  }
 #else
   addSampleSums(a, f, d2);
 #endif
@@ -53,7 +65,17 @@ GLS_FORCE_INLINE LoadedSampleT<Set> loadSample(const CellSampleT<Set>& s)
   return l;
 }
 
-/// A cell's share of one shell (addCellShare in CellMoments.h, the same products and sums element by element).
+/// Whether the values [first, first + count) of the set are all omega-values, whose third moment is never read
+/// (weightedValues): the cell shares leave it out.
+template <typename Set>
+constexpr bool onlyOmegaValues(int first, int count)
+{
+  constexpr int W = AggregateMomentsT<Set>::kWeighted;
+  return first >= W && first + count <= W + Set::kOmegaValues;
+}
+
+/// A cell's share of one shell (addCellShare in CellMoments.h, the same products and sums element by element; a set
+/// with omega-values leaves their third moment out).
 template <typename Set>
 GLS_FORCE_INLINE void addPackedCellShare(
   AggregateMomentsT<Set>& a, const LoadedSampleT<Set>& f, const ShellShare& share)
@@ -64,13 +86,33 @@ GLS_FORCE_INLINE void addPackedCellShare(
   {
     const double mj = share.m[j], cj = share.c[j];
     double* row = m + j * Set::kValues;
-    for (int v = 0; v < LoadedSample::kVectors; ++v)
+    if constexpr (Set::kOmegaValues == 0)
     {
-      store4(row + 4 * v, load4(row + 4 * v) + (mj * f.f[v] + cj * f.g[v]));
+      for (int v = 0; v < LoadedSample::kVectors; ++v)
+      {
+        store4(row + 4 * v, load4(row + 4 * v) + (mj * f.f[v] + cj * f.g[v]));
+      }
+      for (int r = 0; r < LoadedSample::kRest; ++r)
+      {
+        row[4 * LoadedSample::kVectors + r] += mj * f.fRest[r] + cj * f.gRest[r];
+      }
     }
-    for (int r = 0; r < LoadedSample::kRest; ++r)
+    else
     {
-      row[4 * LoadedSample::kVectors + r] += mj * f.fRest[r] + cj * f.gRest[r];
+      for (int v = 0; v < LoadedSample::kVectors; ++v)
+      {
+        if (j < 2 || !onlyOmegaValues<Set>(4 * v, 4))
+        {
+          store4(row + 4 * v, load4(row + 4 * v) + (mj * f.f[v] + cj * f.g[v]));
+        }
+      }
+      for (int r = 0; r < LoadedSample::kRest; ++r)
+      {
+        if (j < 2 || !onlyOmegaValues<Set>(4 * LoadedSample::kVectors + r, 1))
+        {
+          row[4 * LoadedSample::kVectors + r] += mj * f.fRest[r] + cj * f.gRest[r];
+        }
+      }
     }
   }
 }
