@@ -99,6 +99,10 @@ cells_features = GLSContinuousFeatures(Input=normals, Evaluation='Multiresolutio
 # The principal curvatures: stored at every scale, and the steadiest directions (fused).
 curvature_space = GLSScaleSpace(Input=normals, StorePrincipalCurvatures=1, **scales)  # noqa: F405
 directions = GLSPrincipalDirections(Input=normals, **scales)  # noqa: F405
+# The main job's fused pass: the features, their summary and the steadiest directions from one fit (untiled: the
+# tiled run's budgets are the features pass's).
+summary_directions = GLSContinuousFeatures(Input=normals, ScaleSummary=1, DirectionSummary=1,  # noqa: F405
+                                           **feature_scales)
 for fused in (fused_variation, fused_similar):
     fused.MemoryBudget = args.memory_budget[0]
 for fused in (fused_features, cells_features):
@@ -109,7 +113,7 @@ for prefix, proxy in (('chain', similar), ('fused_variation', tagged), ('fused_f
                       ('fused_similar', fused_similar), ('radius_agreeing', agreeing), ('refined', refined),
                       ('projection', projection), ('adaptive_projection', adaptive), ('cells_space', cells_space),
                       ('cells_features', cells_features), ('curvature_space', curvature_space),
-                      ('principal_directions', directions)):
+                      ('principal_directions', directions), ('summary_directions', summary_directions)):
     proxy.UpdatePipeline()
     data = servermanager.Fetch(proxy)
     pd = data.GetPointData()
