@@ -7,6 +7,7 @@
 #include "vtkGLSContinuousFeatures.h"
 #include "vtkGLSGeometricVariation.h"
 #include "vtkGLSMultiScaleDissimilarity.h"
+#include "vtkGLSPrincipalDirections.h"
 #include "vtkGLSScaleSpace.h"
 
 #include "vtkDataArray.h"
@@ -57,7 +58,8 @@ void expectTheSameArrays(vtkPolyData* output, vtkPolyData* expected)
 }
 
 /// The filters that tile, each as a user would set it up (the features with their scale summary and relative sigma,
-/// whose sample of nu runs through the tiles too).
+/// whose sample of nu runs through the tiles too; the principal curvatures' reductions, alone and in the features'
+/// pass as the main job runs it).
 std::vector<std::pair<std::string, MakeFilter>> tilingFilters()
 {
   return {
@@ -76,6 +78,14 @@ std::vector<std::pair<std::string, MakeFilter>> tilingFilters()
         return f;
       } },
     { "AdaptiveBandwidth", [] { return vtkSmartPointer<vtkGLSAdaptiveBandwidth>::New(); } },
+    { "PrincipalDirections", [] { return vtkSmartPointer<vtkGLSPrincipalDirections>::New(); } },
+    { "ContinuousFeaturesWithDirections",
+      [] {
+        auto f = vtkSmartPointer<vtkGLSContinuousFeatures>::New();
+        f->SetScaleSummary(true);
+        f->SetDirectionSummary(true);
+        return f;
+      } },
   };
 }
 
