@@ -294,7 +294,11 @@ class MainJob(unittest.TestCase):
         interrupted = time.time()
         os.killpg(process.pid, signal.SIGINT)
         rest, _ = process.communicate(timeout=60)
-        self.assertLess(time.time() - interrupted, 10.0, seen + rest)
+        # The writer dies at once; the job stops once the call it is in returns: at worst the features picture's
+        # render of the million points (software OpenGL under Xvfb, its first: 0.2-0.3 s after the interrupt on an
+        # idle machine, 7-12 s with both cores busy, as under CI's parallel tests, for this code and the code before
+        # the principal directions alike).
+        self.assertLess(time.time() - interrupted, 20.0, seen + rest)
         self.assertEqual(process.returncode, 130, seen + rest)
         self.assertNotIn('wrote ', seen + rest)
         self.assertEqual(os.listdir(out), [])
