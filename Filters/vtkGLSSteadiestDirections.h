@@ -29,18 +29,6 @@ struct OutputArray
   int Components;
 };
 
-/// The steadiest direction's arrays, in the order of the values SteadiestDirectionSink writes.
-constexpr OutputArray kSteadiestArrays[] = { { vtkGLSArrayNames::StableDirectionScale, 1 },
-  { vtkGLSArrayNames::DirectionTurnRate, 1 }, { vtkGLSArrayNames::Anisotropy, 1 },
-  { vtkGLSArrayNames::StableShapeIndex, 1 }, { vtkGLSArrayNames::StableDirection, 3 },
-  { vtkGLSArrayNames::RidgeValley, 1 } };
-constexpr int kSteadiestValues = 8;
-
-/// One chosen scale's arrays (GLS Principal Directions' DirectionScale), in the order of the values written.
-constexpr OutputArray kChosenArrays[] = { { vtkGLSArrayNames::K1AtScale, 1 }, { vtkGLSArrayNames::K2AtScale, 1 },
-  { vtkGLSArrayNames::DirectionAtScale1, 3 }, { vtkGLSArrayNames::DirectionAtScale2, 3 } };
-constexpr int kChosenValues = 8;
-
 /// The values written per point by the arrays of `list`.
 template <std::size_t N>
 constexpr int ValueCount(const OutputArray (&list)[N])
@@ -52,8 +40,18 @@ constexpr int ValueCount(const OutputArray (&list)[N])
   }
   return count;
 }
-static_assert(ValueCount(kSteadiestArrays) == kSteadiestValues && ValueCount(kChosenArrays) == kChosenValues,
-  "the sink's values and the arrays agree");
+
+/// The steadiest direction's arrays, in the order of the values SteadiestDirectionSink writes.
+constexpr OutputArray kSteadiestArrays[] = { { vtkGLSArrayNames::StableDirectionScale, 1 },
+  { vtkGLSArrayNames::DirectionTurnRate, 1 }, { vtkGLSArrayNames::Anisotropy, 1 },
+  { vtkGLSArrayNames::StableShapeIndex, 1 }, { vtkGLSArrayNames::StableDirection, 3 },
+  { vtkGLSArrayNames::RidgeValley, 1 } };
+constexpr int kSteadiestValues = ValueCount(kSteadiestArrays);
+
+/// One chosen scale's arrays (GLS Principal Directions' DirectionScale), in the order of the values written.
+constexpr OutputArray kChosenArrays[] = { { vtkGLSArrayNames::K1AtScale, 1 }, { vtkGLSArrayNames::K2AtScale, 1 },
+  { vtkGLSArrayNames::DirectionAtScale1, 3 }, { vtkGLSArrayNames::DirectionAtScale2, 3 } };
+constexpr int kChosenValues = ValueCount(kChosenArrays);
 
 /// The arrays of `list` for n points at `precision` (vtkGLSOutputPrecision).
 template <std::size_t N>

@@ -1,11 +1,9 @@
 // The principal curvatures' accuracy table (docs/performance.md, "Principal curvatures"): per analytic shape and place
 // (AnalyticSurfaces.h, scanner-like sampling), normals (exact, or estimated from the sampled positions as GLS Normal
 // Estimation does: PCA of the 16 nearest points, its default, or of 64; oriented here by the exact normal), sampling
-// density
-// (points in the smallest ball) and noise
-// (0 and 0.1% of the sampled patch's diagonal, along the normals), at t = 3, 4 and 5% of the smallest radius of
-// curvature: p99 of |k - k_true| / max|k_true| and p99 of the angle of d1 to the true one where
-// |k1 - k2| >= 0.2 max|k|. With CGAL's jet fitting (Monge form of degree 2 over the points within t, oriented by the
+// density (points in the smallest ball) and noise (0 and 0.1% of the sampled patch's diagonal, along the normals),
+// at t = 3, 4 and 5% of the smallest radius of curvature: p99 of |k - k_true| / max|k_true| and p99 of the angle of
+// d1 to the true one where |k1 - k2| >= 0.2 max|k|. With CGAL's jet fitting (Monge form of degree 2 over the points within t, oriented by the
 // exact normal) at the same points and scales when CMake found CGAL: the peer column.
 //
 //   glsCurvatureBenchmark [--quick]      (--quick: one density, two shapes: the CI smoke run)
@@ -152,8 +150,7 @@ void row(const Site& site, double pointsInSmallestBall, double noiseFraction, No
     }
   }
   std::printf("| %-9s (%4.2f, %4.2f) | %-7s | %5.0f | %5.2f%% | %7.3f%% | %8.3f | %7.3f%% | %8.3f | %6zu |\n",
-    site.surface.name.c_str(), site.u, site.v, nameOf(normals), pointsInSmallestBall,
-    100.0 * noiseFraction,
+    site.surface.name.c_str(), site.u, site.v, nameOf(normals), pointsInSmallestBall, 100.0 * noiseFraction,
     100.0 * percentile99(gls.curvature), percentile99(gls.direction),
     peer.curvature.empty() ? std::nan("") : 100.0 * percentile99(peer.curvature),
     peer.direction.empty() ? std::nan("") : percentile99(peer.direction), gls.curvature.size());

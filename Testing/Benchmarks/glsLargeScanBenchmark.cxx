@@ -1,9 +1,10 @@
 // Real scan sizes: the multi-resolution evaluation against the exact one pass (docs/performance.md, "Large scans").
 //
 //   glsLargeScanBenchmark [--case L1|L2|L3|normals|directions|accuracy|all (all)] [--models bunny,rocker-arm]
-//                         [--threads T (2)] [--points N (L1: 10000000; L2 and accuracy: 1000000)] [--sizes a,b,... (L3)]
-//                         [--accuracies e1,e2,... (0.1,0.2,0.3)] [--subset M (accuracy: every point)]
-//                         [--distances k1,k2,... (linearized: 10,0; accuracy: 10)] [--rounds R (2)]
+//                         [--threads T (2)] [--points N (L1: 10000000; L2 and accuracy: 1000000)]
+//                         [--sizes a,b,... (L3)] [--accuracies e1,e2,... (0.1,0.2,0.3)]
+//                         [--subset M (accuracy: every point)] [--distances k1,k2,... (linearized: 10,0; accuracy: 10)]
+//                         [--rounds R (2)]
 //
 // Every cloud is a bundled mesh sampled by area to N points, normals interpolated from the mesh; 20 quadratic
 // scales 0.8% to 8% of the diagonal; the fused continuous features (nu on the fly, O(N) memory).
@@ -792,8 +793,8 @@ int main(int argc, char* argv[])
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--case L1|L2|L3|normals|directions|accuracy|linearized|all] [--models a,b] [--threads T] [--points N] "
-        "[--sizes a,b] [--accuracies e1,e2] [--subset M] [--distances k1,k2] [--rounds R]\n",
+        "usage: %s [--case L1|L2|L3|normals|directions|accuracy|linearized|all] [--models a,b] [--threads T] "
+        "[--points N] [--sizes a,b] [--accuracies e1,e2] [--subset M] [--distances k1,k2] [--rounds R]\n",
         argv[0]);
       return 2;
     }

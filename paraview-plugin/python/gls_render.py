@@ -82,30 +82,34 @@ SHAPE_INDEX = Colouring('GLSStableShapeIndex', 'Cool to Warm', (-1.0, 1.0),
                         'shape index (-1 cup, -1/2 valley, 0 saddle, 1/2 ridge, 1 cap)', (0.75, 0.75, 0.75))
 
 
-def render_point_array(path, polydata, colouring, title):
-    """A point array on the data, coloured as `colouring` says: its surface when it has polygons, else the points
-    (drawn as vertex cells made for the picture, whatever cells the data has; every k-th point above
-    MAX_SHOWN_POINTS, said in the title). Returns the stride k."""
+def render_point_arrays(polydata, pictures):
+    """Pictures of point arrays on the data, one per (path, colouring, title) of `pictures`, each coloured as its
+    `colouring` says: its surface when it has polygons, else the points (drawn as vertex cells made for the pictures,
+    whatever cells the data has; every k-th point above MAX_SHOWN_POINTS, said in the titles). One view, one shown
+    copy of the data and one camera serve them all. Returns the stride k."""
     from paraview import simple
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    name = colouring.array
+    names = [colouring.array for _, colouring, _ in pictures]
     surface = gls_cloud.has_surface(polydata)
     points = vtk_to_numpy(polydata.GetPoints().GetData())
     normals_array = polydata.GetPointData().GetArray('Normals')
     normals = vtk_to_numpy(normals_array) if normals_array is not None else None
-    values = vtk_to_numpy(polydata.GetPointData().GetArray(name))
+    values = {name: vtk_to_numpy(polydata.GetPointData().GetArray(name)) for name in names}
+    note = ''
     stray = polydata.GetPointData().GetArray('GLSStray')
     if stray is not None and not surface:
-        # The stray points the filters left out (far from the rest): not drawn, so that the picture frames the cloud.
+        # The stray points the filters left out (far from the rest): not drawn, so that the pictures frame the cloud.
         kept = vtk_to_numpy(stray) == 0
         hidden = np.count_nonzero(~kept)
-        title += ' (%d stray point%s not shown)' % (hidden, '' if hidden == 1 else 's')
-        points, values = points[kept], values[kept]
+        note += ' (%d stray point%s not shown)' % (hidden, '' if hidden == 1 else 's')
+        points = points[kept]
+        values = {name: v[kept] for name, v in values.items()}
         normals = normals[kept] if normals is not None else None
     stride = 1 if surface else gls_cloud.stride_for(len(points), MAX_SHOWN_POINTS)
     if stride > 1:
-        title += ' (%s shown)' % gls_cloud.every_kth_note(stride)
-    shown = polydata if surface else gls_cloud.vertex_cloud(points[::stride], {name: values[::stride]})
+        note += ' (%s shown)' % gls_cloud.every_kth_note(stride)
+    shown = polydata if surface else gls_cloud.vertex_cloud(points[::stride],
+                                                            {name: v[::stride] for name, v in values.items()})
     source = gls_cloud.producer(shown)
     view = simple.CreateRenderView()
     view.ViewSize = [1200, 900]
@@ -114,14 +118,16 @@ def render_point_array(path, polydata, colouring, title):
     if not surface:
         display.SetRepresentationType('Points')
         display.PointSize = 3 if len(points) // stride < 200000 else 2
-    simple.ColorBy(display, ('POINTS', name))
-    lut = simple.GetColorTransferFunction(name)
-    lut.ApplyPreset(colouring.preset, True)
-    lut.RescaleTransferFunction(*colouring.range)
-    lut.NanColor = list(colouring.nan_colour)
-    display.SetScalarBarVisibility(view, True)
     aim_camera(view, points, normals)
-    save_picture(path, view, lut, colouring.bar_title, title, 22, [1200, 900])
+    for path, colouring, title in pictures:
+        simple.ColorBy(display, ('POINTS', colouring.array))
+        lut = simple.GetColorTransferFunction(colouring.array)
+        lut.ApplyPreset(colouring.preset, True)
+        lut.RescaleTransferFunction(*colouring.range)
+        lut.NanColor = list(colouring.nan_colour)
+        display.SetScalarBarVisibility(view, True)
+        save_picture(path, view, lut, colouring.bar_title, title + note, 22, [1200, 900])
+        display.SetScalarBarVisibility(view, False)
     simple.Delete(view)
     simple.Delete(source)
     return stride

@@ -157,7 +157,7 @@ GLS_INLINE void addChildToCurvatureCell(CurvatureCell& cell, const CurvatureCell
 
 /// The omega-values' sums over a cell's points in coordinates about an origin at -x from its centroid (x = c - o):
 /// F = sum f(x + y_i, n_i), and their gradient along `dir`, H = sum (dir . y_i) f(x + y_i, n_i). The third moments
-/// are contracted with dir once (K, T) and shared by the values that read them.
+/// are contracted with dir once (K, L) and shared by the values that read them.
 GLS_INLINE void curvatureCellValues(const CurvatureCell& cell, const Vec3& x, const Vec3& dir, double* F, double* H)
 {
   const double X[3] = { x.x, x.y, x.z }, A[3] = { dir.x, dir.y, dir.z };
