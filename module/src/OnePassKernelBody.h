@@ -3,6 +3,7 @@
 #pragma once
 
 #include "KernelBatches.h"
+#include "KernelSetCalls.h"
 
 #include "gls/OnePassKernel.h"
 
@@ -79,7 +80,7 @@ GLS_FORCE_INLINE void evaluate(const GridView& g, const Vec3& p, const ScaleBinn
       }
     }
   }
-  fitAllScalesFromBins(b, minNeighbors, bins, out);
+  kernel::fitAllScalesIn(b, minNeighbors, bins, out);
 }
 
 template <typename Set>

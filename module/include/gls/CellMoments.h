@@ -24,9 +24,11 @@ namespace gls
 /// The sums of the points [first, last) (at least one) that a cell of the moment set Set keeps (Set::Cell), their
 /// centroid formed about `reference` (a point near them, such as their cube's corner, so that far coordinates lose no
 /// precision). The build stores these for the cells of its lowest summed level and the walks form them for finer
-/// cells, with the same arithmetic.
+/// cells, with the same formulas. Inlined into its caller: the CPU kernels' AVX2 builds form the principal
+/// curvatures' cells so (src/KernelSetCalls.h), with fused multiply-adds; the oriented sphere's call
+/// momentsOfPoints, the same left to the compiler, as they always did (their samples keep their bits).
 template <typename Set = OrientedSphereMoments>
-GLS_INLINE void momentsOfPoints(const StoredPoints& points, std::uint32_t first, std::uint32_t last,
+GLS_FORCE_INLINE void formCellOfPoints(const StoredPoints& points, std::uint32_t first, std::uint32_t last,
   const Vec3& reference, typename Set::Cell& cell)
 {
   double count = 0.0;
@@ -45,6 +47,13 @@ GLS_INLINE void momentsOfPoints(const StoredPoints& points, std::uint32_t first,
   {
     Set::addPointToCell(cell, points.position(i) - cell.centroid, points.normal(i));
   }
+}
+
+template <typename Set = OrientedSphereMoments>
+GLS_INLINE void momentsOfPoints(const StoredPoints& points, std::uint32_t first, std::uint32_t last,
+  const Vec3& reference, typename Set::Cell& cell)
+{
+  formCellOfPoints<Set>(points, first, last, reference, cell);
 }
 
 /// The sums of a parent cell from those of its `count` children (in order), about its new centroid c formed about
@@ -103,14 +112,22 @@ GLS_INLINE double spreadHalfWidth(const PyramidCell& cell, const Vec3& direction
   return variance > 0.0 ? squareRoot(3.0 * variance) : 0.0;
 }
 
-/// The sample of `cell` in coordinates about `origin`, with `direction` a = c - (the walk region's centre).
+/// The sample of `cell` in coordinates about `origin`, with `direction` a = c - (the walk region's centre). Inlined
+/// into its caller (formCellOfPoints says why); makeCellSample is the same, left to the compiler.
 template <typename S>
-GLS_INLINE void makeCellSample(
+GLS_FORCE_INLINE void formCellSample(
   const typename S::Cell& cell, const Vec3& origin, const Vec3& direction, CellSampleT<S>& s)
 {
   S::cellValues(cell, cell.centroid - origin, direction, s.sums, s.gradient);
   s.spreadPerPoint = spreadOf(cell) / cell.count;
   s.halfWidth = spreadHalfWidth(cell, direction);
+}
+
+template <typename S>
+GLS_INLINE void makeCellSample(
+  const typename S::Cell& cell, const Vec3& origin, const Vec3& direction, CellSampleT<S>& s)
+{
+  formCellSample(cell, origin, direction, s);
 }
 
 /// A spread narrower than this fraction of its upper end is not split: the sample goes whole to the shell of its

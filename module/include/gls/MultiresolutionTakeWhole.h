@@ -73,9 +73,19 @@ GLS_INLINE bool readPointByPoint(const MultiresolutionView& v, std::uint32_t nod
   return last - first < kFewestPointsOfACellSample;
 }
 
+/// The sums a cell of the moment set Set keeps formed from the points of the cell `node` of level `level` (below the
+/// summed levels), about its corner, as the build forms those of level summedLevel.
+template <typename Set>
+GLS_FORCE_INLINE void formCellOfNode(
+  const MultiresolutionView& v, std::uint32_t node, int level, typename Set::Cell& cell)
+{
+  std::uint32_t first = 0, last = 0;
+  pointRange(v.nodes, node, level, first, last);
+  formCellOfPoints<Set>(v.points, first, last, nodeCorner(v.origin, v.nodes[node], v.levelSize[level]), cell);
+}
+
 /// The sums of the cell `node` of level `level` that the moment set Set keeps: stored (`cells`, those of levels
-/// summedLevel and above, node i's at cells[i - summedBegin]), or formed from its points (momentsOfPoints about its
-/// corner, as the build forms those of level summedLevel).
+/// summedLevel and above, node i's at cells[i - summedBegin]), or formed from its points (formCellOfNode).
 template <typename Set>
 GLS_INLINE void cellMoments(const MultiresolutionView& v, const typename Set::Cell* cells, std::uint32_t node,
   int level, typename Set::Cell& cell)
@@ -85,9 +95,20 @@ GLS_INLINE void cellMoments(const MultiresolutionView& v, const typename Set::Ce
     cell = cells[node - v.summedBegin];
     return;
   }
-  std::uint32_t first = 0, last = 0;
-  pointRange(v.nodes, node, level, first, last);
-  momentsOfPoints<Set>(v.points, first, last, nodeCorner(v.origin, v.nodes[node], v.levelSize[level]), cell);
+  formCellOfNode<Set>(v, node, level, cell);
+}
+
+/// cellMoments inlined into its caller, a stored cell read where it is: the stored sums, or `formed` formed.
+template <typename Set>
+GLS_FORCE_INLINE const typename Set::Cell& cellMomentsOf(const MultiresolutionView& v, const typename Set::Cell* cells,
+  std::uint32_t node, int level, typename Set::Cell& formed)
+{
+  if (level >= v.summedLevel)
+  {
+    return cells[node - v.summedBegin];
+  }
+  formCellOfNode<Set>(v, node, level, formed);
+  return formed;
 }
 
 /// The oriented sphere's cell sums: the pyramid's own (v.cells).

@@ -76,14 +76,21 @@ template <typename Layout>
 using SampleOf = typename Layout::Set::Sample;
 
 /// The fit of the ball of scale t from its moments (about the evaluation point): the moment set's fit of its
-/// weighted values.
+/// weighted values. Inlined into its caller (the CPU kernels' AVX2 builds call it so for the principal curvatures'
+/// set: kernel::fitBallIn, src/KernelSetCalls.h); fitBall is the same, left to the compiler.
 template <typename Layout>
-GLS_INLINE SampleOf<Layout> fitBall(const Layout& ball, double t, double minNeighbors)
+GLS_FORCE_INLINE SampleOf<Layout> fitBallInlined(const Layout& ball, double t, double minNeighbors)
 {
   using S = typename Layout::Set;
   double v[S::kValues], dv[S::kValues];
   weightedValues(ball, t, v, dv);
   return S::fit(v, dv, t, neighborCount(ball), minNeighbors);
+}
+
+template <typename Layout>
+GLS_INLINE SampleOf<Layout> fitBall(const Layout& ball, double t, double minNeighbors)
+{
+  return fitBallInlined(ball, t, minNeighbors);
 }
 
 /// One step of the running sum over the bins: ball += bin, the ball of scale t, and its fit.
@@ -99,15 +106,23 @@ GLS_INLINE SampleOf<Layout> addBinAndFit(Layout& ball, const Layout& bin, double
 /// pass) or AggregateMomentsT (the multi-resolution pass) of a moment set: both give clearMoments, addMoments,
 /// weightedValues and neighborCount.
 template <typename Layout>
-GLS_INLINE void fitAllScalesFromBins(
+GLS_FORCE_INLINE void fitAllScalesFromBinsInlined(
   const ScaleBinning& b, double minNeighbors, const Layout* bins, SampleOf<Layout>* out)
 {
   Layout ball;
   clearMoments(ball);
   for (int k = 0; k < b.count; ++k)
   {
-    out[k] = addBinAndFit(ball, bins[k], b.scales[k], minNeighbors);
+    addMoments(ball, bins[k]);
+    out[k] = fitBallInlined(ball, b.scales[k], minNeighbors);
   }
+}
+
+template <typename Layout>
+GLS_INLINE void fitAllScalesFromBins(
+  const ScaleBinning& b, double minNeighbors, const Layout* bins, SampleOf<Layout>* out)
+{
+  fitAllScalesFromBinsInlined(b, minNeighbors, bins, out);
 }
 
 /// Calls add(window[slot]) when 0 <= slot < G: a window's bins are indexed by constants only, so that a GPU keeps

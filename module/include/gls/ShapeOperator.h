@@ -113,7 +113,7 @@ GLS_INLINE PrincipalCurvatures principalOf(double a, double b, double c, const V
 /// p; u_l and phi as in fitOrientedSphere, whose sample `sphere` is the fit of s), symmetrized. On a sphere D u_l =
 /// 2 u_q I, so k1 = k2 = kappa. Undefined (NaN) where the sphere is, and where its spread term vanishes (its points
 /// at one place: no curvature).
-GLS_INLINE PrincipalCurvatures principalCurvaturesOf(
+GLS_FORCE_INLINE PrincipalCurvatures principalCurvaturesOf(
   const WeightedSums& s, const SpatialSums& g, const ScaleSample& sphere, double t)
 {
   const double invW = 1.0 / s.W;
@@ -189,7 +189,7 @@ struct ShapeOperatorMoments
   }
 
   /// The move of origin (x + u): the omega-values' from the sphere's sums before they move, then the sphere's.
-  GLS_INLINE static void shiftValues(const Vec3& u, double uu, double* f)
+  GLS_FORCE_INLINE static void shiftValues(const Vec3& u, double uu, double* f)
   {
     shiftCurvatureValues(u, f);
     double sphere[Sphere::kValues];
@@ -198,7 +198,7 @@ struct ShapeOperatorMoments
     setSphereValues(sphere, f);
   }
 
-  GLS_INLINE static void addPointToCell(Cell& cell, const Vec3& y, const Vec3& n)
+  GLS_FORCE_INLINE static void addPointToCell(Cell& cell, const Vec3& y, const Vec3& n)
   {
     Sphere::addPointToCell(cell, y, n);
     addPointToCurvatureCell(cell, y, n);
@@ -210,7 +210,7 @@ struct ShapeOperatorMoments
     addChildToCurvatureCell(cell, child, d);
   }
 
-  GLS_INLINE static void cellValues(const Cell& cell, const Vec3& x, const Vec3& a, double* F, double* H)
+  GLS_FORCE_INLINE static void cellValues(const Cell& cell, const Vec3& x, const Vec3& a, double* F, double* H)
   {
     double sphereF[Sphere::kValues], sphereH[Sphere::kValues];
     Sphere::cellValues(cell, x, a, sphereF, sphereH);
@@ -219,7 +219,7 @@ struct ShapeOperatorMoments
     curvatureCellValues(cell, x, a, F, H);
   }
 
-  GLS_INLINE static void pointValues(const Vec3& x, double d2, const Vec3& n, double* f)
+  GLS_FORCE_INLINE static void pointValues(const Vec3& x, double d2, const Vec3& n, double* f)
   {
     Sphere::pointValues(x, d2, n, f); // its |x|^2 (at kSquaredPosition) is overwritten below, and set last
     const double xv[3] = { x.x, x.y, x.z }, nv[3] = { n.x, n.y, n.z };
@@ -242,7 +242,7 @@ struct ShapeOperatorMoments
 
   /// The sphere's fit, and the principal curvatures from the omega-weighted sums: the omega-values' own (v), the
   /// sphere's values' (4/t^2) v + dv / t.
-  GLS_INLINE static Sample fit(const double* v, const double* dv, double t, double neighbors, double minNeighbors)
+  GLS_FORCE_INLINE static Sample fit(const double* v, const double* dv, double t, double neighbors, double minNeighbors)
   {
     double sv[Sphere::kValues], sdv[Sphere::kValues];
     sphereValuesOf(v, sv);

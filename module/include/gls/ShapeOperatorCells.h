@@ -59,7 +59,7 @@ GLS_INLINE void normalOffsetMatrix(const double* f, double* M)
 /// Moves the omega-values' sums from coordinates about o to about p (x_p = x_o + u), from the sums about o of 1, x, n
 /// and x . n (f, before the sphere's own are moved): sum x_a x_b gains u_b sum x_a + u_a sum x_b + u_a u_b W;
 /// sum n_p x_q gains u_q sum n_p; sum (x . n) x gains u sum x . n + (sum x n^T) u + u (u . sum n).
-GLS_INLINE void shiftCurvatureValues(const Vec3& u, double* f)
+GLS_FORCE_INLINE void shiftCurvatureValues(const Vec3& u, double* f)
 {
   const double W = f[kOne];
   const double P[3] = { f[kPositionX], f[kPositionY], f[kPositionZ] };
@@ -89,7 +89,7 @@ GLS_INLINE void shiftCurvatureValues(const Vec3& u, double* f)
 
 /// Adds one point at offset y from the cell's centroid, with normal n, to the third moments: its six products
 /// y_a y_b (pairIndex order) times y_c, n_p and y . n, written out (the walks form finer cells from their points).
-GLS_INLINE void addPointToCurvatureCell(CurvatureCell& cell, const Vec3& y, const Vec3& n)
+GLS_FORCE_INLINE void addPointToCurvatureCell(CurvatureCell& cell, const Vec3& y, const Vec3& n)
 {
   const double yy[6] = { y.x * y.x, y.x * y.y, y.x * y.z, y.y * y.y, y.y * y.z, y.z * y.z };
   double* T = cell.offsetCubed; // xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz
@@ -155,10 +155,20 @@ GLS_INLINE void addChildToCurvatureCell(CurvatureCell& cell, const CurvatureCell
   }
 }
 
+/// s v for the symmetric 3x3 s stored as xx, xy, xz, yy, yz, zz (pairIndex), written out.
+GLS_FORCE_INLINE void symmetricTimes(const double* s, const double* v, double* out)
+{
+  out[0] = v[0] * s[0] + v[1] * s[1] + v[2] * s[2];
+  out[1] = v[0] * s[1] + v[1] * s[3] + v[2] * s[4];
+  out[2] = v[0] * s[2] + v[1] * s[4] + v[2] * s[5];
+}
+
 /// The omega-values' sums over a cell's points in coordinates about an origin at -x from its centroid (x = c - o):
 /// F = sum f(x + y_i, n_i), and their gradient along `dir`, H = sum (dir . y_i) f(x + y_i, n_i). The third moments
-/// are contracted with dir once (K, L) and shared by the values that read them.
-GLS_INLINE void curvatureCellValues(const CurvatureCell& cell, const Vec3& x, const Vec3& dir, double* F, double* H)
+/// are contracted with dir once (K, L, T) and shared by the values that read them; every index is a constant (the
+/// tables' lookups in loops cost 6% of the multi-resolution kernel's time).
+GLS_FORCE_INLINE void curvatureCellValues(
+  const CurvatureCell& cell, const Vec3& x, const Vec3& dir, double* F, double* H)
 {
   const double X[3] = { x.x, x.y, x.z }, A[3] = { dir.x, dir.y, dir.z };
   const double m = cell.count;
@@ -171,28 +181,26 @@ GLS_INLINE void curvatureCellValues(const CurvatureCell& cell, const Vec3& x, co
   const double trace = Yn[0] + Yn[4] + Yn[8];
   const double xN = X[0] * N[0] + X[1] * N[1] + X[2] * N[2], xNa = X[0] * NA[0] + X[1] * NA[1] + X[2] * NA[2];
   const double aO = A[0] * O[0] + A[1] * O[1] + A[2] * O[2];
-  // K[p][q] = sum (dir . y) n_p y_q; L[a] = sum (dir . y)(y . n) y_a.
+  // K[p][q] = sum (dir . y) n_p y_q; L[a] = sum (dir . y)(y . n) y_a; T: sum (dir . y) y_a y_b as xx, xy, xz, yy, yz.
   double K[3][3], L[3];
-  for (int q = 0; q < 3; ++q)
-  {
-    for (int p = 0; p < 3; ++p)
-    {
-      const double* nyy = cell.normalOffsetOffset + 6 * p;
-      K[p][q] = A[0] * nyy[pairIndex(0, q)] + A[1] * nyy[pairIndex(1, q)] + A[2] * nyy[pairIndex(2, q)];
-    }
-    const double* yyn = cell.offsetDotNormalOffsetOffset;
-    L[q] = A[0] * yyn[pairIndex(0, q)] + A[1] * yyn[pairIndex(1, q)] + A[2] * yyn[pairIndex(2, q)];
-  }
-  const int pairs[5][2] = { { 0, 0 }, { 0, 1 }, { 0, 2 }, { 1, 1 }, { 1, 2 } };
-  for (int k = 0; k < 5; ++k)
-  {
-    const int a = pairs[k][0], b = pairs[k][1];
-    const double* yyy = cell.offsetCubed;
-    const double Tab = A[0] * yyy[tripleIndex(a, b, 0)] + A[1] * yyy[tripleIndex(a, b, 1)] +
-      A[2] * yyy[tripleIndex(a, b, 2)]; // sum (dir . y) y_a y_b
-    F[kOffsetOffset + k] = m * X[a] * X[b] + C[pairIndex(a, b)];
-    H[kOffsetOffset + k] = X[a] * CA[b] + CA[a] * X[b] + Tab;
-  }
+  symmetricTimes(cell.normalOffsetOffset, A, K[0]);
+  symmetricTimes(cell.normalOffsetOffset + 6, A, K[1]);
+  symmetricTimes(cell.normalOffsetOffset + 12, A, K[2]);
+  symmetricTimes(cell.offsetDotNormalOffsetOffset, A, L);
+  const double* Y = cell.offsetCubed; // xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz
+  const double T[5] = { A[0] * Y[0] + A[1] * Y[1] + A[2] * Y[2], A[0] * Y[1] + A[1] * Y[3] + A[2] * Y[4],
+    A[0] * Y[2] + A[1] * Y[4] + A[2] * Y[5], A[0] * Y[3] + A[1] * Y[6] + A[2] * Y[7],
+    A[0] * Y[4] + A[1] * Y[7] + A[2] * Y[8] };
+  // The five pairs (a, b) of kOffsetOffset: xx, xy, xz, yy, yz, at C's pairIndex 0 to 4.
+  const auto offsetOffset = [&](int k, int a, int b) GLS_INLINE_LAMBDA {
+    F[kOffsetOffset + k] = m * X[a] * X[b] + C[k];
+    H[kOffsetOffset + k] = X[a] * CA[b] + CA[a] * X[b] + T[k];
+  };
+  offsetOffset(0, 0, 0);
+  offsetOffset(1, 0, 1);
+  offsetOffset(2, 0, 2);
+  offsetOffset(3, 1, 1);
+  offsetOffset(4, 1, 2);
   for (int k = 0; k < 8; ++k)
   {
     const int p = k / 3, q = k % 3;

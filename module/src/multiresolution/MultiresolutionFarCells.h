@@ -2,6 +2,7 @@
 // (docs/math.md, "Linearized far cells"), summed once per far region (LinearizedBins) and moved to each point.
 #pragma once
 
+#include "KernelSetCalls.h"
 #include "KernelVectors.h"
 
 #include "gls/MultiresolutionKernel.h"
@@ -32,7 +33,7 @@ GLS_FORCE_INLINE void addLinearizedCell(const ScaleBinning& b, double r2, const 
   const Vec3& o, const Vec3& a, LinearizedBinsT<Set>& far)
 {
   CellSampleT<Set> sample;
-  makeCellSample(cell, o, a, sample);
+  cellSampleIn(cell, o, a, sample);
   const double aa[6] = { a.x * a.x, a.x * a.y, a.x * a.z, a.y * a.y, a.y * a.z, a.z * a.z };
   forEachShellOfSpreadExpanded(
     b, r2, squaredNorm(a) + sample.spreadPerPoint, sample.halfWidth,
@@ -81,8 +82,8 @@ GLS_FORCE_INLINE void packFarWalk(const MultiresolutionView& v, const typename S
   const Vec3 centre = regionCentre(F);
   for (std::size_t k = 0; k < s.taken.size(); ++k)
   {
-    typename Set::Cell cell;
-    cellMoments<Set>(v, cells, s.taken[k], s.takenLevel[k], cell);
+    typename Set::Cell formed;
+    const typename Set::Cell& cell = cellMomentsIn<Set>(v, cells, s.taken[k], s.takenLevel[k], formed);
     const Vec3 a = cell.centroid - centre;
     if (linearizable(spreadHalfWidth(cell, a), a, F))
     {

@@ -143,7 +143,7 @@ GLS_FORCE_INLINE void fitAllScalesAboutOrigin(const ScaleBinning& b, double minN
     addMoments(ball, bins[k]);
     AggregateMomentsT<Set> moved = ball;
     shiftMoments(u, uu, moved);
-    out[k] = fitBall(moved, b.scales[k], minNeighbors);
+    out[k] = kernel::fitBallIn(moved, b.scales[k], minNeighbors);
   }
 }
 

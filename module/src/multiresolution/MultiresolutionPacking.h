@@ -3,6 +3,7 @@
 // scale's sphere for the whole region summed as a polynomial of p (InnerSums).
 #pragma once
 
+#include "KernelSetCalls.h"
 #include "KernelVectors.h"
 
 #include "gls/MultiresolutionKernel.h"
@@ -117,11 +118,11 @@ GLS_FORCE_INLINE void packWalk(const MultiresolutionView& v, const typename Set:
   std::size_t packed = 0;
   for (std::size_t k = 0; k < s.taken.size(); ++k)
   {
-    typename Set::Cell cell;
-    cellMoments<Set>(v, cells, s.taken[k], s.takenLevel[k], cell);
+    typename Set::Cell formed;
+    const typename Set::Cell& cell = cellMomentsIn<Set>(v, cells, s.taken[k], s.takenLevel[k], formed);
     PackedCellT<Set>& out = s.packedCells[packed];
     const Vec3 a = cell.centroid - anchor;
-    makeCellSample(cell, o, a, out.sample);
+    cellSampleIn(cell, o, a, out.sample);
     const double spread = out.sample.spreadPerPoint, half = out.sample.halfWidth;
     if (squaredDistanceToFarthestPoint(region, cell.centroid) + spread + half < sq0)
     {
