@@ -11,7 +11,7 @@
 namespace gls
 {
 
-/// m[k * kValues + j] = sum over the samples of d^(2k) f_j (k = 0, 1, 2) for every value of the moment set S (its
+/// m[k * kStride + j] = sum over the samples of d^(2k) f_j (k = 0, 1, 2) for every value of the moment set S (its
 /// omega-values too: their third moment is not read). Padded to whole 64-byte lines.
 template <typename S>
 struct alignas(64) AggregateMomentsT
@@ -19,7 +19,11 @@ struct alignas(64) AggregateMomentsT
   using Set = S;
   static constexpr int kValues = S::kValues;
   static constexpr int kWeighted = kValues - 1 - S::kOmegaValues; ///< the values before the omega-values
-  double m[wholeCacheLines(3 * kValues)];
+  /// Where each moment's row starts: a set with omega-values pads its rows to whole four-double vectors (so that the
+  /// CPU kernel's vector adds never straddle a cache line; the padding stays 0); the oriented sphere's rows are
+  /// packed, as they always were.
+  static constexpr int kStride = S::kOmegaValues == 0 ? kValues : (kValues + 3) / 4 * 4;
+  double m[wholeCacheLines(3 * kStride)];
 };
 
 /// The oriented sphere's multi-resolution moments.
@@ -28,7 +32,7 @@ using AggregateMoments = AggregateMomentsT<OrientedSphereMoments>;
 template <typename S>
 GLS_INLINE void clearMoments(AggregateMomentsT<S>& a)
 {
-  for (int i = 0; i < 3 * S::kValues; ++i)
+  for (int i = 0; i < 3 * AggregateMomentsT<S>::kStride; ++i)
   {
     a.m[i] = 0.0;
   }
@@ -37,7 +41,7 @@ GLS_INLINE void clearMoments(AggregateMomentsT<S>& a)
 template <typename S>
 GLS_INLINE void addMoments(AggregateMomentsT<S>& a, const AggregateMomentsT<S>& b)
 {
-  for (int i = 0; i < 3 * S::kValues; ++i)
+  for (int i = 0; i < 3 * AggregateMomentsT<S>::kStride; ++i)
   {
     a.m[i] += b.m[i];
   }
@@ -54,13 +58,13 @@ GLS_INLINE double neighborCount(const AggregateMomentsT<S>& a)
 template <typename S>
 GLS_INLINE void addSampleSums(AggregateMomentsT<S>& a, const double* f, double d2)
 {
-  constexpr int V = S::kValues;
+  constexpr int V = S::kValues, R = AggregateMomentsT<S>::kStride;
   const double d4 = d2 * d2;
   for (int j = 0; j < V; ++j)
   {
     a.m[j] += f[j];
-    a.m[V + j] += d2 * f[j];
-    a.m[2 * V + j] += d4 * f[j];
+    a.m[R + j] += d2 * f[j];
+    a.m[2 * R + j] += d4 * f[j];
   }
 }
 
@@ -78,10 +82,10 @@ GLS_INLINE void addPoint(AggregateMomentsT<S>& a, const Vec3& x, double d2, cons
 template <typename S>
 GLS_INLINE void weightedValues(const AggregateMomentsT<S>& a, double t, double* v, double* dv)
 {
-  constexpr int V = S::kValues, W = AggregateMomentsT<S>::kWeighted;
+  constexpr int V = S::kValues, W = AggregateMomentsT<S>::kWeighted, R = AggregateMomentsT<S>::kStride;
   const WeightPolynomial w = weightPolynomial(t);
   const auto weighted = [&](int j) {
-    const double a0 = a.m[j], a1 = a.m[V + j], a2 = a.m[2 * V + j];
+    const double a0 = a.m[j], a1 = a.m[R + j], a2 = a.m[2 * R + j];
     v[j] = a0 + w.c1 * a1 + w.c2 * a2;
     dv[j] = w.e1 * a1 + w.e2 * a2;
   };
@@ -91,7 +95,7 @@ GLS_INLINE void weightedValues(const AggregateMomentsT<S>& a, double t, double* 
   }
   for (int j = W; j < V - 1; ++j)
   {
-    v[j] = w.o0 * a.m[j] + w.o1 * a.m[V + j];
+    v[j] = w.o0 * a.m[j] + w.o1 * a.m[R + j];
     dv[j] = 0.0;
   }
   weighted(V - 1); // |x|^2

@@ -87,12 +87,14 @@ template <typename S>
 struct CellSampleT
 {
   using Set = S;
+  /// sums and gradient hold kValues values, then zeros up to a row of the moments (AggregateMomentsT::kStride).
+  static constexpr int kStride = AggregateMomentsT<S>::kStride;
   /// F: the exact sums of the fitted values f (MomentSet.h) over the cell's points, x = q - o.
-  double sums[S::kValues];
+  double sums[kStride];
   /// H: sum (a . y_i) f_i, with a = c - (the walk region's centre): what the sums gain when each point is weighted
   /// in proportion to a . y_i, the first-order variation of |q_i - p|^2 across the cell (a stands for c - p for
   /// every point of the region). H[0] = 0: the field moves weight within the cell, it adds none.
-  double gradient[S::kValues];
+  double gradient[kStride];
   /// sum |y|^2 / m: the mean of |q_i - p|^2 exceeds |c - p|^2 by this (length^2).
   double spreadPerPoint;
   /// sqrt(3 V), V = 4 a^T (sum y y^T) a / m: the half-width of the uniform distribution with the variance of
@@ -119,6 +121,10 @@ GLS_FORCE_INLINE void formCellSample(
   const typename S::Cell& cell, const Vec3& origin, const Vec3& direction, CellSampleT<S>& s)
 {
   S::cellValues(cell, cell.centroid - origin, direction, s.sums, s.gradient);
+  for (int j = S::kValues; j < CellSampleT<S>::kStride; ++j)
+  {
+    s.sums[j] = s.gradient[j] = 0.0;
+  }
   s.spreadPerPoint = spreadOf(cell) / cell.count;
   s.halfWidth = spreadHalfWidth(cell, direction);
 }
@@ -341,12 +347,12 @@ GLS_INLINE ShellShare movedShare(const ShellShareExpansion& e, double delta, dou
 template <typename S>
 GLS_INLINE void addCellShare(AggregateMomentsT<S>& a, const CellSampleT<S>& s, const ShellShare& share)
 {
-  constexpr int V = S::kValues;
+  constexpr int V = S::kValues, R = AggregateMomentsT<S>::kStride;
   for (int j = 0; j < V; ++j)
   {
     a.m[j] += share.m[0] * s.sums[j] + share.c[0] * s.gradient[j];
-    a.m[V + j] += share.m[1] * s.sums[j] + share.c[1] * s.gradient[j];
-    a.m[2 * V + j] += share.m[2] * s.sums[j] + share.c[2] * s.gradient[j];
+    a.m[R + j] += share.m[1] * s.sums[j] + share.c[1] * s.gradient[j];
+    a.m[2 * R + j] += share.m[2] * s.sums[j] + share.c[2] * s.gradient[j];
   }
 }
 

@@ -70,11 +70,20 @@ struct PointSpan
 
 /// A point of a walk as every point of its region reads it (packWalk in src/multiresolution/MultiresolutionPacking.h):
 /// its position and its fitted values f (MomentSet.h) about the region's corner.
-template <typename Set>
+template <typename Set, bool Padded = AggregateMomentsT<Set>::kStride != Set::kValues>
 struct PackedPointT
 {
   Vec3 position;
   double sums[Set::kValues];
+};
+
+/// The same for a set whose moments' rows are padded (AggregateMomentsT::kStride): its values first, on whole
+/// four-double vectors, so that the kernel's vector adds read them aligned.
+template <typename Set>
+struct alignas(32) PackedPointT<Set, true>
+{
+  double sums[AggregateMomentsT<Set>::kStride];
+  Vec3 position;
 };
 
 /// A cell of a walk as every point of its region reads it once the cell is classified (its placement and spread are

@@ -52,12 +52,6 @@ struct SpatialSums
   Vec3 SquaredX;         ///< sum omega |x|^2 x
 };
 
-/// Column j of the symmetric matrix stored as xx, xy, xz, yy, yz, zz.
-GLS_INLINE Vec3 symmetricColumn(const double* m, int j)
-{
-  return j == 0 ? Vec3{ m[0], m[1], m[2] } : (j == 1 ? Vec3{ m[1], m[3], m[4] } : Vec3{ m[2], m[4], m[5] });
-}
-
 GLS_INLINE PrincipalCurvatures undefinedCurvatures()
 {
   const double nan = quietNaN<double>();
@@ -108,11 +102,33 @@ GLS_INLINE PrincipalCurvatures principalOf(double a, double b, double c, const V
   return pc;
 }
 
+/// The derivative of u_l (fitOrientedSphere's linear term) as the evaluation point moves along the unit vector e, from
+/// the w-weighted sums s, the spatial sums g and the fit's uq and u_l (invW = 1 / s.W, halfInvDeno = 1 / (2 deno)).
+GLS_FORCE_INLINE Vec3 linearTermDerivative(const WeightedSums& s, const SpatialSums& g, const Vec3& e, double invW,
+  double halfInvDeno, double PdotN, double PdotP, double uq, const Vec3& ul)
+{
+  const double invW2 = invW * invW;
+  const double dW = dot(g.X, e);
+  const double ev[3] = { e.x, e.y, e.z };
+  double XXe[3];
+  symmetricTimes(g.XX, ev, XXe);
+  const Vec3 dP = Vec3{ XXe[0], XXe[1], XXe[2] } - s.W * e;
+  const Vec3 dN{ g.NX[0] * e.x + g.NX[1] * e.y + g.NX[2] * e.z, g.NX[3] * e.x + g.NX[4] * e.y + g.NX[5] * e.z,
+    g.NX[6] * e.x + g.NX[7] * e.y + g.NX[8] * e.z };
+  const double dPN = dot(g.XdotNX, e) - dot(s.N, e);
+  const double dPP = dot(g.SquaredX, e) - 2.0 * dot(s.P, e);
+  const double dnume = dPN - (dot(dP, s.N) + dot(s.P, dN)) * invW + PdotN * dW * invW2;
+  const double ddeno = dPP - 2.0 * dot(s.P, dP) * invW + PdotP * dW * invW2;
+  const double duq = (dnume - 2.0 * uq * ddeno) * halfInvDeno;
+  return invW * (dN - (2.0 * duq) * s.P - (2.0 * uq) * dP - dW * ul);
+}
+
 /// The principal curvatures of the oriented sphere fitted to the sums s (w-weighted, about p) at scale t, from the
 /// spatial sums g: the tangent part of D eta = (I - eta eta^T) D u_l / sqrt(phi) (D: the derivative with respect to
-/// p; u_l and phi as in fitOrientedSphere, whose sample `sphere` is the fit of s), symmetrized. On a sphere D u_l =
-/// 2 u_q I, so k1 = k2 = kappa. Undefined (NaN) where the sphere is, and where its spread term vanishes (its points
-/// at one place: no curvature).
+/// p; u_l and phi as in fitOrientedSphere, whose sample `sphere` is the fit of s), symmetrized, in a tangent basis
+/// (b1, b2) of eta: D u_l along b1 and b2 only (linearTermDerivative), whose parts along eta the basis drops. On a
+/// sphere D u_l = 2 u_q I, so k1 = k2 = kappa. Undefined (NaN) where the sphere is, and where its spread term
+/// vanishes (its points at one place: no curvature).
 GLS_FORCE_INLINE PrincipalCurvatures principalCurvaturesOf(
   const WeightedSums& s, const SpatialSums& g, const ScaleSample& sphere, double t)
 {
@@ -124,31 +140,15 @@ GLS_FORCE_INLINE PrincipalCurvatures principalCurvaturesOf(
   {
     return undefinedCurvatures();
   }
-  const double halfInvDeno = 1.0 / (2.0 * deno), invW2 = invW * invW;
+  const double halfInvDeno = 1.0 / (2.0 * deno);
   const double uq = nume * halfInvDeno;
   const Vec3 ul = invW * (s.N - (2.0 * uq) * s.P);
-  // Column j of the shape operator: the derivative of eta along the axis e_j, times sqrt(phi).
-  Vec3 column[3];
-  for (int j = 0; j < 3; ++j)
-  {
-    const Vec3 e{ j == 0 ? 1.0 : 0.0, j == 1 ? 1.0 : 0.0, j == 2 ? 1.0 : 0.0 };
-    const double dW = dot(g.X, e);
-    const Vec3 dP = symmetricColumn(g.XX, j) - s.W * e;
-    const Vec3 dN{ g.NX[j], g.NX[3 + j], g.NX[6 + j] };
-    const double dPN = dot(g.XdotNX, e) - dot(s.N, e);
-    const double dPP = dot(g.SquaredX, e) - 2.0 * dot(s.P, e);
-    const double dnume = dPN - (dot(dP, s.N) + dot(s.P, dN)) * invW + PdotN * dW * invW2;
-    const double ddeno = dPP - 2.0 * dot(s.P, dP) * invW + PdotP * dW * invW2;
-    const double duq = (dnume - 2.0 * uq * ddeno) * halfInvDeno;
-    const Vec3 dul = invW * (dN - (2.0 * duq) * s.P - (2.0 * uq) * dP - dW * ul);
-    column[j] = dul - dot(sphere.eta, dul) * sphere.eta;
-  }
-  const double invSqrtPhi = 1.0 / squareRoot(sphere.phi);
   const Vec3& eta = sphere.eta;
   const Vec3 b1 = orthogonalUnit(eta), b2 = cross(eta, b1);
-  // S b = sum_j b_j column[j]; the 2x2 form in (b1, b2), symmetrized.
-  const Vec3 Sb1 = b1.x * column[0] + b1.y * column[1] + b1.z * column[2];
-  const Vec3 Sb2 = b2.x * column[0] + b2.y * column[1] + b2.z * column[2];
+  const Vec3 Sb1 = linearTermDerivative(s, g, b1, invW, halfInvDeno, PdotN, PdotP, uq, ul);
+  const Vec3 Sb2 = linearTermDerivative(s, g, b2, invW, halfInvDeno, PdotN, PdotP, uq, ul);
+  // The 2x2 form in (b1, b2), symmetrized, over sqrt(phi).
+  const double invSqrtPhi = 1.0 / squareRoot(sphere.phi);
   const double a = dot(b1, Sb1) * invSqrtPhi, c = dot(b2, Sb2) * invSqrtPhi;
   const double b = 0.5 * (dot(b1, Sb2) + dot(b2, Sb1)) * invSqrtPhi;
   PrincipalCurvatures pc = principalOf(a, b, c, b1, b2, eta, t);

@@ -20,7 +20,7 @@ namespace kernel
 template <typename Set>
 GLS_FORCE_INLINE void addScaled(AggregateMomentsT<Set>& sum, double c, const AggregateMomentsT<Set>& x)
 {
-  for (int j = 0; j < 3 * Set::kValues; ++j)
+  for (int j = 0; j < 3 * AggregateMomentsT<Set>::kStride; ++j)
   {
     sum.m[j] += c * x.m[j];
   }
@@ -131,13 +131,13 @@ GLS_FORCE_INLINE void addLinearizedCells(
     };
     int j = 0;
 #if GLS_KERNEL_VECTORS
-    for (; j + 4 <= 3 * Set::kValues; j += 4)
+    for (; j + 4 <= 3 * AggregateMomentsT<Set>::kStride; j += 4)
     {
       const auto four = [j](const double* set) GLS_INLINE_LAMBDA { return load4(set + j); };
       store4(m + j, load4(m + j) + moved(four));
     }
 #endif
-    for (; j < 3 * Set::kValues; ++j)
+    for (; j < 3 * AggregateMomentsT<Set>::kStride; ++j)
     {
       m[j] += moved([j](const double* set) GLS_INLINE_LAMBDA { return set[j]; });
     }

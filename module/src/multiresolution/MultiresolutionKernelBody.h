@@ -123,7 +123,7 @@ GLS_FORCE_INLINE void shiftMoments(const Vec3& u, double uu, AggregateMomentsT<S
 {
   for (int j = 0; j < 3; ++j)
   {
-    Set::shiftValues(u, uu, a.m + j * Set::kValues);
+    Set::shiftValues(u, uu, a.m + j * AggregateMomentsT<Set>::kStride);
   }
 }
 

@@ -82,7 +82,7 @@ GLS_FORCE_INLINE void addInnerSums(const InnerSumsT<Set>& inner, const Vec3& u, 
   }
   const double uu = squaredNorm(u);
   const double q[6] = { u.x * u.x, 2.0 * u.x * u.y, 2.0 * u.x * u.z, u.y * u.y, 2.0 * u.y * u.z, u.z * u.z };
-  constexpr int V = Set::kValues;
+  constexpr int V = Set::kValues, R = AggregateMomentsT<Set>::kStride;
   for (int j = 0; j < V; ++j)
   {
     const double F = inner.f[0][j], MF = inner.f[1][j], KF = inner.f[5][j];
@@ -96,8 +96,8 @@ GLS_FORCE_INLINE void addInnerSums(const InnerSumsT<Set>& inner, const Vec3& u, 
     // mean^2 = M^2 - 4 M a.u + 2 M |u|^2 + 4 (a.u)^2 - 4 (a.u) |u|^2 + |u|^4
     const double squareF = KF - 4.0 * uMaF + 2.0 * uu * MF + 4.0 * uaauF - 4.0 * uu * uaF + uu * uu * F;
     bin.m[j] += F;
-    bin.m[V + j] += meanF + 2.0 * inner.h[0][j];
-    bin.m[2 * V + j] += squareF + 4.0 * meanH;
+    bin.m[R + j] += meanF + 2.0 * inner.h[0][j];
+    bin.m[2 * R + j] += squareF + 4.0 * meanH;
   }
 }
 

@@ -25,11 +25,11 @@ GLS_FORCE_INLINE void addPackedSums(AggregateMomentsT<Set>& a, const double* f, 
   else
   {
     // The omega-values' third moment is never read (weightedValues): their two powers only, then |x|^2's three.
-    constexpr int V = Set::kValues, W = AggregateMomentsT<Set>::kWeighted;
+    constexpr int V = Set::kValues, W = AggregateMomentsT<Set>::kWeighted, R = AggregateMomentsT<Set>::kStride;
     const double d4 = d2 * d2;
-    addTimesPowers(a.m, f, W, V, false, d2, d4);
-    addTimesPowers(a.m + W, f + W, V - 1 - W, V, false, d2, d4, false);
-    addTimesPowers(a.m + V - 1, f + V - 1, 1, V, false, d2, d4);
+    addTimesPowers(a.m, f, W, R, false, d2, d4);
+    addTimesPowers(a.m + W, f + W, V - 1 - W, R, false, d2, d4, false);
+    addTimesPowers(a.m + V - 1, f + V - 1, 1, R, false, d2, d4);
   }
 #else
   addSampleSums(a, f, d2);
@@ -42,7 +42,7 @@ GLS_FORCE_INLINE void addPackedSums(AggregateMomentsT<Set>& a, const double* f, 
 template <typename Set>
 struct LoadedSampleT
 {
-  static constexpr int kVectors = Set::kValues / 4, kRest = Set::kValues % 4;
+  static constexpr int kVectors = CellSampleT<Set>::kStride / 4, kRest = CellSampleT<Set>::kStride % 4;
   Double4 f[kVectors], g[kVectors];
   double fRest[kRest > 0 ? kRest : 1], gRest[kRest > 0 ? kRest : 1];
 };
@@ -85,7 +85,7 @@ GLS_FORCE_INLINE void addPackedCellShare(
   for (int j = 0; j < 3; ++j)
   {
     const double mj = share.m[j], cj = share.c[j];
-    double* row = m + j * Set::kValues;
+    double* row = m + j * AggregateMomentsT<Set>::kStride;
     if constexpr (Set::kOmegaValues == 0)
     {
       for (int v = 0; v < LoadedSample::kVectors; ++v)
