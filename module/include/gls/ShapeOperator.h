@@ -198,6 +198,36 @@ struct ShapeOperatorMoments
     setSphereValues(sphere, f);
   }
 
+  /// The move of origin of the weighted sums (v weighted by w, the omega-values' by omega; dv by dw/dt, MomentBins.h):
+  /// the sphere's values in both as sums of one weight each; the omega-values from the omega-weighted sums of the
+  /// sphere's values about o, (4/t^2) v + dv / t (as fit forms them), before these move. The same sums as moving
+  /// the moments and weighting them (the move is linear, and a point's weights are p's), in fewer operations.
+  GLS_FORCE_INLINE static void shiftWeightedValues(const Vec3& u, double uu, double t, double* v, double* dv)
+  {
+    const double a = 4.0 / (t * t), b = 1.0 / t;
+    double omegaWeighted[kValues];
+    for (int j = 0; j < kSquaredPosition; ++j)
+    {
+      omegaWeighted[j] = a * v[j] + b * dv[j];
+    }
+    for (int j = kSquaredPosition; j < kValues; ++j)
+    {
+      omegaWeighted[j] = v[j];
+    }
+    shiftCurvatureValues(u, omegaWeighted);
+    for (int j = kOffsetOffset; j < kShapeOperatorSquaredPosition; ++j)
+    {
+      v[j] = omegaWeighted[j];
+    }
+    double sphere[Sphere::kValues];
+    sphereValuesOf(v, sphere);
+    Sphere::shiftValues(u, uu, sphere);
+    setSphereValues(sphere, v);
+    sphereValuesOf(dv, sphere);
+    Sphere::shiftValues(u, uu, sphere);
+    setSphereValues(sphere, dv);
+  }
+
   GLS_FORCE_INLINE static void addPointToCell(Cell& cell, const Vec3& y, const Vec3& n)
   {
     Sphere::addPointToCell(cell, y, n);

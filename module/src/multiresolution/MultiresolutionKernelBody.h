@@ -130,7 +130,8 @@ GLS_FORCE_INLINE void shiftMoments(const Vec3& u, double uu, AggregateMomentsT<S
 /// fitAllScalesFromBins for bins whose sums are about o (u = o - p): the running sum stays about o, and a copy of it
 /// is moved to p for each scale's fit (shiftMoments). Moving the bins in memory first, then summing them, read back
 /// values just stored piecewise (measured on the bunny at 1M points: 8.28 / 7.96 us per point against 7.93 / 7.75;
-/// at 3M 7.73 against 7.19, rocker arm 7.10 against 6.96).
+/// at 3M 7.73 against 7.19, rocker arm 7.10 against 6.96). A set with omega-values moves its weighted sums instead
+/// (Set::shiftWeightedValues: two vectors of values instead of three rows of moments).
 template <typename Set>
 GLS_FORCE_INLINE void fitAllScalesAboutOrigin(const ScaleBinning& b, double minNeighbors,
   const AggregateMomentsT<Set>* bins, const Vec3& u, typename Set::Sample* out)
@@ -141,9 +142,20 @@ GLS_FORCE_INLINE void fitAllScalesAboutOrigin(const ScaleBinning& b, double minN
   for (int k = 0; k < b.count; ++k)
   {
     addMoments(ball, bins[k]);
-    AggregateMomentsT<Set> moved = ball;
-    shiftMoments(u, uu, moved);
-    out[k] = kernel::fitBallIn(moved, b.scales[k], minNeighbors);
+    if constexpr (Set::kOmegaValues > 0)
+    {
+      const double t = b.scales[k];
+      double v[Set::kValues], dv[Set::kValues];
+      weightedValues(ball, t, v, dv);
+      Set::shiftWeightedValues(u, uu, t, v, dv);
+      out[k] = Set::fit(v, dv, t, neighborCount(ball), minNeighbors);
+    }
+    else
+    {
+      AggregateMomentsT<Set> moved = ball;
+      shiftMoments(u, uu, moved);
+      out[k] = kernel::fitBallIn(moved, b.scales[k], minNeighbors);
+    }
   }
 }
 
