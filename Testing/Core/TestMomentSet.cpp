@@ -2,7 +2,7 @@
 // every rule a fitted value declares, checked for every value of every set against its point rule summed over the
 // points one by one. A value added to a set, or a set added to the list, is checked here with no new test: its move of
 // origin, its sums over a cell and their gradient, the merge of its cell statistics; and the sphere's moments in the
-// one pass's and the multi-resolution layouts.
+// one pass's and the multi-resolution layouts, and the curvature set's move of its weighted sums.
 #include "gls/AggregateMoments.h"
 #include "gls/CellMoments.h"
 #include "gls/MomentBins.h"
@@ -218,4 +218,49 @@ TEST(MomentSet, OnePassAndMultiresolutionMomentsGiveTheSameWeightedSums)
       EXPECT_NEAR(got[k]->PP, ref[k]->PP, tol);
     }
   }
+}
+
+TEST(MomentSet, TheCurvatureSetMovesItsWeightedSumsAsTheSumsAboutThePoint)
+{
+  using Set = gls::ShapeOperatorMoments;
+  // The CPU multi-resolution kernel keeps its sums about a corner o and, for each scale, moves the weighted sums to p
+  // (shiftWeightedValues): they must be the sums about p of the points in the ball, weighted by w (dv: dw/dt), and the
+  // omega-values by omega = (4/t^2)(1 - d^2/t^2) (dv: 0), as summed point by point.
+  const Points pts = cubeOfPoints(400, gls::Vec3{ 0.0, 0.0, 0.0 }, 0.8, 9);
+  const gls::Vec3 p{ 0.05, -0.02, 0.01 };
+  const double t = 0.5;
+  gls::AggregateMomentsT<Set> aboutO;
+  gls::clearMoments(aboutO);
+  std::vector<double> w(pts.positions.size()), dw(pts.positions.size()), omega(pts.positions.size());
+  for (std::size_t i = 0; i < pts.positions.size(); ++i)
+  {
+    const double d2 = gls::squaredNorm(pts.positions[i] - p);
+    const bool inside = d2 < t * t;
+    w[i] = gls::weightAt(d2, t);
+    dw[i] = gls::weightDerivativeAt(d2, t);
+    omega[i] = inside ? 4.0 / (t * t) * (1.0 - d2 / (t * t)) : 0.0;
+    if (inside)
+    {
+      const gls::Vec3 x = pts.positions[i] - kOrigin;
+      double f[Set::kValues];
+      Set::pointValues(x, gls::squaredNorm(x), pts.normals[i], f);
+      gls::addSampleSums(aboutO, f, d2);
+    }
+  }
+  ASSERT_GT(gls::neighborCount(aboutO), 50.0);
+  Values<Set> v{}, dv{};
+  gls::weightedValues(aboutO, t, v.data(), dv.data());
+  const gls::Vec3 u = kOrigin - p;
+  Set::shiftWeightedValues(u, gls::squaredNorm(u), t, v.data(), dv.data());
+  const Values<Set> byW = summedValues<Set>(pts, p, [&](std::size_t i) { return w[i]; });
+  const Values<Set> byDw = summedValues<Set>(pts, p, [&](std::size_t i) { return dw[i]; });
+  const Values<Set> byOmega = summedValues<Set>(pts, p, [&](std::size_t i) { return omega[i]; });
+  Values<Set> wantV = byW, wantDv = byDw;
+  for (int j = gls::kOffsetOffset; j < gls::kShapeOperatorSquaredPosition; ++j)
+  {
+    wantV[j] = byOmega[j];
+    wantDv[j] = 0.0;
+  }
+  expectValuesNear(v, wantV, 1e-12, "v");
+  expectValuesNear(dv, wantDv, 1e-12, "dv");
 }

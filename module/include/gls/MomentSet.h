@@ -13,7 +13,8 @@
 //   their gradient): what the multi-resolution evaluation needs. Its layout (AggregateMomentsT), the reference walk
 //   (MultiresolutionReferenceWalk.h, the CUDA kernel's loop) and the CPU kernel (src/multiresolution/
 //   MultiresolutionKernelBody.h) take the set and its cells; the pyramid stores the oriented sphere's cells, and
-//   summedCellsOf (MultiresolutionCellSums.h) forms another set's over it by the build's own rule.
+//   summedCellsOf (MultiresolutionCellSums.h) forms another set's over it by the build's own rule. A set with
+//   omega-values also gives shiftWeightedValues (the move of its weighted sums, the CPU kernel applies it per scale).
 //   Testing/Core/TestMomentSet.cpp checks every rule of every value against pointValues.
 #pragma once
 
