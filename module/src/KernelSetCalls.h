@@ -33,20 +33,6 @@ GLS_FORCE_INLINE void fitAllScalesIn(
   }
 }
 
-/// fitBall.
-template <typename Layout>
-GLS_FORCE_INLINE SampleOf<Layout> fitBallIn(const Layout& ball, double t, double minNeighbors)
-{
-  if constexpr (kInlinesSetCalls<typename Layout::Set>)
-  {
-    return fitBallInlined(ball, t, minNeighbors);
-  }
-  else
-  {
-    return fitBall(ball, t, minNeighbors);
-  }
-}
-
 /// cellMoments: the cell's sums, read where they are stored or formed into `formed`.
 template <typename Set>
 GLS_FORCE_INLINE const typename Set::Cell& cellMomentsIn(const MultiresolutionView& v,

@@ -25,8 +25,9 @@ namespace gls
 /// centroid formed about `reference` (a point near them, such as their cube's corner, so that far coordinates lose no
 /// precision). The build stores these for the cells of its lowest summed level and the walks form them for finer
 /// cells, with the same formulas. Inlined into its caller: the CPU kernels' AVX2 builds form the principal
-/// curvatures' cells so (src/KernelSetCalls.h), with fused multiply-adds; the oriented sphere's call
-/// momentsOfPoints, the same left to the compiler, as they always did (their samples keep their bits).
+/// curvatures' cells so (src/KernelSetCalls.h), with fused multiply-adds, where the oriented sphere's are formed in
+/// its out-of-line cellMoments, as they always were (its samples keep their bits); momentsOfPoints is the same, left
+/// to the compiler (the build's summed cells).
 template <typename Set = OrientedSphereMoments>
 GLS_FORCE_INLINE void formCellOfPoints(const StoredPoints& points, std::uint32_t first, std::uint32_t last,
   const Vec3& reference, typename Set::Cell& cell)

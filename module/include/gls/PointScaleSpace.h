@@ -76,8 +76,8 @@ template <typename Layout>
 using SampleOf = typename Layout::Set::Sample;
 
 /// The fit of the ball of scale t from its moments (about the evaluation point): the moment set's fit of its
-/// weighted values. Inlined into its caller (the CPU kernels' AVX2 builds call it so for the principal curvatures'
-/// set: kernel::fitBallIn, src/KernelSetCalls.h); fitBall is the same, left to the compiler.
+/// weighted values. Inlined into its caller (the CPU kernels' AVX2 builds fit the principal curvatures' set so:
+/// fitAllScalesFromBinsInlined, src/KernelSetCalls.h); fitBall is the same, left to the compiler.
 template <typename Layout>
 GLS_FORCE_INLINE SampleOf<Layout> fitBallInlined(const Layout& ball, double t, double minNeighbors)
 {

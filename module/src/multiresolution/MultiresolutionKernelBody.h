@@ -154,7 +154,7 @@ GLS_FORCE_INLINE void fitAllScalesAboutOrigin(const ScaleBinning& b, double minN
     {
       AggregateMomentsT<Set> moved = ball;
       shiftMoments(u, uu, moved);
-      out[k] = kernel::fitBallIn(moved, b.scales[k], minNeighbors);
+      out[k] = fitBall(moved, b.scales[k], minNeighbors);
     }
   }
 }
