@@ -373,6 +373,29 @@ TEST(PcdParser, AsciiBinaryAndCompressedGiveTheSameCloud)
   EXPECT_TRUE(gls::parsePcd(plain.data(), plain.size()).viewpoints.empty());
 }
 
+TEST(PcdParser, IntegerColoursAreTheirLowThirtyTwoBits)
+{
+  // rgba as a signed I 4 is negative where alpha >= 128 (0xff102030 here); a U 8 rgb keeps its colour in the low bits.
+  const std::int32_t rgba = static_cast<std::int32_t>(0xff102030u);
+  const std::uint64_t wide = 0x1234500ff0000ull;
+  std::string binary = "FIELDS x y z rgba\nSIZE 4 4 4 4\nTYPE F F F I\nPOINTS 1\nDATA binary\n";
+  const float xyz[3] = { 1, 2, 3 };
+  binary += std::string(reinterpret_cast<const char*>(xyz), 12) + std::string(reinterpret_cast<const char*>(&rgba), 4);
+  std::string wideFile = "FIELDS x y z rgb\nSIZE 4 4 4 8\nTYPE F F F U\nPOINTS 1\nDATA binary\n";
+  wideFile += std::string(reinterpret_cast<const char*>(xyz), 12) + std::string(reinterpret_cast<const char*>(&wide), 8);
+  const std::string ascii = "FIELDS x y z rgba\nSIZE 4 4 4 4\nTYPE F F F I\nPOINTS 1\nDATA ascii\n1 2 3 " +
+    std::to_string(rgba) + "\n";
+  const std::vector<unsigned char> expected[3] = { { 0x10, 0x20, 0x30 }, { 0xff, 0, 0 }, { 0x10, 0x20, 0x30 } };
+  int k = 0;
+  for (const std::string& file : { binary, wideFile, ascii })
+  {
+    const gls::PointText t = gls::parsePcd(file.data(), file.size());
+    ASSERT_EQ(t.error, "") << k;
+    EXPECT_EQ(t.colors, expected[k]) << k;
+    ++k;
+  }
+}
+
 TEST(PcdParser, DamagedFilesAreRefusedWithWhatIsWrong)
 {
   const auto errorOf = [](const std::string& file) { return gls::parsePcd(file.data(), file.size()).error; };

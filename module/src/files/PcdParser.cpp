@@ -294,6 +294,19 @@ std::string layOutFields(PcdHeader& h, PcdRoles& r)
   return r.x < 0 || r.y < 0 || r.z < 0 ? "the PCD file has no x, y and z fields" : "";
 }
 
+/// The low 32 bits of the integer value (two's complement for negative values), as a packed colour reads them; 0 for
+/// a value that is not finite.
+std::uint32_t lowThirtyTwoBits(double integer)
+{
+  if (!std::isfinite(integer))
+  {
+    return 0;
+  }
+  constexpr double twoTo32 = 4294967296.0;
+  const double low = std::fmod(integer, twoTo32); // exact for integers; in (-2^32, 2^32)
+  return static_cast<std::uint32_t>(low < 0 ? low + twoTo32 : low);
+}
+
 /// The values of every point of ascii data, field-major in v (the first value of each field); "" or what is wrong.
 std::string readAsciiValues(
   const char* data, std::size_t size, const PcdHeader& h, const PcdRoles& r, std::vector<double>& v)
@@ -323,9 +336,11 @@ std::string readAsciiValues(
       }
       if (static_cast<int>(k) == r.rgb)
       {
-        // Packed colours in text: PCL writes the float's bits as an integer (or the float itself).
-        const std::uint32_t bits = value == std::floor(value) && value >= 0 && value < 4294967296.0
-          ? static_cast<std::uint32_t>(value)
+        // Packed colours in text: PCL writes the float's bits as an integer (or the float itself); an integer
+        // field's value is its bits.
+        const bool integral = std::isfinite(value) && value == std::floor(value);
+        const std::uint32_t bits = integral && (h.fields[k].type != 'F' || (value >= 0 && value < 4294967296.0))
+          ? lowThirtyTwoBits(value)
           : [&] { float f = static_cast<float>(value); std::uint32_t b; std::memcpy(&b, &f, 4); return b; }();
         value = static_cast<double>(bits);
       }
@@ -395,7 +410,9 @@ std::string readBinaryValues(
   return {};
 }
 
-/// The packed 0x00RRGGBB colour of a value of the rgb field (a float's bits, for PCL's F rgb in binary data).
+/// The packed 0x00RRGGBB colour of a value of the rgb field: a float's bits for PCL's F rgb in binary data, else the
+/// integer's low 32 bits (two's complement: an rgba stored as I 4 is negative where alpha >= 128; a U 8 value may
+/// exceed 32 bits). Text values arrive already as bits (readAsciiValues).
 std::uint32_t packedColour(double value, const PcdField& f, const std::string& encoding)
 {
   if (f.type == 'F' && encoding != "ascii")
@@ -405,7 +422,7 @@ std::uint32_t packedColour(double value, const PcdField& f, const std::string& e
     std::memcpy(&bits, &fv, 4);
     return bits;
   }
-  return static_cast<std::uint32_t>(value);
+  return lowThirtyTwoBits(value);
 }
 
 /// The cloud of the field-major values v: points, the viewpoint, normals, intensity, colours, the other fields.
