@@ -88,12 +88,22 @@ GLS_INLINE double offsetDotNormalOf(const PyramidCell& c)
   return c.offsetNormal[0] + c.offsetNormal[4] + c.offsetNormal[8];
 }
 
+/// out = s v for the symmetric 3x3 s stored as xx, xy, xz, yy, yz, zz, written out (the cells' second moments and
+/// the curvature set's third moments contracted with one direction).
+GLS_FORCE_INLINE void symmetricTimes(const double* s, const double* v, double* out)
+{
+  out[0] = s[0] * v[0] + s[1] * v[1] + s[2] * v[2];
+  out[1] = s[1] * v[0] + s[3] * v[1] + s[4] * v[2];
+  out[2] = s[2] * v[0] + s[4] * v[1] + s[5] * v[2];
+}
+
 /// (sum y y^T) v.
 GLS_INLINE Vec3 offsetOffsetTimes(const PyramidCell& c, const Vec3& v)
 {
-  const double* s = c.offsetOffset;
-  return { s[0] * v.x + s[1] * v.y + s[2] * v.z, s[1] * v.x + s[3] * v.y + s[4] * v.z,
-    s[2] * v.x + s[4] * v.y + s[5] * v.z };
+  const double in[3] = { v.x, v.y, v.z };
+  double out[3];
+  symmetricTimes(c.offsetOffset, in, out);
+  return { out[0], out[1], out[2] };
 }
 
 /// (sum y n^T) v = sum y (n . v).

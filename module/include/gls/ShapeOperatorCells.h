@@ -155,14 +155,6 @@ GLS_INLINE void addChildToCurvatureCell(CurvatureCell& cell, const CurvatureCell
   }
 }
 
-/// s v for the symmetric 3x3 s stored as xx, xy, xz, yy, yz, zz (pairIndex), written out.
-GLS_FORCE_INLINE void symmetricTimes(const double* s, const double* v, double* out)
-{
-  out[0] = v[0] * s[0] + v[1] * s[1] + v[2] * s[2];
-  out[1] = v[0] * s[1] + v[1] * s[3] + v[2] * s[4];
-  out[2] = v[0] * s[2] + v[1] * s[4] + v[2] * s[5];
-}
-
 /// The omega-values' sums over a cell's points in coordinates about an origin at -x from its centroid (x = c - o):
 /// F = sum f(x + y_i, n_i), and their gradient along `dir`, H = sum (dir . y_i) f(x + y_i, n_i). The third moments
 /// are contracted with dir once (K, L, T) and shared by the values that read them; every index is a constant (the
