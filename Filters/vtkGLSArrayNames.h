@@ -49,13 +49,19 @@ constexpr const char* MinimumNeighbors = "GLSMinimumNeighbors"; // field data: t
 constexpr const char* Tiles = "GLSTiles";                 // field data: spatial tiles of a fit cut to its MemoryBudget
 constexpr const char* CompactNormals = "GLSCompactNormals"; // field data: 1 where a fit kept its normals compact
 constexpr const char* CoincidentPoints = "GLSCoincidentPoints"; // field data: input points merged into another
+constexpr const char* NonFinitePoints = "GLSNonFinitePoints"; // field data: points with a non-finite coordinate
 constexpr const char* AutomaticArray = "(automatic)"; // an array selection that lets the filter choose
 constexpr const char* Bandwidth = "GLSBandwidth";          // adaptive bandwidth (length)
 constexpr const char* RawBandwidth = "GLSRawBandwidth";    // adaptive bandwidth before smoothing (length)
 constexpr const char* Displacement = "GLSDisplacement";    // projection: distance moved (length)
 constexpr const char* ProjectionIterations = "GLSProjectionIterations"; // projection: fits made per point
 constexpr const char* Colors = "RGB";                      // point cloud reader: 0-255 colours (as VTK's PLY reader)
-constexpr const char* ScannerPosition = "ScannerPosition"; // point cloud reader (PTX): the position that saw a point
+constexpr const char* ScannerPosition = "ScannerPosition"; // readers: the scanner that saw a point (point data: PTX)
+                                                           // or every point (field data, one tuple: a PCD's VIEWPOINT)
+constexpr const char* Orientation = "GLSOrientation";      // field data of the normal estimation: how it oriented
+constexpr const char* ScanAngle = "ScanAngle";             // LAS reader: degrees from nadir
+constexpr const char* NumberOfReturns = "NumberOfReturns"; // LAS reader: returns of the point's pulse
+constexpr const char* Classification = "Classification";   // LAS reader: the ASPRS class (2: ground)
 constexpr const char* Intensity = "Intensity";             // point cloud reader: a scanner's return intensity
 }
 

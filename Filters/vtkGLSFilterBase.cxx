@@ -482,6 +482,32 @@ bool vtkGLSFilterBase::BlankStrayPoints(
   return true;
 }
 
+void vtkGLSFilterBase::LeaveOutNonFinitePoints(vtkGLSRun& run)
+{
+  std::vector<double>& xyz = run.Cloud.Points;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  long long count = 0;
+  for (std::size_t i = 0; i < run.Cloud.Owned; ++i)
+  {
+    double* p = xyz.data() + 3 * i;
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+    {
+      p[0] = p[1] = p[2] = nan; // one rule for NaN and infinite rows: in no neighbourhood, no bound
+      ++count;
+    }
+  }
+  run.NonFinitePoints = count;
+  const double all = run.Distributed.Sum(static_cast<double>(count));
+  if (all > 0.0 && run.Distributed.GetRank() == 0)
+  {
+    const double total = run.Distributed.Sum(static_cast<double>(run.Cloud.Owned));
+    vtkWarningMacro(<< static_cast<long long>(all) << " of the " << static_cast<long long>(total)
+                    << " input points have a non-finite coordinate (missing returns of a scanner: NaN or "
+                       "infinite): left out of every neighbourhood and of the bounds, their results NaN. Field data "
+                       "GLSNonFinitePoints counts them (those of this process's piece in a distributed run).");
+  }
+}
+
 bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
 {
   if (!this->DistributeRun(run))
@@ -502,6 +528,7 @@ bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
     CopyTriples(input->GetPoints()->GetData(), n, xyz.data());
   }
   run.Cloud.Owned = static_cast<std::size_t>(n);
+  this->LeaveOutNonFinitePoints(run);
   if (!BlankStrayPoints(dist, xyz, run.StrayIds))
   {
     vtkErrorMacro("The search for stray points failed to communicate between the processes.");
@@ -555,7 +582,8 @@ bool vtkGLSFilterBase::ReportProgress(double fraction, double begin, double end)
   return this->GetAbortExecute() != 0;
 }
 
-vtkDataArray* vtkGLSFilterBase::SelectNormals(int index, vtkDataSet* input, std::string& problem, bool& absent)
+vtkDataArray* vtkGLSFilterBase::SelectNormals(
+  int index, vtkDataSet* input, std::string& problem, bool& absent, const char* what)
 {
   absent = false;
   vtkPointData* pd = input->GetPointData();
@@ -567,20 +595,20 @@ vtkDataArray* vtkGLSFilterBase::SelectNormals(int index, vtkDataSet* input, std:
     vtkDataArray* a = pd->GetArray(name);
     if (!a)
     {
-      problem = std::string("the selected normals array '") + name + "' is not a point array of the input";
+      problem = std::string("the selected ") + what + " array '" + name + "' is not a point array of the input";
       return nullptr;
     }
     if (a->GetNumberOfComponents() != 3 || a->GetNumberOfTuples() != n)
     {
-      problem = std::string("the normals array '") + name + "' has " + std::to_string(a->GetNumberOfComponents()) +
+      problem = std::string("the ") + what + " array '" + name + "' has " + std::to_string(a->GetNumberOfComponents()) +
         " components and " + std::to_string(a->GetNumberOfTuples()) + " tuples; expected 3 components and " +
         std::to_string(n) + " tuples (one per point)";
       return nullptr;
     }
     if (!IsFloatingVector(a))
     {
-      problem = std::string("the selected normals array '") + name + "' holds " + a->GetDataTypeAsString() +
-        " values (colours or labels?): normals are floating-point; select a float or double array";
+      problem = std::string("the selected ") + what + " array '" + name + "' holds " + a->GetDataTypeAsString() +
+        " values (colours or labels?): " + what + " arrays are floating-point; select a float or double array";
       return nullptr;
     }
     return a;
@@ -727,6 +755,13 @@ void vtkGLSFilterBase::WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd)
     compact->SetName(vtkGLSArrayNames::CompactNormals);
     compact->InsertNextValue(1);
     fd->AddArray(compact);
+  }
+  if (run.NonFinitePoints > 0)
+  {
+    vtkNew<vtkIdTypeArray> nonFinite;
+    nonFinite->SetName(vtkGLSArrayNames::NonFinitePoints);
+    nonFinite->InsertNextValue(static_cast<vtkIdType>(run.NonFinitePoints));
+    fd->AddArray(nonFinite);
   }
   if (run.CoincidentPoints > 0)
   {

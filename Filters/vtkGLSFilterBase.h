@@ -180,8 +180,9 @@ protected:
   /// "(automatic)"), the active normals, else the one floating-point 3-component array whose name says normals
   /// ("normal" or "nrm" in it, any case). Null with the reason in `problem` otherwise (several candidates, none,
   /// colours, ...); `absent` tells the case where the input has no candidate at all. A selection of the wrong
-  /// shape is a problem too.
-  vtkDataArray* SelectNormals(int index, vtkDataSet* input, std::string& problem, bool& absent);
+  /// shape is a problem too. `what` names the array in the problems ("normals", "viewpoint").
+  vtkDataArray* SelectNormals(
+    int index, vtkDataSet* input, std::string& problem, bool& absent, const char* what = "normals");
 
   /// Warns (once per run) when the lengths of given normals are far from 1: the count of finite non-zero normals
   /// whose length is off by more than 1e-3 (they are normalized; such a count suggests another array was meant).
@@ -210,10 +211,11 @@ protected:
     const vtkGLSDistributedCloud& dist, std::vector<double>& xyz, std::vector<std::uint64_t>& stray);
 
   /// Writes what the run reports in the output's field data: GLSGhostPoints (the ghosts this rank used, in a
-  /// distributed run that exchanged them), GLSStrayPoints (stray points left out, when some were), GLSTiles (the
-  /// spatial tiles of a fit cut to its MemoryBudget, when more than one), GLSCompactNormals (1 where the fit kept its
-  /// normals compact to meet the MemoryBudget), GLSCoincidentPoints (points merged into another, when some were) and GLSBackend (where the fits ran,
-  /// when a fit ran).
+  /// distributed run that exchanged them), GLSStrayPoints (stray points left out, when some were),
+  /// GLSNonFinitePoints (points with a non-finite coordinate left out, when some were), GLSTiles (the spatial tiles
+  /// of a fit cut to its MemoryBudget, when more than one), GLSCompactNormals (1 where the fit kept its normals compact
+  /// to meet the MemoryBudget), GLSCoincidentPoints (points merged into another, when some were) and GLSBackend
+  /// (where the fits ran, when a fit ran).
   static void WriteRunFieldData(const vtkGLSRun& run, vtkFieldData* fd);
 
   /// Copies the first n tuples of `triples` (3 components, any value type) into out (3 n doubles): one block copy
@@ -241,6 +243,11 @@ private:
   /// The distributed context, the input's points (run.Cloud, without normals), the check that some process has
   /// points, and the bounds of the whole input.
   bool BeginRun(vtkGLSRun& run);
+  /// Makes every row of run.Cloud's owned points with a non-finite coordinate (a scanner's missing return: NaN, or
+  /// an infinity) NaN in all three, so that it joins no neighbourhood, no bound and gets NaN results; counts them
+  /// (run.NonFinitePoints, written to the field data) and, when some piece has any, says so in one warning (rank 0).
+  /// Collective.
+  void LeaveOutNonFinitePoints(vtkGLSRun& run);
 
   vtkGLSFilterBase(const vtkGLSFilterBase&) = delete;
   void operator=(const vtkGLSFilterBase&) = delete;

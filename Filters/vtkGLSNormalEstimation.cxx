@@ -8,21 +8,26 @@
 #include "vtkDataSetAttributes.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "gls/CoincidentPoints.h"
 #include "gls/NormalEstimation.h"
+#include "gls/OrientationChoice.h"
 #include "gls/Planarity.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -33,7 +38,7 @@ vtkGLSNormalEstimation::vtkGLSNormalEstimation()
   : NeighborhoodType(K_NEAREST)
   , NumberOfNeighbors(16)
   , Radius(0.0)
-  , Orientation(MINIMUM_SPANNING_TREE)
+  , Orientation(AUTOMATIC)
   , OrientationPoint{ 0.0, 0.0, 0.0 }
   , UpDirection{ 0.0, 0.0, 1.0 }
   , GraphNeighbors(10)
@@ -58,9 +63,10 @@ constexpr std::size_t kAutomaticRadiusSamples = 10000;
 int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
 {
   gls::NormalEstimationSettings settings;
+  OrientationPlan plan;
   std::vector<double> reference;
-  if (!this->CheckRun(run) || !this->ResolveSettings(run, settings) ||
-    !this->GatherReference(run, reference, settings) ||
+  if (!this->CheckRun(run) || !this->PlanOrientation(run, plan) ||
+    (this->ResolveSettings(run, plan, settings), !this->GatherReference(run, plan, reference, settings)) ||
     !this->AgreeToContinue(run, this->CheckMemoryBudget(this->NeededBytes(run, settings, reference),
                                   "the normal estimation",
                                   "Use fewer NumberOfNeighbors or GraphNeighbors, or raise MemoryBudget.")))
@@ -84,7 +90,7 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
       return status;
     }
   }
-  this->WriteNormals(run, settings, result);
+  this->WriteNormals(run, settings, plan, result);
   this->UpdateProgress(1.0);
   return COMPLETED;
 }
@@ -117,61 +123,206 @@ bool vtkGLSNormalEstimation::CheckRun(const vtkGLSRun& run)
   return true;
 }
 
-bool vtkGLSNormalEstimation::ResolveSettings(const vtkGLSRun& run, gls::NormalEstimationSettings& settings)
+namespace
+{
+
+/// "(x, y, z)" of a point or direction.
+std::string Triple(const double* v)
+{
+  std::ostringstream s;
+  s.precision(10);
+  s << "(" << v[0] << ", " << v[1] << ", " << v[2] << ")";
+  return s.str();
+}
+
+/// The values of a point array of n tuples (one component) in type T, or empty when the input has no such array.
+template <typename T, typename Array>
+std::vector<T> ValuesNamed(vtkPointSet* input, const char* name)
+{
+  vtkDataArray* a = input->GetPointData()->GetArray(name);
+  const vtkIdType n = input->GetNumberOfPoints();
+  std::vector<T> values;
+  if (!a || a->GetNumberOfComponents() != 1 || a->GetNumberOfTuples() != n)
+  {
+    return values;
+  }
+  values.resize(static_cast<std::size_t>(n));
+  if (auto* typed = Array::FastDownCast(a))
+  {
+    std::copy(typed->GetPointer(0), typed->GetPointer(0) + n, values.begin());
+    return values;
+  }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    // Another type's value as T; out of T's range (a NaN included): T's largest, which no rule takes for evidence.
+    const double v = a->GetComponent(i, 0);
+    const bool inRange = v >= static_cast<double>(std::numeric_limits<T>::lowest()) &&
+      v <= static_cast<double>(std::numeric_limits<T>::max());
+    values[static_cast<std::size_t>(i)] = inRange ? static_cast<T>(v) : std::numeric_limits<T>::max();
+  }
+  return values;
+}
+
+} // namespace
+
+bool vtkGLSNormalEstimation::PlanOrientation(const vtkGLSRun& run, OrientationPlan& plan)
+{
+  plan = OrientationPlan();
+  plan.Mode = this->Orientation;
+  std::copy(this->OrientationPoint, this->OrientationPoint + 3, plan.Point);
+  std::copy(this->UpDirection, this->UpDirection + 3, plan.Up);
+  const bool towards = plan.Mode == TOWARDS_POINT || plan.Mode == AWAY_FROM_POINT;
+  if (towards && !(std::isfinite(plan.Point[0]) && std::isfinite(plan.Point[1]) && std::isfinite(plan.Point[2])))
+  {
+    vtkErrorMacro("OrientationPoint " << Triple(plan.Point) << " must be finite (" << (plan.Mode == TOWARDS_POINT ?
+                  "TOWARDS_POINT" : "AWAY_FROM_POINT") << " orientation): the side of every normal is taken from it.");
+    return false;
+  }
+  if (plan.Mode == UP || plan.Mode == UP_ALONG_SPANNING_TREE)
+  {
+    const double* u = plan.Up;
+    const double length = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    if (!(length > 0.0) || !std::isfinite(length))
+    {
+      vtkErrorMacro("UpDirection " << Triple(u) << " must be a finite direction, not zero ("
+                                   << (plan.Mode == UP ? "UP" : "UP_ALONG_SPANNING_TREE") << " orientation).");
+      return false;
+    }
+  }
+  if (plan.Mode != AUTOMATIC)
+  {
+    switch (plan.Mode)
+    {
+      case NONE: plan.Report = "none (the eigen solver's sign)"; break;
+      case TOWARDS_POINT: plan.Report = "towards the point " + Triple(plan.Point); break;
+      case AWAY_FROM_POINT: plan.Report = "away from the point " + Triple(plan.Point); break;
+      case MINIMUM_SPANNING_TREE: plan.Report = "minimum spanning tree, outward"; break;
+      case AGREE_WITH_EXISTING: plan.Report = "agreeing with the existing normals"; break;
+      case TOWARDS_VIEWPOINT_ARRAY: plan.Report = "towards each point's viewpoint (the viewpoint array)"; break;
+      case UP: plan.Report = "up " + Triple(plan.Up) + ", point by point"; break;
+      default: plan.Report = "up " + Triple(plan.Up) + ", the walls along the minimum spanning tree"; break;
+    }
+    return true;
+  }
+  // AUTOMATIC: what the input says of its scanners, over every process.
+  vtkPointSet* input = run.Input;
+  const vtkGLSDistributedCloud& dist = run.Distributed;
+  const vtkIdType n = input->GetNumberOfPoints();
+  vtkDataArray* scanners = input->GetPointData()->GetArray(vtkGLSArrayNames::ScannerPosition);
+  const bool hasScanners = scanners && scanners->GetNumberOfComponents() == 3 && scanners->GetNumberOfTuples() == n &&
+    (scanners->GetDataType() == VTK_FLOAT || scanners->GetDataType() == VTK_DOUBLE);
+  const bool everyScanner = dist.AllTrue(hasScanners || n == 0) && dist.Sum(hasScanners ? 1.0 : 0.0) > 0.0;
+  double sensor[3] = { 0.0, 0.0, 0.0 };
+  vtkDataArray* fileSensor = input->GetFieldData()->GetArray(vtkGLSArrayNames::ScannerPosition);
+  bool hasSensor = fileSensor && fileSensor->GetNumberOfComponents() == 3 && fileSensor->GetNumberOfTuples() == 1;
+  if (hasSensor)
+  {
+    fileSensor->GetTuple(0, sensor);
+    hasSensor = std::isfinite(sensor[0]) && std::isfinite(sensor[1]) && std::isfinite(sensor[2]);
+  }
+  hasSensor = dist.AllTrue(hasSensor);
+  const std::vector<float> angle = ValuesNamed<float, vtkFloatArray>(input, vtkGLSArrayNames::ScanAngle);
+  const std::vector<std::uint8_t> returns =
+    ValuesNamed<std::uint8_t, vtkUnsignedCharArray>(input, vtkGLSArrayNames::NumberOfReturns);
+  const std::vector<std::uint8_t> classes =
+    ValuesNamed<std::uint8_t, vtkUnsignedCharArray>(input, vtkGLSArrayNames::Classification);
+  std::vector<unsigned char> finite(static_cast<std::size_t>(n));
+  for (std::size_t i = 0; i < finite.size(); ++i)
+  {
+    finite[i] = std::isfinite(run.Cloud.Points[3 * i]) ? 1 : 0; // a left-out row is NaN in all three
+  }
+  gls::LidarEvidence mine, all;
+  gls::countLidarEvidence(angle.empty() ? nullptr : angle.data(), returns.empty() ? nullptr : returns.data(),
+    classes.empty() ? nullptr : classes.data(), finite.data(), finite.size(), mine);
+  all.points = dist.Sum(mine.points);
+  all.hasScanAngle = dist.Sum(mine.hasScanAngle ? 1.0 : 0.0) > 0.0;
+  all.nonZeroAngle = dist.Sum(mine.nonZeroAngle);
+  all.angleBeyondSwath = dist.Sum(mine.angleBeyondSwath);
+  all.hasReturns = dist.Sum(mine.hasReturns ? 1.0 : 0.0) > 0.0;
+  all.multipleReturns = dist.Sum(mine.multipleReturns);
+  all.hasClasses = dist.Sum(mine.hasClasses ? 1.0 : 0.0) > 0.0;
+  all.ground = dist.Sum(mine.ground);
+  const gls::OrientationChoice choice = gls::chooseOrientation(everyScanner, hasSensor ? sensor : nullptr, all);
+  plan.Report = "automatic: " + choice.reason;
+  switch (choice.source)
+  {
+    case gls::OrientationSource::ScannerPositions:
+      plan.Mode = TOWARDS_VIEWPOINT_ARRAY;
+      plan.ViewpointArray = vtkGLSArrayNames::ScannerPosition;
+      break;
+    case gls::OrientationSource::SensorPosition:
+      plan.Mode = TOWARDS_POINT;
+      std::copy(sensor, sensor + 3, plan.Point);
+      break;
+    case gls::OrientationSource::Airborne:
+      plan.Mode = UP_ALONG_SPANNING_TREE;
+      plan.Up[0] = plan.Up[1] = 0.0;
+      plan.Up[2] = 1.0;
+      break;
+    default:
+      plan.Mode = MINIMUM_SPANNING_TREE;
+      break;
+  }
+  return true;
+}
+
+void vtkGLSNormalEstimation::ResolveSettings(
+  const vtkGLSRun& run, const OrientationPlan& plan, gls::NormalEstimationSettings& settings)
 {
   // The core keeps the neighbourhoods' reach for the GLS refinement only, and the graph's degrees for the
   // orientation across pieces only.
   settings.reachWanted = this->Refinement == GLS_REFINEMENT;
   settings.graphDegreeWanted = run.Distributed.IsParallel();
-  settings.neighborhood = static_cast<gls::NeighborhoodType>(this->NeighborhoodType);
+  settings.neighborhood = this->NeighborhoodType == RADIUS ? gls::NeighborhoodType::Radius
+                                                           : gls::NeighborhoodType::KNearest;
   settings.k = this->NumberOfNeighbors;
   settings.radius = this->Radius;
-  settings.orientation = static_cast<gls::NormalOrientation>(this->Orientation);
-  settings.viewpoint = { this->OrientationPoint[0], this->OrientationPoint[1], this->OrientationPoint[2] };
-  if (this->Orientation == UP)
+  switch (plan.Mode)
   {
-    const double* u = this->UpDirection;
-    const double length = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-    if (!(length > 0.0) || !std::isfinite(length))
-    {
-      vtkErrorMacro("UpDirection (" << u[0] << ", " << u[1] << ", " << u[2]
-                                    << ") must be a finite direction, not zero (UP orientation).");
-      return false;
-    }
-    settings.orientation = gls::NormalOrientation::Up;
-    settings.up = { u[0], u[1], u[2] };
+    case NONE: settings.orientation = gls::NormalOrientation::None; break;
+    case TOWARDS_POINT: settings.orientation = gls::NormalOrientation::TowardsPoint; break;
+    case AWAY_FROM_POINT: settings.orientation = gls::NormalOrientation::AwayFromPoint; break;
+    case MINIMUM_SPANNING_TREE: settings.orientation = gls::NormalOrientation::MinimumSpanningTree; break;
+    case UP: settings.orientation = gls::NormalOrientation::Up; break;
+    case UP_ALONG_SPANNING_TREE: settings.orientation = gls::NormalOrientation::UpAlongSpanningTree; break;
+    default: settings.orientation = gls::NormalOrientation::AgreeWithReference; break; // GatherReference's
   }
+  settings.viewpoint = { plan.Point[0], plan.Point[1], plan.Point[2] };
+  settings.up = { plan.Up[0], plan.Up[1], plan.Up[2] };
   settings.graphNeighbors = this->GraphNeighbors;
   settings.minimumSpread = this->MinimumSpread;
   settings.maximumGrowth = this->MaximumGrowth;
   settings.parallel.threads = this->NumberOfThreads;
   settings.parallel.progress = [this](double f) { return this->ReportProgress(f, 0.0, 0.9); };
-  return true;
 }
 
-bool vtkGLSNormalEstimation::GatherReference(
-  const vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings& settings)
+bool vtkGLSNormalEstimation::GatherReference(const vtkGLSRun& run, const OrientationPlan& plan,
+  std::vector<double>& reference, gls::NormalEstimationSettings& settings)
 {
   // AGREE_WITH_EXISTING follows the selected normals; TOWARDS_VIEWPOINT_ARRAY follows the directions from each point
   // to its viewpoint (the same rule: n . reference >= 0).
-  if (this->Orientation != AGREE_WITH_EXISTING && this->Orientation != TOWARDS_VIEWPOINT_ARRAY)
+  if (plan.Mode != AGREE_WITH_EXISTING && plan.Mode != TOWARDS_VIEWPOINT_ARRAY)
   {
     return true;
   }
   vtkPointSet* input = run.Input;
   const vtkIdType n = input->GetNumberOfPoints();
   const vtkGLSDistributedCloud& dist = run.Distributed;
-  const bool viewpoints = this->Orientation == TOWARDS_VIEWPOINT_ARRAY;
+  const bool viewpoints = plan.Mode == TOWARDS_VIEWPOINT_ARRAY;
   std::string problem;
   bool absent = false;
   vtkDataArray* existing = nullptr;
-  if (n > 0 && viewpoints && !this->SelectedArrayName(1))
+  if (n > 0 && !plan.ViewpointArray.empty())
+  {
+    existing = input->GetPointData()->GetArray(plan.ViewpointArray.c_str()); // AUTOMATIC checked it
+  }
+  else if (n > 0 && viewpoints && !this->SelectedArrayName(1))
   {
     problem = "no viewpoint array is selected"; // no automatic choice: any 3-vector array could be taken
   }
   else if (n > 0)
   {
-    existing = this->SelectNormals(viewpoints ? 1 : 0, input, problem, absent);
+    existing = this->SelectNormals(viewpoints ? 1 : 0, input, problem, absent, viewpoints ? "viewpoint" : "normals");
   }
   if (!dist.AllTrue(existing || (dist.IsParallel() && n == 0)))
   {
@@ -264,8 +415,8 @@ double vtkGLSNormalEstimation::NeededBytes(
   return std::max(estimating, writing) + static_cast<double>(reference.size()) * sizeof(double);
 }
 
-void vtkGLSNormalEstimation::WriteNormals(
-  vtkGLSRun& run, const gls::NormalEstimationSettings& settings, const gls::NormalEstimationResult& result)
+void vtkGLSNormalEstimation::WriteNormals(vtkGLSRun& run, const gls::NormalEstimationSettings& settings,
+  const OrientationPlan& plan, const gls::NormalEstimationResult& result)
 {
   const vtkIdType n = run.Input->GetNumberOfPoints();
   const vtkGLSDistributedCloud& dist = run.Distributed;
@@ -322,13 +473,17 @@ void vtkGLSNormalEstimation::WriteNormals(
     radius->InsertNextValue(settings.radius);
     run.Output->GetFieldData()->AddArray(radius);
   }
+  vtkNew<vtkStringArray> orientation;
+  orientation->SetName(vtkGLSArrayNames::Orientation);
+  orientation->InsertNextValue(plan.Report);
+  run.Output->GetFieldData()->AddArray(orientation);
   this->WriteRunFieldData(run, run.Output->GetFieldData());
 }
 
 bool vtkGLSNormalEstimation::EstimateDistributed(vtkGLSRun& run, std::vector<double>& reference,
   gls::NormalEstimationSettings& settings, gls::NormalEstimationResult& result)
 {
-  const bool mst = settings.orientation == gls::NormalOrientation::MinimumSpanningTree;
+  const bool mst = gls::orientsAlongSpanningTree(settings.orientation);
   std::vector<int> degrees;
   return this->EstimateWithGhosts(run, reference, settings, result, degrees) &&
     (!mst || this->OrientAcrossPieces(run, settings, degrees, result));
@@ -362,7 +517,7 @@ bool vtkGLSNormalEstimation::EstimateWithGhosts(vtkGLSRun& run, std::vector<doub
     settings.reference = reference.data();
   }
   gls::NormalEstimationSettings local = settings;
-  if (settings.orientation == gls::NormalOrientation::MinimumSpanningTree)
+  if (gls::orientsAlongSpanningTree(settings.orientation))
   {
     local.orientation = gls::NormalOrientation::None; // oriented over the whole cloud (OrientAcrossPieces)
   }
@@ -414,8 +569,9 @@ std::vector<double> orientGatheredRows(const std::vector<double>& all, const gls
   std::vector<double> normals = gls::distinctValues(shared, sortedNormals.data(), 3);
   const std::vector<double> degreeValues = gls::distinctValues(shared, sortedDegrees.data(), 1);
   const std::vector<int> degrees(degreeValues.begin(), degreeValues.end());
+  const bool up = settings.orientation == gls::NormalOrientation::UpAlongSpanningTree;
   gls::orientByMinimumSpanningTree(xyz.data(), xyz.size() / 3, settings.graphNeighbors, normals.data(),
-    settings.parallel, components, degrees.data());
+    settings.parallel, components, degrees.data(), up ? &settings.up : nullptr);
   gls::scatterToCopies(shared, normals.data(), 3, sortedNormals.data());
   std::vector<double> oriented(3 * total);
   for (std::size_t j = 0; j < total; ++j)
@@ -512,7 +668,7 @@ void vtkGLSNormalEstimation::DescribeSettings(std::vector<SettingRange>& setting
   settings.push_back({ "RefinementScale", static_cast<double>(this->RefinementScale), static_cast<double>(0.5), static_cast<double>(10.0) });
   settings.push_back({ "MinimumSpread", static_cast<double>(this->MinimumSpread), static_cast<double>(0.0), static_cast<double>(1.0) });
   settings.push_back({ "MaximumGrowth", static_cast<double>(this->MaximumGrowth), static_cast<double>(1.0), static_cast<double>(64.0) });
-  settings.push_back({ "Orientation", static_cast<double>(this->Orientation), static_cast<double>(NONE), static_cast<double>(UP) });
+  settings.push_back({ "Orientation", static_cast<double>(this->Orientation), static_cast<double>(NONE), static_cast<double>(AUTOMATIC) });
   settings.push_back({ "GraphNeighbors", static_cast<double>(this->GraphNeighbors), static_cast<double>(1), static_cast<double>(1000) });
   settings.push_back({ "OutputPrecision", static_cast<double>(this->OutputPrecision),
     static_cast<double>(vtkAlgorithm::SINGLE_PRECISION), static_cast<double>(vtkAlgorithm::DOUBLE_PRECISION) });

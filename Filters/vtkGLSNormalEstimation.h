@@ -8,21 +8,34 @@
  * on NumberOfThreads threads (bitwise identical results for any count).
  *
  * Orientation (PCA gives a direction, not a side):
+ * - AUTOMATIC (default): what the file says of how it was scanned decides (gls::chooseOrientation, the one place of
+ *   that rule; docs/normals.md): each point's own scanner position, a point array `ScannerPosition` (PTX scans,
+ *   merged scans) -> TOWARDS_VIEWPOINT_ARRAY with it; else the file's one sensor position, a field-data array
+ *   `ScannerPosition` (a PCD's VIEWPOINT) -> TOWARDS_POINT it; else airborne lidar, as the point arrays `ScanAngle`,
+ *   `NumberOfReturns` and `Classification` of a LAS file show it (scan angles recorded within a swath, multiple
+ *   returns, or ground classified, each at 1% of the points or more) -> UP_ALONG_SPANNING_TREE; else
+ *   MINIMUM_SPANNING_TREE. The choice and why go to the field data `GLSOrientation` (every mode writes what it did).
  * - NONE: the eigen solver's sign (deterministic but not consistent).
  * - TOWARDS_POINT / AWAY_FROM_POINT: facing OrientationPoint (e.g. the scanner position) or away from it.
- * - MINIMUM_SPANNING_TREE (default): Hoppe et al. 1992; the orientation is propagated along the minimum spanning tree
+ * - MINIMUM_SPANNING_TREE: Hoppe et al. 1992; the orientation is propagated along the minimum spanning tree
  *   of the GraphNeighbors-nearest-neighbour graph with cost 1 - |n_i . n_j|; every connected component starts from
  *   its point farthest from its centroid, oriented away from the centroid (outward on closed shapes); then, on a
  *   terrain-like cloud (its height at most half its smaller horizontal extent, its components' normals with a mean
  *   z of size at least 0.7: gls::kTerrainCoherence), the components facing down are turned to face up, +z (an
  *   aerial tile is not oriented into the ground; a closed surface's normals sum to about 0 and keep their sides).
  * - UP: every normal facing UpDirection (default +z), point by point (aerial scans; PDAL's always_up).
+ * - UP_ALONG_SPANNING_TREE: airborne lidar. The normals within 72.5 degrees of UpDirection (ground, roofs, slopes)
+ *   face it point by point; the steeper ones (walls) agree with their neighbours along the minimum spanning tree,
+ *   each connected component turned so that its upward normals face up: a building's walls face out, as its roof and
+ *   the ground around it do, where UP would give each wall point a random side.
  * - AGREE_WITH_EXISTING: flipped to agree with the normals selected by SetInputArrayToProcess(0, ...) (default: the
  *   active normals), e.g. a scanner's normals whose length or accuracy is poor; points whose existing normal is not
  *   finite keep the solver's sign. A per-point view direction (from the point towards its scanner) is such an array.
  * - TOWARDS_VIEWPOINT_ARRAY: facing each point's own viewpoint, the position of the scanner that saw it, read from
  *   the point array selected by SetInputArrayToProcess(1, ...) (3 components, floating point, input coordinates;
  *   merged scans carry it). Points whose viewpoint is not finite keep the solver's sign.
+ * A non-finite OrientationPoint (TOWARDS_POINT, AWAY_FROM_POINT) or UpDirection (UP, UP_ALONG_SPANNING_TREE) is an
+ * error naming the property.
  *
  * Degenerate neighbourhoods (gls/NormalEstimation.h): the spread of a neighbourhood is its middle covariance
  * eigenvalue over the largest, 0 on a line, 1 when isotropic in the tangent plane. Scanner sampling (dense along scan
@@ -52,7 +65,8 @@
  * other ranks' points within the reach of its neighbourhoods (Radius, or the largest distance from one of its points
  * to its k-th nearest point in its own piece, which bounds the true one) around its piece (vtkGLSDistributedCloud),
  * estimates the normals of its own points only, and orients them per point (TOWARDS/AWAY_FROM_POINT,
- * AGREE_WITH_EXISTING) or, for MINIMUM_SPANNING_TREE, by gathering the points and unoriented normals on rank 0
+ * AGREE_WITH_EXISTING, UP) or, for MINIMUM_SPANNING_TREE and UP_ALONG_SPANNING_TREE, by gathering the points and
+ * unoriented normals on rank 0
  * (ordered by global id: the GlobalIds attribute, else rank order), orienting them there as a serial run would, and
  * sending every rank its oriented normals back (rank 0 then holds 56 bytes per point of the whole cloud). The
  * normals equal a serial run's (sign included). A planar input (every point in one plane z = const, possibly a 2D
@@ -64,6 +78,7 @@
 #include "vtkGLSFiltersModule.h"
 #include "vtkGLSFilterBase.h"
 
+#include <string> // for std::string
 #include <vector> // for std::vector
 
 namespace gls
@@ -98,7 +113,9 @@ public:
     MINIMUM_SPANNING_TREE = 3,
     AGREE_WITH_EXISTING = 4,
     TOWARDS_VIEWPOINT_ARRAY = 5,
-    UP = 6
+    UP = 6,
+    UP_ALONG_SPANNING_TREE = 7,
+    AUTOMATIC = 8
   };
 
   ///@{
@@ -160,9 +177,11 @@ public:
   ///@}
 
   ///@{
-  /// Orientation mode (default MINIMUM_SPANNING_TREE).
+  /// Orientation mode (default AUTOMATIC: from what the file says, see the class documentation).
   vtkSetMacro(Orientation, int);
   vtkGetMacro(Orientation, int);
+  void SetOrientationToAutomatic() { this->SetOrientation(AUTOMATIC); }
+  void SetOrientationToUpAlongSpanningTree() { this->SetOrientation(UP_ALONG_SPANNING_TREE); }
   void SetOrientationToNone() { this->SetOrientation(NONE); }
   void SetOrientationToTowardsPoint() { this->SetOrientation(TOWARDS_POINT); }
   void SetOrientationToAwayFromPoint() { this->SetOrientation(AWAY_FROM_POINT); }
@@ -173,14 +192,14 @@ public:
   ///@}
 
   ///@{
-  /// The direction of UP orientation (input coordinates, any length but 0; default 0, 0, 1). Not finite or zero is
-  /// an error.
+  /// The direction of UP and UP_ALONG_SPANNING_TREE orientation (input coordinates, any length but 0; default 0, 0,
+  /// 1; AUTOMATIC's airborne rule takes +z). Not finite or zero is an error.
   vtkSetVector3Macro(UpDirection, double);
   vtkGetVector3Macro(UpDirection, double);
   ///@}
 
   ///@{
-  /// The point of TOWARDS_POINT / AWAY_FROM_POINT (input coordinates, default origin).
+  /// The point of TOWARDS_POINT / AWAY_FROM_POINT (input coordinates, default origin; not finite: an error).
   vtkSetVector3Macro(OrientationPoint, double);
   vtkGetVector3Macro(OrientationPoint, double);
   ///@}
@@ -219,14 +238,27 @@ protected:
   /// against MemoryBudget before any work.
   double NeededBytes(const vtkGLSRun& run, const gls::NormalEstimationSettings& settings,
     const std::vector<double>& reference) const;
-  /// The core's settings from the properties (UpDirection checked: false, with an error, when it is zero or not
-  /// finite).
-  bool ResolveSettings(const vtkGLSRun& run, gls::NormalEstimationSettings& settings);
+  /// How a run orients: the mode (AUTOMATIC resolved), its point or direction, the viewpoint array it reads, and
+  /// what it did for the field data GLSOrientation.
+  struct OrientationPlan
+  {
+    int Mode = MINIMUM_SPANNING_TREE;
+    double Point[3] = { 0.0, 0.0, 0.0 }; ///< TOWARDS_POINT / AWAY_FROM_POINT
+    double Up[3] = { 0.0, 0.0, 1.0 };    ///< UP / UP_ALONG_SPANNING_TREE
+    std::string ViewpointArray;          ///< TOWARDS_VIEWPOINT_ARRAY by AUTOMATIC: the array's name ("": selected)
+    std::string Report;
+  };
+  /// The run's orientation: the properties checked (a non-finite OrientationPoint or UpDirection, a zero UpDirection:
+  /// false, with an error naming it), and AUTOMATIC's choice from the input's arrays (gls::chooseOrientation, its
+  /// evidence summed over every process). Collective.
+  bool PlanOrientation(const vtkGLSRun& run, OrientationPlan& plan);
+  /// The core's settings from the properties and the plan.
+  void ResolveSettings(const vtkGLSRun& run, const OrientationPlan& plan, gls::NormalEstimationSettings& settings);
   /// AGREE_WITH_EXISTING and TOWARDS_VIEWPOINT_ARRAY: the reference directions of every point (the selected normals,
   /// or the directions to each point's viewpoint) and the orientation that follows them; false, with an error, when
   /// the selected array is missing here or on another process. Nothing for the other orientations.
-  bool GatherReference(
-    const vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings& settings);
+  bool GatherReference(const vtkGLSRun& run, const OrientationPlan& plan, std::vector<double>& reference,
+    gls::NormalEstimationSettings& settings);
   /// The serial estimate: coincident points merged, the automatic radius measured, the normals, their GLS
   /// refinement. COMPLETED, FAILED (with an error) or ABORTED.
   int EstimateSerial(vtkGLSRun& run, std::vector<double>& reference, gls::NormalEstimationSettings& settings,
@@ -254,9 +286,10 @@ protected:
     vtkGLSRun& run, const gls::ParallelOptions& parallel, gls::NormalEstimationResult& result);
 
   /// Writes Normals, NormalQuality and NormalNeighbors to every input point (copies of a merged position included),
-  /// the one-line warning for the points without a normal, and the field data (GLSNormalRadius, the run's).
-  void WriteNormals(
-    vtkGLSRun& run, const gls::NormalEstimationSettings& settings, const gls::NormalEstimationResult& result);
+  /// the one-line warning for the points without a normal, and the field data (GLSNormalRadius, GLSOrientation, the
+  /// run's).
+  void WriteNormals(vtkGLSRun& run, const gls::NormalEstimationSettings& settings, const OrientationPlan& plan,
+    const gls::NormalEstimationResult& result);
 
   int NeighborhoodType;
   int NumberOfNeighbors;

@@ -5,6 +5,7 @@
 
 #include "vtkCellArray.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -122,6 +123,14 @@ int vtkGLSPointCloudReader::RequestData(vtkInformation*, vtkInformationVector**,
   {
     pd->AddArray(pointArray<vtkDoubleArray>(vtkGLSArrayNames::ScannerPosition, 3, text.viewpoints));
     names.insert(vtkGLSArrayNames::ScannerPosition);
+  }
+  if (text.hasSensor)
+  {
+    vtkNew<vtkDoubleArray> sensor; // one tuple: the sensor of every point (a PCD's VIEWPOINT)
+    sensor->SetName(vtkGLSArrayNames::ScannerPosition);
+    sensor->SetNumberOfComponents(3);
+    sensor->InsertNextTuple(text.sensor);
+    output->GetFieldData()->AddArray(sensor);
   }
   for (const gls::PointTextColumn& column : text.otherColumns)
   {

@@ -14,8 +14,11 @@
  * registered points, `Intensity`, `RGB` when the scans have colours, and `ScannerPosition` (double, 3 components:
  * the registered position of the scanner that saw each point, for Normal Estimation's per-point viewpoints); lines
  * at 0 0 0 (missing returns) are dropped (gls::parsePtx). A PCL PCD file (.pcd, ascii, binary or
- * binary_compressed) gives its x y z, normals, intensity, packed rgb as `RGB`, its other single-valued fields, and
- * a VIEWPOINT other than PCL's default as every point's `ScannerPosition` (gls::parsePcd). A file of another
+ * binary_compressed) gives its x y z, normals, intensity, packed rgb as `RGB` and its other single-valued fields
+ * (names without case: PDAL's X Y Z), every point in the file's order (an organized cloud's NaN points for missing
+ * returns kept in their rows), and its sensor position, the VIEWPOINT's translation (PCL's default 0 0 0 included:
+ * PCL's sensor origin), as the field data `ScannerPosition` (double, one tuple of 3; GLS Normal Estimation's
+ * Automatic orientation turns the normals towards it; gls::parsePcd). A file of another
  * extension whose content is a PCD or PTX file (a scan renamed .txt) is read as one, and ColumnLayout says so.
  *
  * Output: a vtkPolyData with double-precision points and one vertex cell per point; point arrays `Normals`

@@ -67,6 +67,7 @@ struct vtkGLSRun
   long long TilesUsed = 0;               ///< spatial tiles of this rank's fit (0: no fit ran)
   bool CompactNormals = false;           ///< the fit's pyramid kept its normals compact (to meet MemoryBudget)
   long long CoincidentPoints = 0;        ///< this piece's input points merged into another
+  long long NonFinitePoints = 0;         ///< this piece's input points with a non-finite coordinate (left out)
   std::vector<std::uint64_t> StrayIds;   ///< stray points of this piece left out, increasing (BlankStrayPoints)
   bool AnyStray = false;                 ///< some piece left stray points out (every rank then marks GLSStray)
 };

@@ -365,12 +365,40 @@ TEST(PcdParser, AsciiBinaryAndCompressedGiveTheSameCloud)
     ASSERT_EQ(t.otherColumns.size(), 1u);
     EXPECT_EQ(t.otherColumns[0].name, "curvature");
     EXPECT_EQ(static_cast<float>(t.otherColumns[0].values[1]), 0.2f);
-    EXPECT_EQ(t.viewpoints, (std::vector<double>{ 5, 6, 7, 5, 6, 7, 5, 6, 7 }));
+    EXPECT_TRUE(t.viewpoints.empty()); // one sensor for the file, not one per point
+    ASSERT_TRUE(t.hasSensor);
+    EXPECT_EQ(std::vector<double>(t.sensor, t.sensor + 3), (std::vector<double>{ 5, 6, 7 }));
   }
-  // PCL's default VIEWPOINT says nothing of the sensor: no scanner positions.
+  // PCL's default VIEWPOINT, and a file without one, are a sensor at the origin (pcl::flipNormalTowardsViewpoint's
+  // convention), whatever the rotation.
   std::string plain = pcdFile("ascii");
-  plain.replace(plain.find("VIEWPOINT 5 6 7"), 15, "VIEWPOINT 0 0 0");
-  EXPECT_TRUE(gls::parsePcd(plain.data(), plain.size()).viewpoints.empty());
+  const std::size_t at = plain.find("VIEWPOINT 5 6 7");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t end = plain.find('\n', at);
+  for (const std::string line : { "VIEWPOINT 0 0 0 1 0 0 0", "VIEWPOINT 0 0 0 0 1 0 0", "" })
+  {
+    std::string file = plain;
+    file.replace(at, end - at + 1, line.empty() ? "" : line + "\n");
+    const gls::PointText t = gls::parsePcd(file.data(), file.size());
+    ASSERT_EQ(t.error, "") << line;
+    ASSERT_TRUE(t.hasSensor) << line;
+    EXPECT_EQ(std::vector<double>(t.sensor, t.sensor + 3), (std::vector<double>{ 0, 0, 0 })) << line;
+  }
+}
+
+TEST(PcdParser, FieldNamesAreComparedWithoutCase)
+{
+  // PDAL writes X Y Z Intensity; the first of two fields of one role is taken.
+  const std::string file = "VERSION 0.7\nFIELDS X Y Z Intensity NORMAL_X normal_y Normal_Z\nSIZE 4 4 4 4 4 4 4\n"
+                           "TYPE F F F F F F F\nCOUNT 1 1 1 1 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n"
+                           "1 2 3 0.5 0 0 1\n";
+  const gls::PointText t = gls::parsePcd(file.data(), file.size());
+  ASSERT_EQ(t.error, "");
+  EXPECT_EQ(t.points, (std::vector<double>{ 1, 2, 3 }));
+  EXPECT_EQ(t.intensity, (std::vector<float>{ 0.5f }));
+  EXPECT_EQ(t.normals, (std::vector<double>{ 0, 0, 1 }));
+  const std::string missing = "FIELDS a b c\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\nDATA ascii\n1 2 3\n";
+  EXPECT_NE(gls::parsePcd(missing.data(), missing.size()).error.find("no x, y and z"), std::string::npos);
 }
 
 TEST(PcdParser, IntegerColoursAreTheirLowThirtyTwoBits)

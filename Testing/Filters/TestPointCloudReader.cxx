@@ -7,6 +7,7 @@
 
 #include "vtkCellArray.h"
 #include "vtkFloatArray.h"
+#include "vtkFieldData.h"
 #include "vtkPointData.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -165,4 +166,11 @@ TEST(PointCloudReader, ClaimsCsvAndTxtFilesThatHoldAPointCloudOnly)
   EXPECT_EQ(p[2], 6.0);
   EXPECT_EQ(std::string(r.reader->GetColumnLayout()).rfind("a PCL PCD file by its content: ", 0), 0u)
     << r.reader->GetColumnLayout();
+  // PCL's default VIEWPOINT: a sensor at the origin, one tuple of field data (not a point array).
+  vtkDataArray* sensor = r.output()->GetFieldData()->GetArray("ScannerPosition");
+  ASSERT_NE(sensor, nullptr);
+  ASSERT_EQ(sensor->GetNumberOfTuples(), 1);
+  EXPECT_EQ(sensor->GetComponent(0, 0), 0.0);
+  EXPECT_EQ(sensor->GetComponent(0, 2), 0.0);
+  EXPECT_EQ(r.output()->GetPointData()->GetArray("ScannerPosition"), nullptr);
 }

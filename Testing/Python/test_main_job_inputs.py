@@ -477,7 +477,7 @@ class Inputs(unittest.TestCase):
         result = run(ptx, '--output-dir', out, *QUICK)
         pd = self.assertSucceeds(result, out, 'scan')
         self.assertIn('PTX: 1 scan, x y z intensity, 40 missing returns (0 0 0) dropped', result.stdout)
-        self.assertIn('each facing its scanner (ScannerPosition)', result.stdout)
+        self.assertIn("oriented automatic: towards each point's scanner", result.stdout)
         points = vtk_to_numpy(pd.GetPoints().GetData())
         np.testing.assert_allclose(points, upper + [5.0, 0.0, 0.0], atol=1e-6)
         scanners = point_array(pd, 'ScannerPosition')
@@ -498,11 +498,15 @@ class Inputs(unittest.TestCase):
         with open(path('cloud.pcd'), 'wb') as f:
             f.write(header + np.array([len(lzf), len(plain)], '<u4').tobytes() + lzf)
         out = path('pcd-out')
-        result = run(path('cloud.pcd'), '--output-dir', out, *QUICK)
+        # PCL's default VIEWPOINT is a sensor at the origin, the sphere's centre: the normals would face in, so the
+        # spanning tree is asked for.
+        result = run(path('cloud.pcd'), '--output-dir', out, '--orientation', 'mst', *QUICK)
         pd = self.assertSucceeds(result, out, 'cloud')
         self.assertIn('PCD (binary_compressed): x y z rgb', result.stdout)
+        self.assertIn('oriented minimum spanning tree', result.stdout)
         np.testing.assert_array_equal(point_array(pd, 'RGB'), self.colours)
-        self.assertIsNone(pd.GetPointData().GetArray('ScannerPosition'))  # PCL's default VIEWPOINT
+        self.assertIsNone(pd.GetPointData().GetArray('ScannerPosition'))
+        self.assertEqual(pd.GetFieldData().GetArray('ScannerPosition').GetTuple3(0), (0.0, 0.0, 0.0))
         self.assertUnitSphereKappa(pd)
 
     def test_semicolon_separated_decimal_commas(self):

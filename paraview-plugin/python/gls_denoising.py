@@ -85,19 +85,36 @@ def offset_cloud(points, reference, normals, shift):
 MAX_DENOISED_POINTS = 250000
 
 
-def every_kth(polydata, stride):
-    """A vertex cloud of every stride-th point with its numeric point arrays."""
+def rows_of(polydata, rows):
+    """A vertex cloud of the points `rows` (indices, or a slice) with their numeric point arrays."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
     arrays = polydata.GetPointData()
     return gls_cloud.vertex_cloud(
-        vtk_to_numpy(polydata.GetPoints().GetData())[::stride],
-        {arrays.GetArrayName(i): vtk_to_numpy(arrays.GetArray(i))[::stride]
+        vtk_to_numpy(polydata.GetPoints().GetData())[rows],
+        {arrays.GetArrayName(i): vtk_to_numpy(arrays.GetArray(i))[rows]
          for i in range(arrays.GetNumberOfArrays()) if arrays.GetArray(i) is not None})
 
 
+def with_normals(polydata):
+    """The indices of the points with a finite position and a finite, non-zero normal: those the stage denoises
+    (a point whose normal is undefined has no surface to be moved along)."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    points = vtk_to_numpy(polydata.GetPoints().GetData())
+    normals = vtk_to_numpy(polydata.GetPointData().GetArray('Normals'))
+    return np.flatnonzero(np.isfinite(points).all(axis=1) & np.isfinite(normals).all(axis=1) &
+                          (np.abs(normals).sum(axis=1) > 0))
+
+
 def sample_note(stage):
-    """' (every k-th point)' when the stage ran on a subsample, else ''."""
-    return ' (%s)' % gls_cloud.every_kth_note(stage['stride']) if stage['stride'] > 1 else ''
+    """' (every k-th point)' when the stage ran on a subsample, ' (the N points with a normal)' when some points
+    had none, else ''."""
+    notes = []
+    if stage['stride'] > 1:
+        notes.append(gls_cloud.every_kth_note(stage['stride']))
+    if stage['without_normals'] > 0:
+        notes.append('%d point%s without a normal left out' % (stage['without_normals'],
+                                                               '' if stage['without_normals'] == 1 else 's'))
+    return ' (%s)' % '; '.join(notes) if notes else ''
 
 
 def denoise(make_proxy, upstream, noise, watch):
@@ -107,9 +124,13 @@ def denoise(make_proxy, upstream, noise, watch):
     gls_watch.StageError when a stage reports an error or the points have no distinct neighbours."""
     import time
     from paraview import simple
-    stride = gls_cloud.stride_for(upstream.GetNumberOfPoints(), MAX_DENOISED_POINTS)
-    if stride > 1:
-        upstream = every_kth(upstream, stride)
+    rows = with_normals(upstream)
+    without_normals = upstream.GetNumberOfPoints() - len(rows)
+    if len(rows) < 2:
+        raise gls_watch.StageError('denoising: fewer than 2 points have a normal')
+    stride = gls_cloud.stride_for(len(rows), MAX_DENOISED_POINTS)
+    if stride > 1 or without_normals > 0:
+        upstream = rows_of(upstream, rows[::stride])
     diagonal = float(np.sqrt(sum((upstream.GetBounds()[2 * a + 1] - upstream.GetBounds()[2 * a]) ** 2
                                  for a in range(3))))
     noisy, reference, normals = with_noise(upstream, noise * diagonal)
@@ -130,7 +151,7 @@ def denoise(make_proxy, upstream, noise, watch):
     for proxy in (projection, bandwidth, source):
         simple.Delete(proxy)
     return {'noisy': noisy, 'denoised': result, 'reference': reference, 'normals': normals, 'spacing': d,
-            'sigma': noise * diagonal, 'seconds': elapsed, 'stride': stride}
+            'sigma': noise * diagonal, 'seconds': elapsed, 'stride': stride, 'without_normals': without_normals}
 
 
 def offsets(stage):
@@ -139,7 +160,8 @@ def offsets(stage):
     out = {}
     for key in ('noisy', 'denoised'):
         p = vtk_to_numpy(stage[key].GetPoints().GetData()).astype(float)
-        out[key] = float(np.sqrt(np.mean(signed_offsets(p, stage['reference'], stage['normals']) ** 2)))
+        offsets = signed_offsets(p, stage['reference'], stage['normals'])
+        out[key] = float(np.sqrt(np.mean(offsets[np.isfinite(offsets)] ** 2)))  # a point the projection left NaN
     return out
 
 

@@ -3,6 +3,7 @@
     gls-analyze [input] [--output-dir DIR] [--scales N] [--min-scale F] [--max-scale F] [--absolute-scales]
                 [--sigma S] [--noise F]
                 [--per-scale] [--full-precision] [--query ID] [--memory-budget GIB] [--no-directions]
+                [--orientation auto|up|sensor|mst]
 
 Reads a point cloud or mesh (PLY, OBJ, STL, VTP, a text file: XYZ/PTS/CSV/TXT, a scanner's file: LAS, PTX, PCD;
 default: the bundled bunny scan), estimates oriented normals when the file has none, analyses N quadratic scales
@@ -53,6 +54,11 @@ import gls_watch  # noqa: E402
 NORMALS = gls_denoising.NORMALS
 
 
+# --orientation: GLS Normal Estimation's Orientation for each choice ('sensor': orientation_properties).
+ORIENTATIONS = {'auto': 'Automatic', 'up': 'Up, walls along the spanning tree', 'sensor': None,
+                'mst': 'Minimum spanning tree'}
+
+
 class UsageError(Exception):
     """A bad option value (one line)."""
 
@@ -95,6 +101,12 @@ def parse_arguments(argv):
     p.add_argument('--memory-budget', type=float, default=None,
                    help='GiB the analysis may use (default: the memory available when it starts); checked before '
                         'any stage runs')
+    p.add_argument('--orientation', choices=ORIENTATIONS, default='auto',
+                   help='which side the estimated normals face: auto (default: from what the file says, in this '
+                        'order: each point\'s scanner (PTX), the file\'s sensor (a PCD\'s VIEWPOINT), up for '
+                        'airborne lidar (a LAS file\'s scan angles, returns or ground class), else the minimum '
+                        'spanning tree), up (ground and roofs up, walls along the spanning tree), sensor (towards the '
+                        'file\'s scanner positions; refused when it has none) or mst (the minimum spanning tree)')
     p.add_argument('--no-directions', action='store_true',
                    help='leave the principal curvatures out of the fused pass (they make it about 1.9 times as '
                         'long) and with them the direction arrays and the shape-index picture')
@@ -196,13 +208,37 @@ def report_directions(args, pd):
              100.0 * np.mean(ridge_valley == -1)))
 
 
-def query_dissimilarity(args, upstream, watch, count, merged):
-    """GLSDissimilarity of every point to --query (a point id of the input file; a fused pass at the analysis'
-    scales), or None."""
+def orientation_properties(args, cloud):
+    """GLS Normal Estimation's orientation properties for --orientation on `cloud` (the analysed points); InputError
+    for 'sensor' when the file gives no scanner position."""
+    if args.orientation != 'sensor':
+        return dict(Orientation=ORIENTATIONS[args.orientation])
+    if cloud.GetPointData().GetArray('ScannerPosition') is not None:
+        return dict(Orientation='Towards per-point viewpoints', ViewpointArray=['POINTS', 'ScannerPosition'])
+    sensor = cloud.GetFieldData().GetArray('ScannerPosition')
+    if sensor is not None and sensor.GetNumberOfTuples() == 1 and sensor.GetNumberOfComponents() == 3:
+        return dict(Orientation='Towards point', OrientationPoint=list(sensor.GetTuple3(0)))
+    raise gls_io.InputError('--orientation sensor: %s gives no scanner position (PTX scans and PCD files do); use '
+                            '--orientation auto, up or mst' % args.input)
+
+
+def check_query(args, count, merged=None):
+    """InputError when --query is not a point of the input (`count` points), or (with `merged`) is a point left out
+    for its non-finite coordinates; checked before any stage runs."""
     if args.query is None:
-        return None
+        return
     if not 0 <= args.query < count:
         raise gls_io.InputError('--query %d is not a point of the input (0 to %d)' % (args.query, count - 1))
+    if merged is not None and merged.distinct_of([args.query])[0] < 0:
+        raise gls_io.InputError('--query %d is a point with a non-finite coordinate (a missing return): it is left '
+                                'out of the analysis; choose another point' % args.query)
+
+
+def query_dissimilarity(args, upstream, watch, merged):
+    """GLSDissimilarity of every point to --query (a point id of the input file, checked by check_query; a fused
+    pass at the analysis' scales), or None."""
+    if args.query is None:
+        return None
     query = int(merged.distinct_of([args.query])[0]) if merged is not None else args.query  # its distinct position
     dissimilarity = watch.watch(gls_filter('GLSMultiScaleDissimilarity', registrationName='Dissimilarity',
                                            Input=upstream, Normals=NORMALS, QueryPointId=query,
@@ -224,6 +260,7 @@ def analyze(args, outputs):
     # (a 10^8-point file takes minutes to read); every file is checked again once read, with its distinct points.
     announced = gls_io.announced_point_count(args.input)
     if announced:
+        check_query(args, announced)
         gls_memory.check(announced, args.scales, args.per_scale, args.memory_budget, announced=True,
                          directions=not args.no_directions)
     simple.LoadPlugin(args.plugin, remote=False, ns=globals())
@@ -231,14 +268,22 @@ def analyze(args, outputs):
     watch.handle_interruptions()
     source, data, description = gls_io.open_cloud(args.input, gls_filter, watch)
     count = data.GetNumberOfPoints()
-    print('input: %s (%d points; %s)' % (args.input, count, description))
     merged = gls_coincident.merge(data)
+    non_finite = merged.non_finite if merged is not None else 0
+    print('input: %s (%d points%s; %s)' % (
+        args.input, count, '' if non_finite == 0 else ', %d of them with a non-finite coordinate (missing returns): '
+        'left out, NaN results in their rows' % non_finite, description))
+    check_query(args, count, merged)
     if merged is not None:
-        print(merged.note())
+        if merged.note():
+            print(merged.note())
         # The reader's references: `data` keeps the file's other arrays, not its positions.
         gls_io.release_output(source)
         source = gls_cloud.producer(merged.polydata)
     analysed = merged.polydata if merged is not None else data
+    if analysed.GetNumberOfPoints() == 0:
+        raise gls_io.InputError('%s: none of its %d points has finite coordinates: nothing to analyse'
+                                % (args.input, count))
     if analysed.GetNumberOfPoints() < 2:
         raise gls_io.InputError('%s: all %d points are at one position: nothing to analyse' % (args.input, count))
     needed, budget = gls_memory.check(analysed.GetNumberOfPoints(), args.scales, args.per_scale, args.memory_budget,
@@ -250,18 +295,18 @@ def analyze(args, outputs):
     start = time.time()
     upstream = source
     if not gls_cloud.has_normals(analysed):
-        # Each point facing the scanner that saw it, where the reader gives its position (PTX); else the minimum
-        # spanning tree (terrain-like clouds then face up: docs/normals.md).
-        scanners = analysed.GetPointData().GetArray('ScannerPosition') is not None
-        orientation = dict(Orientation='Towards per-point viewpoints',
-                           ViewpointArray=['POINTS', 'ScannerPosition']) if scanners else {}
+        # The side each normal faces: what the file says (GLS Normal Estimation's Automatic rule, docs/normals.md),
+        # or --orientation.
         upstream = watch.watch(gls_filter('GLSNormalEstimation', registrationName='Normals', Input=source,
                                           OutputPrecision='Single',
-                                          MemoryBudget=gls_memory.filter_budget_mib(budget), **orientation),
+                                          MemoryBudget=gls_memory.filter_budget_mib(budget),
+                                          **orientation_properties(args, analysed)),
                                'normals')
         watch.update(upstream)
-        print('normals: %.2f s%s' % (time.time() - start, ', each facing its scanner (ScannerPosition)'
-                                     if scanners else ''))
+        how = gls_io.output_of(upstream).GetFieldData().GetAbstractArray('GLSOrientation')
+        print('normals: %.2f s; oriented %s' % (time.time() - start, how.GetValue(0) if how is not None else '?'))
+    elif args.orientation != 'auto':
+        print('normals: the file\'s own (--orientation applies to estimated normals only)')
     features = (per_scale_pipeline if args.per_scale else summary_pipeline)(args, upstream, watch, budget)
     watch.update(features)
     result = gls_io.output_of(features)
@@ -277,7 +322,7 @@ def analyze(args, outputs):
     print('GLS pipeline: %.2f s; %d scales from %.4g to %.4g (length units of the data); feature in [%.3f, %.3f], '
           'median %.3f' % (elapsed, len(scales), scales[0], scales[-1], np.nanmin(feature), np.nanmax(feature),
                            np.nanmedian(feature)))
-    dissimilarity = query_dissimilarity(args, upstream, watch, count, merged)
+    dissimilarity = query_dissimilarity(args, upstream, watch, merged)
     if dissimilarity is not None:
         pd.AddArray(dissimilarity)
     report_directions(args, pd)
@@ -305,11 +350,11 @@ def analyze(args, outputs):
         gls_io.release_output(features)
     writing = outputs.write_in_background('-gls.vtp', output)  # compressed while the pictures are made
     pictures = [(outputs.path('-features.png'), gls_render.FEATURES,
-                 'GLS continuous features: %s (%d points)' % (outputs.name, count))]
+                 'GLS continuous features: %s (%d points)' % (outputs.name, count - non_finite))]
     if not args.no_directions:
         pictures.append((outputs.path('-shape-index.png'), gls_render.SHAPE_INDEX,
                          'GLS shape index where the principal directions are steadiest: %s (%d points)'
-                         % (outputs.name, count)))
+                         % (outputs.name, count - non_finite)))
     gls_render.render_point_arrays(output, pictures)
 
     # The profiles' fits read the picked points' neighbourhoods only (at the analysis' scales, as lengths, with its

@@ -96,12 +96,17 @@ def render_point_arrays(polydata, pictures):
     normals = vtk_to_numpy(normals_array) if normals_array is not None else None
     values = {name: vtk_to_numpy(polydata.GetPointData().GetArray(name)) for name in names}
     note = ''
+    # Points without a position (non-finite coordinates: a scanner's missing returns, NaN rows of the output) are
+    # not drawn and frame nothing.
+    kept = np.isfinite(points).all(axis=1)
     stray = polydata.GetPointData().GetArray('GLSStray')
     if stray is not None and not surface:
         # The stray points the filters left out (far from the rest): not drawn, so that the pictures frame the cloud.
-        kept = vtk_to_numpy(stray) == 0
-        hidden = np.count_nonzero(~kept)
+        stray_kept = vtk_to_numpy(stray) == 0
+        hidden = np.count_nonzero(~stray_kept & kept)
         note += ' (%d stray point%s not shown)' % (hidden, '' if hidden == 1 else 's')
+        kept &= stray_kept
+    if not kept.all():
         points = points[kept]
         values = {name: v[kept] for name, v in values.items()}
         normals = normals[kept] if normals is not None else None

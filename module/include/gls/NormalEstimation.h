@@ -38,8 +38,24 @@ enum class NormalOrientation
                            ///< away from that centroid (outward on closed shapes); then, on a terrain-like cloud,
                            ///< the components facing down are turned up (kTerrainCoherence)
   AgreeWithReference = 4,  ///< n . reference >= 0 where the reference normal is finite and non-zero
-  Up = 5                   ///< n . up >= 0 at every point (aerial scans: PDAL's always_up, CloudCompare's +Z)
+  Up = 5,                  ///< n . up >= 0 at every point (aerial scans: PDAL's always_up, CloudCompare's +Z)
+  UpAlongSpanningTree = 6  ///< airborne lidar: every normal within acos(kUpAnchorCosine) of the up direction faces up,
+                           ///< point by point (ground, roofs, terrain); the others (walls, steep slopes, the sides of
+                           ///< trees) agree with their neighbours along the minimum spanning tree, each component
+                           ///< turned so that its upward normals, weighted by n . up, face up (a building's walls
+                           ///< then face out, away from it, as its roof and the ground around it do)
 };
+
+/// Whether an orientation propagates along the minimum spanning tree (its graph and forest are made).
+constexpr bool orientsAlongSpanningTree(NormalOrientation o)
+{
+  return o == NormalOrientation::MinimumSpanningTree || o == NormalOrientation::UpAlongSpanningTree;
+}
+
+/// UpAlongSpanningTree: the normals with |n . up| at least this (within 72.5 degrees of vertical: ground, roofs,
+/// slopes up to 72 degrees) face up one by one; the steeper ones (walls, within 17.5 degrees of horizontal, where a
+/// noisy normal's side is a coin toss) follow the tree.
+constexpr double kUpAnchorCosine = 0.3;
 
 /// Terrain for the minimum spanning tree orientation: a flat cloud (kTerrainFlatness) whose oriented components have
 /// normals with a mean z of at least this size (each component's sum taken with its own sign); of them the components
@@ -59,7 +75,7 @@ struct NormalEstimationSettings
   double radius = 0.0;              ///< length for Radius
   NormalOrientation orientation = NormalOrientation::MinimumSpanningTree;
   Vec3 viewpoint{ 0.0, 0.0, 0.0 };  ///< for TowardsPoint / AwayFromPoint
-  Vec3 up{ 0.0, 0.0, 1.0 };         ///< for Up (any length but 0)
+  Vec3 up{ 0.0, 0.0, 1.0 };         ///< for Up and UpAlongSpanningTree (any length but 0)
   const double* reference = nullptr; ///< 3 n reference normals for AgreeWithReference
   int graphNeighbors = 10;          ///< k of the k-NN graph used by MinimumSpanningTree
   double minimumSpread = 0.05;      ///< a neighbourhood with a smaller spread is degenerate (0: only lines)
@@ -84,7 +100,7 @@ struct NormalEstimationResult
                                     ///< unless reachWanted
   std::vector<int> graphDegree;     ///< per point: k of its node in the tree's graph (graphNeighbors x growth);
                                     ///< empty unless graphDegreeWanted
-  std::size_t components = 0;       ///< MinimumSpanningTree: connected components oriented
+  std::size_t components = 0;       ///< the spanning-tree orientations: connected components oriented
 };
 
 /// Estimates (and orients) the normals of n interleaved points. Returns false if aborted through the progress
@@ -130,8 +146,9 @@ double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOpti
 /// queries on parallel.threads threads). `degrees` (n, or null) raises a point's k above graphNeighbors: the
 /// estimate passes graphNeighbors times the growth of the point's neighbourhood, so that the graph of a scan reaches
 /// across the lines where the neighbourhoods had to. `components` receives the number of connected components.
+/// `up` (unit, or null): the UpAlongSpanningTree rule instead of MinimumSpanningTree's outward and terrain rules.
 /// Returns false if the progress callback asked to abort (the normals are then partly oriented and must not be used).
 bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,
-  const ParallelOptions& parallel, std::size_t& components, const int* degrees = nullptr);
+  const ParallelOptions& parallel, std::size_t& components, const int* degrees = nullptr, const Vec3* up = nullptr);
 
 } // namespace gls

@@ -60,6 +60,8 @@ struct PointText
   std::vector<float> intensity;              ///< 1 per point, as given, or empty
   std::vector<PointTextColumn> otherColumns; ///< the header's other named columns, in file order
   std::vector<double> viewpoints;            ///< 3 per point: the position of the scanner that saw it (PTX), or empty
+  bool hasSensor = false;                    ///< the file gives one sensor position for every point (PCD)
+  double sensor[3] = { 0.0, 0.0, 0.0 };      ///< that position, when hasSensor
   std::string layout;  ///< how the columns were read, e.g. "x y z r g b (6 columns, no header: 0-255 integers)"
   std::string warning; ///< empty, or what the caller should report (normals far from unit length, with the count)
   std::string error;   ///< empty on success, else "line N: what is wrong" (the other members are then empty)
@@ -108,9 +110,11 @@ PointText readPtxFile(const std::string& path);
 
 /// A PCL PCD file (version .7; DATA ascii, binary or binary_compressed, LZF): fields x y z (required), normal_x
 /// normal_y normal_z as normals, intensity, rgb or rgba (packed 0x00RRGGBB, as PCL writes them) as colours, the other
-/// single-valued fields as other columns (fields of several values are skipped, said in the layout); a VIEWPOINT other
-/// than PCL's default (0 0 0 1 0 0 0, which most files carry whatever their sensor) gives its translation as every
-/// point's scanner position (viewpoints). NaN points are kept. A malformed header, a count the
+/// single-valued fields as other columns (fields of several values are skipped, said in the layout); field names
+/// are compared without case (PDAL writes X Y Z Intensity). The VIEWPOINT's translation is the sensor's position
+/// (sensor; PCL's convention: its default 0 0 0 1 0 0 0, or no VIEWPOINT line, is a sensor at the origin, towards
+/// which PCL turns normals). NaN points are kept, in the file's order (an organized cloud's rows and columns,
+/// WIDTH x HEIGHT, said in the layout). A malformed header, a count the
 /// file cannot hold, truncated or damaged (LZF) data is an error saying what is wrong.
 PointText parsePcd(const char* data, std::size_t size);
 

@@ -1,6 +1,7 @@
 #include "gls/PointTextParser.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -116,8 +117,7 @@ struct PcdHeader
   std::vector<PcdField> fields;
   std::size_t width = 0, height = 1, points = 0;
   bool havePoints = false;
-  double viewpoint[3] = { 0, 0, 0 };
-  bool placed = false; ///< a VIEWPOINT other than PCL's default (0 0 0 1 0 0 0)
+  double viewpoint[3] = { 0, 0, 0 }; ///< the VIEWPOINT's translation: PCL's sensor origin (0 0 0 without one)
   std::string encoding;
   std::size_t dataStart = 0; ///< the byte after the DATA line
   std::size_t line = 0;      ///< the DATA line's number
@@ -215,7 +215,6 @@ std::string readHeaderLine(const std::vector<std::string>& w, PcdHeader& h)
       q[a] = std::strtod(w[1 + a].c_str(), nullptr);
     }
     std::copy(q, q + 3, h.viewpoint);
-    h.placed = q[0] != 0.0 || q[1] != 0.0 || q[2] != 0.0 || q[3] != 1.0 || q[4] != 0.0 || q[5] != 0.0 || q[6] != 0.0;
     return {};
   }
   if (key == "DATA")
@@ -282,16 +281,18 @@ std::string layOutFields(PcdHeader& h, PcdRoles& r)
     f.offset = h.encoding == "ascii" ? r.values : r.record;
     r.record += f.size * f.count;
     r.values += f.count;
-    const std::string& n = f.name;
+    // Names compared without case, as PCL (x, normal_x, rgb) and PDAL (X, Intensity) write them.
+    std::string n = f.name;
+    std::transform(n.begin(), n.end(), n.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     int* role = n == "x" ? &r.x : n == "y" ? &r.y : n == "z" ? &r.z : n == "normal_x" ? &r.nx
       : n == "normal_y" ? &r.ny : n == "normal_z" ? &r.nz : n == "intensity" ? &r.intensity
       : (n == "rgb" || n == "rgba") ? &r.rgb : nullptr;
-    if (role && f.count == 1)
+    if (role && *role < 0 && f.count == 1)
     {
       *role = static_cast<int>(k);
     }
   }
-  return r.x < 0 || r.y < 0 || r.z < 0 ? "the PCD file has no x, y and z fields" : "";
+  return r.x < 0 || r.y < 0 || r.z < 0 ? "the PCD file has no x, y and z fields (of one value each)" : "";
 }
 
 /// The low 32 bits of the integer value (two's complement for negative values), as a packed colour reads them; 0 for
@@ -437,11 +438,9 @@ PointText cloudOfValues(const PcdHeader& h, const PcdRoles& r, const std::vector
     out.points[3 * p] = value(r.x, p);
     out.points[3 * p + 1] = value(r.y, p);
     out.points[3 * p + 2] = value(r.z, p);
-    if (h.placed)
-    {
-      out.viewpoints.insert(out.viewpoints.end(), h.viewpoint, h.viewpoint + 3);
-    }
   }
+  out.hasSensor = true;
+  std::copy(h.viewpoint, h.viewpoint + 3, out.sensor);
   for (std::size_t p = 0; r.nx >= 0 && r.ny >= 0 && r.nz >= 0 && p < points; ++p)
   {
     for (int c : { r.nx, r.ny, r.nz })
@@ -482,10 +481,11 @@ PointText cloudOfValues(const PcdHeader& h, const PcdRoles& r, const std::vector
       layout << "[" << h.fields[k].count << " values: not read]";
     }
   }
-  if (h.placed)
+  layout << "; the sensor at (" << h.viewpoint[0] << ", " << h.viewpoint[1] << ", " << h.viewpoint[2]
+         << ") (VIEWPOINT)";
+  if (h.width > 0 && h.height > 1 && h.width * h.height == h.points)
   {
-    layout << "; VIEWPOINT (" << h.viewpoint[0] << ", " << h.viewpoint[1] << ", " << h.viewpoint[2]
-           << ") as every point's scanner position";
+    layout << "; organized " << h.width << " x " << h.height;
   }
   out.layout = layout.str();
   return out;

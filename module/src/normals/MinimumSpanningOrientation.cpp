@@ -161,20 +161,23 @@ inline double edgeCost(const Vec3& a, const Vec3& b)
 /// Orients each tree of the signed forest (a connected component of the graph): from its node farthest from its
 /// centroid, turned away from the centroid, every node agrees with its neighbours along the tree. Then, where the
 /// cloud is terrain-like (flat, kTerrainFlatness, with coherent normals, kTerrainCoherence), each component whose
-/// mean z is below -kTerrainCoherence is turned over, to face +z; pieces of a closed surface keep their sides. The
-/// components are numbered in the order of their lowest original index and their sums run in the original order of
-/// their points, so the result does not depend on the grid's numbering.
+/// mean z is below -kTerrainCoherence is turned over, to face +z; pieces of a closed surface keep their sides.
+/// With an up direction (UpAlongSpanningTree) instead: each component is turned so that the sum of n . up over its
+/// upward nodes (|n . up| >= kUpAnchorCosine) is positive (one without any keeps the outward rule), then every upward
+/// node faces up on its own. The components are numbered in the order of their lowest original index and their sums
+/// run in the original order of their points, so the result does not depend on the grid's numbering.
 template <typename Index>
 class ComponentOrientation
 {
 public:
   /// nodeOf: the node of each original index (none for the points that are not nodes).
   ComponentOrientation(const GridView& g, const std::vector<Index>& nodeOf, const SignedForest<Index>& forest,
-    Vec3* normal)
+    Vec3* normal, const Vec3* up)
     : G(g)
     , NodeOf(nodeOf)
     , Forest(forest)
     , Normal(normal)
+    , Up(up)
     , Slot(g.count, std::numeric_limits<Index>::max())
   {
   }
@@ -184,8 +187,16 @@ public:
   {
     this->Number();
     this->ChooseRoots();
+    if (this->Up)
+    {
+      this->ChooseUpward();
+    }
     this->Apply(parallel, [this](std::size_t s, const Component& c) { return (this->Forest.turned[s] ^ c.turn) != 0; });
-    if (this->Flat())
+    if (this->Up)
+    {
+      this->FaceUpOneByOne(parallel);
+    }
+    else if (this->Flat())
     {
       this->FaceUpIfTerrain(parallel);
     }
@@ -291,6 +302,51 @@ private:
     });
   }
 
+  /// The up rule's turn of each component that has upward nodes (see the class): their n . up summed as the tree
+  /// orients them (Forest.turned), in the original order.
+  void ChooseUpward()
+  {
+    const Index none = std::numeric_limits<Index>::max();
+    std::vector<double> vote(this->Components.size(), 0.0);
+    for (const Index s : this->NodeOf)
+    {
+      if (s == none)
+      {
+        continue;
+      }
+      const double u = dot(this->Normal[s], *this->Up);
+      if (std::abs(u) >= kUpAnchorCosine)
+      {
+        vote[this->Slot[this->Forest.tree[s]]] += this->Forest.turned[s] ? -u : u;
+      }
+    }
+    for (std::size_t c = 0; c < vote.size(); ++c)
+    {
+      if (vote[c] != 0.0)
+      {
+        this->Components[c].turn = vote[c] < 0.0 ? 1 : 0;
+      }
+    }
+  }
+
+  /// Every upward node (|n . up| >= kUpAnchorCosine) facing up.
+  void FaceUpOneByOne(const ParallelOptions& parallel)
+  {
+    ParallelOptions options;
+    options.threads = parallel.threads;
+    options.chunk = 65536;
+    parallelFor(this->G.count, options, [&](std::size_t begin, std::size_t end, int) {
+      for (std::size_t s = begin; s < end; ++s)
+      {
+        Vec3& v = this->Normal[s];
+        if (dot(v, *this->Up) <= -kUpAnchorCosine)
+        {
+          v = { -v.x, -v.y, -v.z };
+        }
+      }
+    });
+  }
+
   /// The terrain rule (see the class).
   void FaceUpIfTerrain(const ParallelOptions& parallel)
   {
@@ -337,6 +393,7 @@ private:
   const std::vector<Index>& NodeOf;
   const SignedForest<Index>& Forest;
   Vec3* Normal;
+  const Vec3* Up; ///< the up rule's direction (unit), or null
   std::vector<Index> Slot; ///< per tree (its Forest.tree node): its component
   std::vector<Component> Components;
 };
@@ -379,7 +436,7 @@ bool orientWith(OrientationGraph& graph, Vec3* normal, const ParallelOptions& pa
       nodeOf[g.ids[s]] = static_cast<Index>(s);
     }
   }
-  components = ComponentOrientation<Index>(g, nodeOf, forest, normal).orient(parallel);
+  components = ComponentOrientation<Index>(g, nodeOf, forest, normal, graph.up).orient(parallel);
   return true;
 }
 

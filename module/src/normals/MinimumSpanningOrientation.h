@@ -1,6 +1,7 @@
-// Hoppe's orientation of unit normals (the MinimumSpanningTree mode of NormalEstimation): each connected component
-// of the points' k-nearest-neighbour graph is oriented from its point farthest from its centroid (outward), and the
-// orientation propagates along the component's minimum spanning tree for the cost 1 - |n_i . n_j|.
+// Hoppe's orientation of unit normals (the MinimumSpanningTree and UpAlongSpanningTree modes of NormalEstimation):
+// the orientation propagates along the minimum spanning tree of the points' k-nearest-neighbour graph for the cost
+// 1 - |n_i . n_j|; each connected component is oriented from its point farthest from its centroid (outward), or,
+// with an up direction, so that its upward normals face up (and those then face up one by one).
 #pragma once
 
 #include "gls/NeighborGrid.h"
@@ -32,6 +33,8 @@ struct OrientationGraph
   /// its nearest other points (nearest first, kNoNeighbor-padded). A point whose list is complete, holds nodes only
   /// and needs no more than graphNeighbors is not queried again. Empty: every node is queried.
   std::vector<std::uint32_t> nearestOthers;
+  /// UpAlongSpanningTree: the up direction (unit); null for MinimumSpanningTree (outward, then the terrain rule).
+  const Vec3* up = nullptr;
 };
 
 /// The padding of OrientationGraph::nearestOthers.

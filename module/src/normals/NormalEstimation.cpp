@@ -138,6 +138,12 @@ void gatherNeighbors(const NeighborGrid& grid, const Vec3& p, bool byRadius, int
   }
 }
 
+/// v over its length (v not zero).
+Vec3 normalized(const Vec3& v)
+{
+  return (1.0 / std::sqrt(dot(v, v))) * v;
+}
+
 void flipIfNegative(double* n, double s)
 {
   if (s < 0.0)
@@ -268,7 +274,7 @@ public:
     // not answer (32-bit indices: larger grids are queried whole).
     GraphWidth = static_cast<std::size_t>(std::max(settings.graphNeighbors, 1));
     KeepNearest =
-      settings.orientation == NormalOrientation::MinimumSpanningTree && !ByRadius && count < kNoNeighbor;
+      orientsAlongSpanningTree(settings.orientation) && !ByRadius && count < kNoNeighbor;
     NearestOthers.assign(KeepNearest ? count * GraphWidth : 0, kNoNeighbor);
   }
 
@@ -412,6 +418,8 @@ public:
     graph.nodes = nodes.data();
     graph.nearestOthers = std::move(NearestOthers);
     graph.listsMade = [this] { Estimates.graphMade(); };
+    const Vec3 up = normalized(Settings.up);
+    graph.up = Settings.orientation == NormalOrientation::UpAlongSpanningTree ? &up : nullptr;
     return gls::orientAlongSpanningTree(graph, Estimates.normals.data(), stage, components);
   }
 
@@ -513,7 +521,7 @@ double normalEstimationBytes(std::size_t n, const NormalEstimationSettings& sett
 {
   // The grid (sorted points and ids, its cell index), the estimates in grid order (what the result holds, and the
   // graph's degree until the graph is made) and, at the end, the result in input order while it is scattered.
-  const bool tree = settings.orientation == NormalOrientation::MinimumSpanningTree;
+  const bool tree = orientsAlongSpanningTree(settings.orientation);
   const double grid = sizeof(Vec3) + 8.0 + 16.0;
   const double kept = resultBytesPerPoint(settings);
   const double degree = settings.graphDegreeWanted ? 0.0 : 4.0;
@@ -559,7 +567,7 @@ bool estimateNormals(
   }
   // Progress: the first neighbourhoods [0, 0.5], the grown ones [0.5, 0.6], the orientation [0.6, 1] (when it is
   // the minimum spanning tree; else the estimate is the whole range).
-  const bool tree = settings.orientation == NormalOrientation::MinimumSpanningTree;
+  const bool tree = orientsAlongSpanningTree(settings.orientation);
   const double estimateEnd = tree ? 0.6 : 1.0;
   if (!run.estimateFirstNeighborhoods(progressStage(settings.parallel, 0.0, 5.0 / 6.0 * estimateEnd)))
   {
@@ -705,7 +713,7 @@ double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOpti
 }
 
 bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,
-  const ParallelOptions& parallel, std::size_t& components, const int* degrees)
+  const ParallelOptions& parallel, std::size_t& components, const int* degrees, const Vec3* up)
 {
   // Graph nodes: points with a finite position and a finite normal.
   std::vector<unsigned char> usable(n, 0);
@@ -729,6 +737,8 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
   graph.n = n;
   graph.graphNeighbors = graphNeighbors;
   graph.sortedDegrees = degrees ? sortedDegrees.data() : nullptr;
+  const Vec3 unitUp = up ? normalized(*up) : Vec3{ 0.0, 0.0, 1.0 };
+  graph.up = up ? &unitUp : nullptr;
   if (!orientAlongSpanningTree(graph, sortedNormals.data(), parallel, components))
   {
     return false;
