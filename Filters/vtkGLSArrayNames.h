@@ -62,6 +62,15 @@ constexpr const char* Orientation = "GLSOrientation";      // field data of the 
 constexpr const char* ScanAngle = "ScanAngle";             // LAS reader: degrees from nadir
 constexpr const char* NumberOfReturns = "NumberOfReturns"; // LAS reader: returns of the point's pulse
 constexpr const char* Classification = "Classification";   // LAS reader: the ASPRS class (2: ground)
+// LAS reader, field data: the file's coordinate system (OGC WKT; GeoTIFF keys), its scale and offset (3 each: a
+// position is X scale + offset), the withheld points left out.
+constexpr const char* CoordinateSystemWKT = "CoordinateSystemWKT";
+constexpr const char* GeoKeyDirectory = "GeoKeyDirectory";
+constexpr const char* GeoDoubleParams = "GeoDoubleParams";
+constexpr const char* GeoAsciiParams = "GeoAsciiParams";
+constexpr const char* LasScale = "LasScale";
+constexpr const char* LasOffset = "LasOffset";
+constexpr const char* WithheldPoints = "GLSWithheldPoints";
 constexpr const char* Intensity = "Intensity";             // point cloud reader: a scanner's return intensity
 }
 

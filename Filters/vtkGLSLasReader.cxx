@@ -1,15 +1,19 @@
 #include "vtkGLSLasReader.h"
 
+#include "vtkGLSArrayNames.h"
 #include "vtkGLSReaderParts.h"
 
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedShortArray.h"
 
@@ -37,6 +41,7 @@ vtkSmartPointer<Array> newArray(const char* name, int components, vtkIdType n)
 } // namespace
 
 vtkGLSLasReader::vtkGLSLasReader()
+  : KeepWithheldPoints(0)
 {
   this->SetNumberOfInputPorts(0);
 }
@@ -67,8 +72,8 @@ vtkIdType vtkGLSLasReader::ReadAnnouncedPointCount()
 namespace
 {
 
-/// The point arrays of a LAS file's points: those of every format, and GpsTime, RGB, NIR and the extra bytes where
-/// the file has them.
+/// The point arrays of a LAS file's points: those of every format, and GpsTime, RGB, NIR, ScannerChannel and the
+/// extra bytes where the file has them.
 struct LasArrays
 {
   vtkSmartPointer<vtkDoubleArray> xyz;
@@ -78,61 +83,117 @@ struct LasArrays
   LasArrays(const gls::LasHeader& h, vtkIdType n)
   {
     xyz = newArray<vtkDoubleArray>("Points", 3, n);
-    auto intensity = newArray<vtkUnsignedShortArray>("Intensity", 1, n);
-    auto returnNumber = newArray<vtkUnsignedCharArray>("ReturnNumber", 1, n);
-    auto returns = newArray<vtkUnsignedCharArray>("NumberOfReturns", 1, n);
-    auto classification = newArray<vtkUnsignedCharArray>("Classification", 1, n);
-    auto angle = newArray<vtkFloatArray>("ScanAngle", 1, n);
-    auto user = newArray<vtkUnsignedCharArray>("UserData", 1, n);
-    auto source = newArray<vtkUnsignedShortArray>("PointSourceId", 1, n);
-    attributes = { intensity, returnNumber, returns, classification, angle, user, source };
     columns.xyz = xyz->GetPointer(0);
-    columns.intensity = intensity->GetPointer(0);
-    columns.returnNumber = returnNumber->GetPointer(0);
-    columns.numberOfReturns = returns->GetPointer(0);
-    columns.classification = classification->GetPointer(0);
-    columns.scanAngle = angle->GetPointer(0);
-    columns.userData = user->GetPointer(0);
-    columns.pointSourceId = source->GetPointer(0);
+    columns.intensity = add<vtkUnsignedShortArray>("Intensity", 1, n);
+    columns.returnNumber = add<vtkUnsignedCharArray>("ReturnNumber", 1, n);
+    columns.numberOfReturns = add<vtkUnsignedCharArray>(vtkGLSArrayNames::NumberOfReturns, 1, n);
+    columns.classification = add<vtkUnsignedCharArray>(vtkGLSArrayNames::Classification, 1, n);
+    columns.scanAngle = add<vtkFloatArray>(vtkGLSArrayNames::ScanAngle, 1, n);
+    columns.userData = add<vtkUnsignedCharArray>("UserData", 1, n);
+    columns.pointSourceId = add<vtkUnsignedShortArray>("PointSourceId", 1, n);
+    columns.withheld = add<vtkUnsignedCharArray>("Withheld", 1, n);
+    columns.synthetic = add<vtkUnsignedCharArray>("Synthetic", 1, n);
+    columns.keyPoint = add<vtkUnsignedCharArray>("KeyPoint", 1, n);
+    columns.overlap = add<vtkUnsignedCharArray>("Overlap", 1, n);
+    columns.scanDirection = add<vtkUnsignedCharArray>("ScanDirection", 1, n);
+    columns.edgeOfFlightLine = add<vtkUnsignedCharArray>("EdgeOfFlightLine", 1, n);
+    if (h.extended())
+    {
+      columns.scannerChannel = add<vtkUnsignedCharArray>("ScannerChannel", 1, n);
+    }
     if (h.hasGpsTime())
     {
-      auto gps = newArray<vtkDoubleArray>("GpsTime", 1, n);
-      columns.gpsTime = gps->GetPointer(0);
-      attributes.push_back(gps);
+      columns.gpsTime = add<vtkDoubleArray>("GpsTime", 1, n);
     }
     if (h.hasRgb())
     {
-      auto rgb = newArray<vtkUnsignedShortArray>("RGB", 3, n);
-      columns.rgb = rgb->GetPointer(0);
-      attributes.push_back(rgb);
+      columns.rgb = add<vtkUnsignedShortArray>("RGB", 3, n);
     }
     if (h.hasNir())
     {
-      auto nir = newArray<vtkUnsignedShortArray>("NIR", 1, n);
-      columns.nir = nir->GetPointer(0);
-      attributes.push_back(nir);
+      columns.nir = add<vtkUnsignedShortArray>("NIR", 1, n);
     }
     for (const gls::LasExtraBytes& x : h.extra)
     {
-      auto extra = newArray<vtkDoubleArray>(x.name.c_str(), 1, n);
-      columns.extra.push_back(extra->GetPointer(0));
-      attributes.push_back(extra);
+      columns.extra.push_back(add<vtkDoubleArray>(x.name.c_str(), x.components, n));
     }
   }
 
-  /// The points, one vertex cell each, and the point arrays into `output`.
-  void moveInto(vtkPolyData* output, vtkIdType n) const
+  /// The points (the first `written`), one vertex cell each, and the point arrays into `output`.
+  void moveInto(vtkPolyData* output, vtkIdType written) const
   {
+    xyz->SetNumberOfTuples(written); // fewer than allocated when withheld points were left out
     vtkNew<vtkPoints> points;
     points->SetData(xyz);
     output->SetPoints(points);
-    output->SetVerts(vtkGLSVertexCells(n));
+    output->SetVerts(vtkGLSVertexCells(written));
     for (const auto& a : attributes)
     {
+      a->SetNumberOfTuples(written);
       output->GetPointData()->AddArray(a);
     }
   }
+
+private:
+  /// A new point array of n tuples, listed among the attributes; where its values go.
+  template <class Array>
+  typename Array::ValueType* add(const char* name, int components, vtkIdType n)
+  {
+    auto array = newArray<Array>(name, components, n);
+    attributes.push_back(array);
+    return array->GetPointer(0);
+  }
 };
+
+/// The coordinate system into the field data: CoordinateSystemWKT (a string), and GeoKeyDirectory (unsigned short),
+/// GeoDoubleParams (double) and GeoAsciiParams (a string) where the file has them.
+void AddCoordinateSystem(const gls::LasCoordinateSystem& cs, vtkFieldData* fd)
+{
+  if (!cs.wkt.empty())
+  {
+    vtkNew<vtkStringArray> wkt;
+    wkt->SetName(vtkGLSArrayNames::CoordinateSystemWKT);
+    wkt->InsertNextValue(cs.wkt);
+    fd->AddArray(wkt);
+  }
+  if (!cs.geoKeys.empty())
+  {
+    vtkNew<vtkUnsignedShortArray> keys;
+    keys->SetName(vtkGLSArrayNames::GeoKeyDirectory);
+    for (std::uint16_t k : cs.geoKeys)
+    {
+      keys->InsertNextValue(k);
+    }
+    fd->AddArray(keys);
+  }
+  if (!cs.geoDoubles.empty())
+  {
+    vtkNew<vtkDoubleArray> doubles;
+    doubles->SetName(vtkGLSArrayNames::GeoDoubleParams);
+    for (double d : cs.geoDoubles)
+    {
+      doubles->InsertNextValue(d);
+    }
+    fd->AddArray(doubles);
+  }
+  if (!cs.geoAscii.empty())
+  {
+    vtkNew<vtkStringArray> ascii;
+    ascii->SetName(vtkGLSArrayNames::GeoAsciiParams);
+    ascii->InsertNextValue(cs.geoAscii);
+    fd->AddArray(ascii);
+  }
+}
+
+/// A field-data array of one tuple of 3 doubles.
+void AddTriple(vtkFieldData* fd, const char* name, const double* v)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(3);
+  a->InsertNextTuple(v);
+  fd->AddArray(a);
+}
 
 } // namespace
 
@@ -157,15 +218,47 @@ int vtkGLSLasReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
   }
   const vtkIdType n = static_cast<vtkIdType>(h.pointCount);
   LasArrays arrays(h, n);
-  if (!gls::readLasPoints(in, h, arrays.columns, error))
+  arrays.columns.skipWithheld = !this->KeepWithheldPoints;
+  gls::LasReadResult read;
+  if (!gls::readLasPoints(in, h, arrays.columns, read, error))
   {
     vtkErrorMacro("Cannot read the LAS file '" << this->FileName << "': " << error << ".");
     return 0;
   }
-  arrays.moveInto(output, n);
+  std::vector<std::string> quirks = h.quirks;
+  quirks.insert(quirks.end(), read.quirks.begin(), read.quirks.end());
+  for (const std::string& quirk : quirks)
+  {
+    vtkWarningMacro("The LAS file '" << this->FileName << "' is read although " << quirk << ".");
+  }
+  arrays.moveInto(output, static_cast<vtkIdType>(read.written));
+  vtkFieldData* fd = output->GetFieldData();
+  AddCoordinateSystem(h.coordinateSystem, fd);
+  AddTriple(fd, vtkGLSArrayNames::LasScale, h.scale);
+  AddTriple(fd, vtkGLSArrayNames::LasOffset, h.offset);
+  const std::uint64_t left = this->KeepWithheldPoints ? 0 : read.withheld;
+  if (left > 0)
+  {
+    vtkNew<vtkIdTypeArray> withheld;
+    withheld->SetName(vtkGLSArrayNames::WithheldPoints);
+    withheld->InsertNextValue(static_cast<vtkIdType>(left));
+    fd->AddArray(withheld);
+  }
   std::ostringstream d;
   d << "LAS " << h.versionMajor << "." << h.versionMinor << ", point format " << h.format << ", " << h.pointCount
     << " points";
+  if (left > 0)
+  {
+    d << " (" << left << " withheld, left out)";
+  }
+  else if (read.withheld > 0)
+  {
+    d << " (" << read.withheld << " withheld, kept)";
+  }
+  const gls::LasCoordinateSystem& cs = h.coordinateSystem;
+  d << (cs.empty() ? "; no coordinate system"
+                   : std::string("; coordinate system: ") + (cs.wkt.empty() ? "" : "WKT") +
+          (cs.wkt.empty() || cs.geoKeys.empty() ? "" : " and ") + (cs.geoKeys.empty() ? "" : "GeoTIFF keys"));
   this->Description = d.str();
   return 1;
 }
@@ -174,5 +267,6 @@ void vtkGLSLasReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "KeepWithheldPoints: " << this->KeepWithheldPoints << "\n";
   os << indent << "Description: " << this->Description << "\n";
 }

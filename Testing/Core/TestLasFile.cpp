@@ -231,7 +231,8 @@ std::string readBack(const std::string& file, gls::LasHeader& h, std::vector<dou
   c.rgb = rgb.data();
   c.nir = nir.data();
   c.extra.push_back(extra.data());
-  if (!gls::readLasPoints(in, h, c, error))
+  gls::LasReadResult read;
+  if (!gls::readLasPoints(in, h, c, read, error))
   {
     return error;
   }

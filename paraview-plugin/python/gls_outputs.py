@@ -154,23 +154,6 @@ SUMMARY_MANTISSA_BITS = {'Normals': 16, 'NormalQuality': 12, 'GLSFeature': 12, '
 # Arrays of the analysis left out of the default output (the normal estimation's neighbour count; the principal
 # directions' turn rate, and their ridge/valley map, which GLSStableShapeIndex gives).
 SUMMARY_DROPPED = ('NormalNeighbors', 'GLSDirectionTurnRate', 'GLSRidgeValley')
-# Points are written as float32 when its rounding (2^-24 of the largest coordinate) stays below this fraction of the
-# typical point spacing; otherwise (georeferenced coordinates far from the origin) as doubles.
-FLOAT32_POINT_ROUNDING = 0.01
-
-
-def float32_points_suffice(points):
-    """Whether float32 positions stay within FLOAT32_POINT_ROUNDING of the typical spacing (the diagonal over the
-    square root of the point count, the spacing of a surface)."""
-    import numpy as np
-    if len(points) < 2:
-        return True
-    low, high = points.min(axis=0), points.max(axis=0)
-    spacing = float(np.linalg.norm(high - low)) / np.sqrt(len(points))
-    largest = float(max(np.abs(low).max(), np.abs(high).max()))
-    return largest * 2.0 ** -24 <= FLOAT32_POINT_ROUNDING * spacing
-
-
 def rounded_float32(values, bits, chunk=1 << 20):
     """float32 copies of `values` with `bits` of their 23 mantissa bits kept, rounded to nearest (ties away from
     zero); NaN and infinities stay, and a finite value that would round past the largest float32 is cut instead.
@@ -195,23 +178,16 @@ def rounded_float32(values, bits, chunk=1 << 20):
 
 
 def compact(polydata, full_precision=False):
-    """The default output: the points (float32 where that suffices), the cells, the input's own arrays as they are
-    and the GLS arrays in SUMMARY_FLOAT32 / SUMMARY_UINT8 precision, the float32 ones rounded to
-    SUMMARY_MANTISSA_BITS unless `full_precision`. Returns (polydata, the arrays narrowed)."""
+    """The default output: the points as the file gave them (never narrowed: a LAS file's positions are its integers
+    times its scale plus its offset, in doubles, exactly), the cells, the input's own arrays as they are and the GLS
+    arrays in SUMMARY_FLOAT32 / SUMMARY_UINT8 precision, the float32 ones rounded to SUMMARY_MANTISSA_BITS unless
+    `full_precision`. Returns (polydata, the arrays narrowed)."""
     import numpy as np
     from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-    from vtkmodules.vtkCommonCore import vtkPoints
     from vtkmodules.vtkCommonDataModel import vtkPolyData
     out = vtkPolyData()
-    points = vtk_to_numpy(polydata.GetPoints().GetData())
     narrowed = []
-    pts = vtkPoints()
-    if points.dtype != np.float32 and float32_points_suffice(points):
-        pts.SetData(numpy_to_vtk(np.ascontiguousarray(points, dtype=np.float32), deep=True))
-        narrowed.append('points')
-    else:
-        pts.SetData(polydata.GetPoints().GetData())
-    out.SetPoints(pts)
+    out.SetPoints(polydata.GetPoints())
     for kind in ('Verts', 'Lines', 'Polys', 'Strips'):
         getattr(out, 'Set' + kind)(getattr(polydata, 'Get' + kind)())
     out.GetFieldData().ShallowCopy(polydata.GetFieldData())

@@ -1,6 +1,10 @@
 // LAS files (ASPRS LAS 1.0 to 1.4, point data record formats 0 to 10), the format aerial and most terrestrial lidar
 // is delivered in: the header and variable-length records checked against the file, then the points decoded into
-// plain arrays (positions in double precision: X scale + offset). LAZ (compressed LAS) is recognised and refused.
+// plain arrays (positions in double precision: X scale + offset, so that a position is the file's integer exactly).
+// The coordinate system (OGC WKT, or the GeoTIFF keys) is read from the records and the extended records of LAS 1.4.
+// Common quirks of real writers are read with a note naming each (LasHeader::quirks, LasReadResult::quirks): Extra
+// Bytes descriptors of the deprecated array types, a header whose bounds are stored unscaled, a LAS 1.4 point count in
+// the legacy field only. LAZ (compressed LAS) is recognised and refused.
 #pragma once
 
 #include <cstddef>
@@ -16,10 +20,23 @@ namespace gls
 struct LasExtraBytes
 {
   std::string name;
-  int dataType = 0;        ///< 1..10: u8, i8, u16, i16, u32, i32, u64, i64, f32, f64
+  int dataType = 0;        ///< 1..10: u8, i8, u16, i16, u32, i32, u64, i64, f32, f64 (of each component)
+  int components = 1;      ///< 1; 2 or 3 for the deprecated array types 11-20 and 21-30 (read with a quirk note)
   std::size_t offset = 0;  ///< in the point record
-  double scale = 1.0;      ///< applied when the descriptor says so (options bit 3), else 1
-  double shift = 0.0;      ///< likewise (options bit 4), else 0
+  double scale[3] = { 1.0, 1.0, 1.0 }; ///< applied when the descriptor says so (options bit 3), else 1
+  double shift[3] = { 0.0, 0.0, 0.0 }; ///< likewise (options bit 4), else 0
+};
+
+/// The coordinate system of a LAS file's positions, as its (extended) variable-length records give it
+/// (LASF_Projection): OGC WKT (record 2112), or the GeoTIFF keys (34735, with 34736 and 34737), or both.
+struct LasCoordinateSystem
+{
+  std::string wkt;                        ///< OGC coordinate system WKT, or empty
+  std::vector<std::uint16_t> geoKeys;     ///< GeoKeyDirectoryTag (4 values a key, after a 4-value header), or empty
+  std::vector<double> geoDoubles;         ///< GeoDoubleParamsTag
+  std::string geoAscii;                   ///< GeoAsciiParamsTag ('|' separates its strings)
+
+  bool empty() const { return this->wkt.empty() && this->geoKeys.empty(); }
 };
 
 struct LasHeader
@@ -32,6 +49,8 @@ struct LasHeader
   double scale[3] = { 1, 1, 1 }, offset[3] = { 0, 0, 0 };
   double min[3] = { 0, 0, 0 }, max[3] = { 0, 0, 0 }; ///< the header's bounds
   std::vector<LasExtraBytes> extra;
+  LasCoordinateSystem coordinateSystem;
+  std::vector<std::string> quirks;  ///< what the header did not hold as the specification says, read anyway
 
   bool hasGpsTime() const { return this->format == 1 || this->format >= 3; }
   bool hasRgb() const { return this->format == 2 || this->format == 3 || this->format == 5 || this->format >= 7; }
@@ -42,9 +61,10 @@ struct LasHeader
 /// The size of a point record of each format (the standard fields only).
 std::size_t lasFormatSize(int format);
 
-/// Reads the header and the variable-length records of a LAS file of `fileSize` bytes. False with `error` saying what
-/// is wrong: not a LAS file, LAZ, an unknown version or format, a record length below the format's, the point records
-/// past the end of the file (truncated), an Extra Bytes record that does not fit the records.
+/// Reads the header, the variable-length records and (LAS 1.4) the extended ones of a LAS file of `fileSize` bytes.
+/// False with `error` saying what is wrong: not a LAS file, LAZ, an unknown version or format, a record length below
+/// the format's, the point records past the end of the file (truncated), an Extra Bytes record that does not fit the
+/// records, a record that runs into the points or past the end.
 bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& header, std::string& error);
 
 /// Where the points go: arrays of header.pointCount values (3 per point for xyz, rgb), null for what is not wanted
@@ -62,11 +82,32 @@ struct LasColumns
   double* gpsTime = nullptr;
   std::uint16_t* rgb = nullptr;
   std::uint16_t* nir = nullptr;
-  std::vector<double*> extra;             ///< one per header.extra, scaled and shifted
+  // The flags, 0 or 1 each: formats 0-5 keep synthetic, key-point and withheld beside the class (overlap is class 12
+  // there), 6-10 in a byte of their own with overlap and the scanner channel (0-3).
+  std::uint8_t* withheld = nullptr;
+  std::uint8_t* synthetic = nullptr;
+  std::uint8_t* keyPoint = nullptr;
+  std::uint8_t* overlap = nullptr;
+  std::uint8_t* scanDirection = nullptr;  ///< the mirror's direction (1: positive, left to right)
+  std::uint8_t* edgeOfFlightLine = nullptr;
+  std::uint8_t* scannerChannel = nullptr; ///< formats 6-10 only
+  std::vector<double*> extra;             ///< one per header.extra (its components per point), scaled and shifted
+  bool skipWithheld = false;              ///< leave the withheld points out (the arrays then hold the others first)
 };
 
-/// Decodes the point records (in blocks, so that the file is never held whole), then checks them against the header's
-/// bounds (a point outside them by more than a scale step means an inconsistent file). False with `error`.
-bool readLasPoints(std::istream& in, const LasHeader& header, LasColumns& columns, std::string& error);
+/// What a read of the points found.
+struct LasReadResult
+{
+  std::uint64_t written = 0;        ///< points written to the columns
+  std::uint64_t withheld = 0;       ///< points flagged withheld (left out when columns.skipWithheld)
+  std::vector<std::string> quirks;  ///< what the points did not hold as the specification says, read anyway
+};
+
+/// Decodes the point records (in blocks, so that the file is never held whole), then checks every point (the
+/// withheld ones too) against the header's bounds: a point outside them by more than a scale step means an
+/// inconsistent file, unless the bounds read as stored unscaled (the integers, a writer's slip: a quirk). False with
+/// `error`.
+bool readLasPoints(
+  std::istream& in, const LasHeader& header, LasColumns& columns, LasReadResult& result, std::string& error);
 
 } // namespace gls

@@ -82,7 +82,8 @@ bool readBytes(std::istream& in, std::uint64_t at, unsigned char* out, std::size
   return static_cast<std::size_t>(in.gcount()) == n;
 }
 
-/// The Extra Bytes record's descriptors (192 bytes each) into header.extra, placed after the format's fields.
+/// The Extra Bytes record's descriptors (192 bytes each) into header.extra, placed after the format's fields. The
+/// deprecated array types (11-20: two values of type 1-10, 21-30: three) are read as components, with a quirk.
 bool parseExtraBytes(const unsigned char* data, std::size_t length, LasHeader& h, std::string& error)
 {
   std::size_t at = lasFormatSize(h.format);
@@ -92,21 +93,33 @@ bool parseExtraBytes(const unsigned char* data, std::size_t length, LasHeader& h
     const int type = e[2], options = e[3];
     char name[33] = {};
     std::memcpy(name, e + 4, 32);
-    const std::size_t size = type == 0 ? static_cast<std::size_t>(options) : extraSize(type);
+    if (type > 30)
+    {
+      error = "an Extra Bytes descriptor ('" + std::string(name) + "') has the data type " + std::to_string(type) +
+        " (0 to 30 exist)";
+      return false;
+    }
+    const int components = type == 0 ? 0 : (type - 1) / 10 + 1;
+    const int base = type == 0 ? 0 : (type - 1) % 10 + 1;
+    const std::size_t size = type == 0 ? static_cast<std::size_t>(options) : components * extraSize(base);
     if (type > 10)
     {
-      error = "an Extra Bytes descriptor ('" + std::string(name) + "') has the deprecated array type " +
-        std::to_string(type) + ", which this reader does not decode";
-      return false;
+      h.quirks.push_back("the Extra Bytes field '" + std::string(name) + "' has the deprecated array type " +
+        std::to_string(type) + " (LAS 1.4 R13; " + std::to_string(components) + " values of type " +
+        std::to_string(base) + "): read as " + std::to_string(components) + " components");
     }
     if (type != 0)
     {
       LasExtraBytes x;
       x.name = name;
-      x.dataType = type;
+      x.dataType = base;
+      x.components = components;
       x.offset = at;
-      x.scale = (options & 8) ? f64(e + 112) : 1.0;
-      x.shift = (options & 16) ? f64(e + 136) : 0.0;
+      for (int c = 0; c < components; ++c)
+      {
+        x.scale[c] = (options & 8) ? f64(e + 112 + 8 * c) : 1.0;
+        x.shift[c] = (options & 16) ? f64(e + 136 + 8 * c) : 0.0;
+      }
       h.extra.push_back(x);
     }
     at += size;
@@ -189,9 +202,21 @@ bool readLasFields(const unsigned char* b, LasHeader& h, std::uint32_t& vlrCount
   vlrCount = u32(b + 100);
   h.recordLength = u16(b + 105);
   h.pointCount = u32(b + 107);
-  if (h.versionMinor >= 4 && h.pointCount == 0)
+  if (h.versionMinor >= 4)
   {
-    h.pointCount = littleEndian(b + 247, 8);
+    // LAS 1.4 counts its points in 64 bits; the legacy field is 0 for formats 6-10 and beyond 2^32 points.
+    const std::uint64_t legacy = h.pointCount, extended = littleEndian(b + 247, 8);
+    h.pointCount = extended != 0 ? extended : legacy;
+    if (extended == 0 && legacy != 0)
+    {
+      h.quirks.push_back("the LAS 1.4 header counts its " + std::to_string(legacy) +
+        " points in the legacy field only (its 64-bit count is 0)");
+    }
+    else if (legacy != 0 && legacy != extended)
+    {
+      h.quirks.push_back("the LAS 1.4 header's legacy point count (" + std::to_string(legacy) +
+        ") differs from its 64-bit count (" + std::to_string(extended) + "): the 64-bit count is read");
+    }
   }
   for (int a = 0; a < 3; ++a)
   {
@@ -237,8 +262,72 @@ bool checkLasRecords(const LasHeader& h, std::size_t headerSize, std::uint64_t f
   return true;
 }
 
-/// The variable-length records between the header and the points: the Extra Bytes descriptors into h.extra. False
-/// with the error when a record runs into the points or its descriptors do not fit the point records.
+/// A text record's characters up to its first NUL (or all of them).
+std::string recordText(const std::vector<unsigned char>& data)
+{
+  const auto end = std::find(data.begin(), data.end(), static_cast<unsigned char>(0));
+  return std::string(data.begin(), end);
+}
+
+/// A coordinate-system record (user LASF_Projection) into h.coordinateSystem: WKT (2112) or the GeoTIFF keys
+/// (34735-34737); the others (2111, a math transform) are not read.
+void readProjectionRecord(int id, const std::vector<unsigned char>& data, LasHeader& h)
+{
+  LasCoordinateSystem& cs = h.coordinateSystem;
+  if (id == 2112)
+  {
+    cs.wkt = recordText(data);
+  }
+  else if (id == 34735)
+  {
+    cs.geoKeys.resize(data.size() / 2);
+    for (std::size_t k = 0; k < cs.geoKeys.size(); ++k)
+    {
+      cs.geoKeys[k] = u16(data.data() + 2 * k);
+    }
+  }
+  else if (id == 34736)
+  {
+    cs.geoDoubles.resize(data.size() / 8);
+    for (std::size_t k = 0; k < cs.geoDoubles.size(); ++k)
+    {
+      cs.geoDoubles[k] = f64(data.data() + 8 * k);
+    }
+  }
+  else if (id == 34737)
+  {
+    cs.geoAscii = recordText(data);
+  }
+}
+
+/// One record's body (the `length` bytes at `at`) where it matters: the Extra Bytes descriptors (LASF_Spec 4; `extra`:
+/// a variable-length record, where the specification puts them) and the coordinate system. False with the error.
+bool readRecordBody(std::istream& in, std::uint64_t at, std::uint64_t length, const std::string& user, int id,
+  bool extra, LasHeader& h, std::string& error)
+{
+  const bool extraBytes = extra && user == "LASF_Spec" && id == 4;
+  const bool projection = user == "LASF_Projection" && (id == 2112 || (id >= 34735 && id <= 34737));
+  if (!extraBytes && !projection)
+  {
+    return true;
+  }
+  std::vector<unsigned char> data(static_cast<std::size_t>(length));
+  if (!readBytes(in, at, data.data(), data.size()))
+  {
+    error = "cannot read the " + std::string(extraBytes ? "Extra Bytes" : "coordinate system") + " record";
+    return false;
+  }
+  if (extraBytes)
+  {
+    return parseExtraBytes(data.data(), data.size(), h, error);
+  }
+  readProjectionRecord(id, data, h);
+  return true;
+}
+
+/// The variable-length records between the header and the points: the Extra Bytes descriptors into h.extra, the
+/// coordinate system. False with the error when a record runs into the points or its descriptors do not fit the
+/// point records.
 bool readVariableLengthRecords(
   std::istream& in, std::size_t headerSize, std::uint32_t vlrCount, LasHeader& h, std::string& error)
 {
@@ -260,16 +349,46 @@ bool readVariableLengthRecords(
     }
     char user[17] = {};
     std::memcpy(user, v + 2, 16);
-    if (std::string(user) == "LASF_Spec" && u16(v + 18) == 4)
+    if (!readRecordBody(in, at + 54, length, user, u16(v + 18), true, h, error))
     {
-      std::vector<unsigned char> data(length);
-      if (!readBytes(in, at + 54, data.data(), length) || !parseExtraBytes(data.data(), length, h, error))
-      {
-        error = error.empty() ? "cannot read the Extra Bytes record" : error;
-        return false;
-      }
+      return false;
     }
     at += 54 + length;
+  }
+  return true;
+}
+
+/// LAS 1.4's extended variable-length records after the points (b: the header): the coordinate system where a
+/// writer put it there. A record that lies outside the file is not read (a quirk: the points do not need it); false
+/// with the error when an Extra Bytes or coordinate-system record cannot be read.
+bool readExtendedRecords(std::istream& in, const unsigned char* b, std::uint64_t fileSize, LasHeader& h,
+  std::string& error)
+{
+  if (h.versionMinor < 4)
+  {
+    return true;
+  }
+  std::uint64_t at = littleEndian(b + 235, 8);
+  const std::uint32_t count = u32(b + 243);
+  for (std::uint32_t r = 0; r < count; ++r)
+  {
+    unsigned char v[60];
+    const std::uint64_t pointsEnd = h.pointOffset + h.pointCount * h.recordLength; // checkLasRecords: in the file
+    const bool inFile = at >= pointsEnd && at <= fileSize && fileSize - at >= 60 && readBytes(in, at, v, 60);
+    const std::uint64_t length = inFile ? littleEndian(v + 20, 8) : 0;
+    if (!inFile || length > fileSize - at - 60)
+    {
+      h.quirks.push_back("extended variable-length record " + std::to_string(r + 1) + " of " +
+        std::to_string(count) + " (from byte " + std::to_string(at) + ") lies outside the file: not read");
+      return true;
+    }
+    char user[17] = {};
+    std::memcpy(user, v + 2, 16);
+    if (!readRecordBody(in, at + 60, length, user, u16(v + 18), false, h, error))
+    {
+      return false;
+    }
+    at += 60 + length;
   }
   return true;
 }
@@ -283,26 +402,51 @@ bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::
   std::size_t headerSize = 0;
   std::uint32_t vlrCount = 0;
   return readLasPreamble(in, fileSize, b, h, headerSize, error) && readLasFields(b, h, vlrCount, error) &&
-    checkLasRecords(h, headerSize, fileSize, error) && readVariableLengthRecords(in, headerSize, vlrCount, h, error);
+    checkLasRecords(h, headerSize, fileSize, error) && readVariableLengthRecords(in, headerSize, vlrCount, h, error) &&
+    readExtendedRecords(in, b, fileSize, h, error);
 }
 
 namespace
 {
 
-/// Point i's position (X * scale + offset in double precision) from its record p, into c.xyz when asked, and into
-/// the running bounds of the points.
-void readLasPosition(
-  const unsigned char* p, std::uint64_t i, const LasHeader& h, LasColumns& c, double* low, double* high)
+/// Point i's position (X * scale + offset in double precision) from its record p into c.xyz when asked.
+void readLasPosition(const unsigned char* p, std::uint64_t i, const LasHeader& h, LasColumns& c)
 {
-  for (int a = 0; a < 3; ++a)
+  for (int a = 0; a < 3 && c.xyz; ++a)
   {
-    const double v = i32(p + 4 * a) * h.scale[a] + h.offset[a];
-    low[a] = i == 0 ? v : std::min(low[a], v);
-    high[a] = i == 0 ? v : std::max(high[a], v);
-    if (c.xyz)
+    c.xyz[3 * i + a] = i32(p + 4 * a) * h.scale[a] + h.offset[a];
+  }
+}
+
+/// Whether record p is flagged withheld.
+bool isWithheld(const unsigned char* p, const LasHeader& h)
+{
+  return h.extended() ? (p[15] & 4) != 0 : (p[15] & 128) != 0;
+}
+
+/// Record p's flags into the columns asked for (point i): formats 0-5 keep synthetic, key-point and withheld in the
+/// classification byte's high bits and the scan direction and edge of flight line in the returns byte's, overlap as
+/// class 12; formats 6-10 give them a byte of their own with overlap and the scanner channel.
+void readLasFlags(const unsigned char* p, std::uint64_t i, const LasHeader& h, LasColumns& c)
+{
+  const bool ext = h.extended();
+  const int flags = ext ? p[15] : p[15] >> 5; // synthetic, key-point, withheld in bits 0-2 either way
+  const int edges = ext ? p[15] >> 6 : p[14] >> 6; // scan direction, edge of flight line
+  const auto put = [i](std::uint8_t* column, int value) {
+    if (column)
     {
-      c.xyz[3 * i + a] = v;
+      column[i] = static_cast<std::uint8_t>(value);
     }
+  };
+  put(c.synthetic, flags & 1);
+  put(c.keyPoint, (flags >> 1) & 1);
+  put(c.withheld, (flags >> 2) & 1);
+  put(c.overlap, ext ? (p[15] >> 3) & 1 : (p[15] & 31) == 12 ? 1 : 0);
+  put(c.scanDirection, edges & 1);
+  put(c.edgeOfFlightLine, (edges >> 1) & 1);
+  if (ext)
+  {
+    put(c.scannerChannel, (p[15] >> 4) & 3);
   }
 }
 
@@ -311,6 +455,7 @@ void readLasPosition(
 void readLasAttributes(const unsigned char* p, std::uint64_t i, const LasHeader& h, LasColumns& c)
 {
   const bool ext = h.extended();
+  readLasFlags(p, i, h, c);
   if (c.intensity)
   {
     c.intensity[i] = u16(p + 12);
@@ -362,16 +507,51 @@ void readLasAttributes(const unsigned char* p, std::uint64_t i, const LasHeader&
     if (c.extra[e])
     {
       const LasExtraBytes& x = h.extra[e];
-      c.extra[e][i] = extraValue(p + x.offset, x.dataType) * x.scale + x.shift;
+      const std::size_t size = extraSize(x.dataType);
+      for (int k = 0; k < x.components; ++k)
+      {
+        c.extra[e][x.components * i + k] = extraValue(p + x.offset + k * size, x.dataType) * x.scale[k] + x.shift[k];
+      }
     }
   }
 }
 
-/// The header's bounds against the points' (within a scale step and a relative 1e-9 of rounding); false with the
-/// error when the points leave them.
-bool checkLasBounds(const LasHeader& h, const double* low, const double* high, std::string& error)
+/// Whether every point lies in [low, high] (per axis) within a scale step and a relative 1e-9 of rounding.
+bool pointsWithin(const LasHeader& h, const double* low, const double* high, const double* min, const double* max)
 {
-  for (int a = 0; a < 3 && h.pointCount > 0; ++a)
+  for (int a = 0; a < 3; ++a)
+  {
+    const double slack = std::abs(h.scale[a]) + 1e-9 * (std::abs(min[a]) + std::abs(max[a]));
+    if (low[a] < min[a] - slack || high[a] > max[a] + slack)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// The header's bounds against the points' (low, high); false with the error when the points leave them, unless the
+/// bounds hold them once read as unscaled integers (a quirk then).
+bool checkLasBounds(const LasHeader& h, const double* low, const double* high, LasReadResult& result,
+  std::string& error)
+{
+  if (h.pointCount == 0 || pointsWithin(h, low, high, h.min, h.max))
+  {
+    return true;
+  }
+  double min[3], max[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    min[a] = h.min[a] * h.scale[a] + h.offset[a];
+    max[a] = h.max[a] * h.scale[a] + h.offset[a];
+  }
+  if (pointsWithin(h, low, high, min, max))
+  {
+    result.quirks.push_back("the header's bounds are stored unscaled (the integers, not the coordinates): read as "
+                            "such");
+    return true;
+  }
+  for (int a = 0; a < 3; ++a)
   {
     const double slack = std::abs(h.scale[a]) + 1e-9 * (std::abs(h.min[a]) + std::abs(h.max[a]));
     if (low[a] < h.min[a] - slack || high[a] > h.max[a] + slack)
@@ -381,16 +561,17 @@ bool checkLasBounds(const LasHeader& h, const double* low, const double* high, s
       msg << "the points span [" << low[a] << ", " << high[a] << "] along " << "xyz"[a] << ", outside the header's ["
           << h.min[a] << ", " << h.max[a] << "]: an inconsistent file";
       error = msg.str();
-      return false;
+      break;
     }
   }
-  return true;
+  return false;
 }
 
 } // namespace
 
-bool readLasPoints(std::istream& in, const LasHeader& h, LasColumns& c, std::string& error)
+bool readLasPoints(std::istream& in, const LasHeader& h, LasColumns& c, LasReadResult& result, std::string& error)
 {
+  result = LasReadResult();
   // Blocks of about 4 MiB (never more records than the file has).
   const std::size_t block = static_cast<std::size_t>(
     std::max<std::uint64_t>(1, std::min<std::uint64_t>(h.pointCount, (std::size_t(4) << 20) / h.recordLength)));
@@ -407,11 +588,24 @@ bool readLasPoints(std::istream& in, const LasHeader& h, LasColumns& c, std::str
     for (std::size_t k = 0; k < count; ++k)
     {
       const unsigned char* p = buffer.data() + k * h.recordLength;
-      readLasPosition(p, first + k, h, c, low, high);
-      readLasAttributes(p, first + k, h, c);
+      for (int a = 0; a < 3; ++a) // the bounds of every point, a withheld one too
+      {
+        const double v = i32(p + 4 * a) * h.scale[a] + h.offset[a];
+        low[a] = first + k == 0 ? v : std::min(low[a], v);
+        high[a] = first + k == 0 ? v : std::max(high[a], v);
+      }
+      const bool withheld = isWithheld(p, h);
+      result.withheld += withheld ? 1 : 0;
+      if (withheld && c.skipWithheld)
+      {
+        continue;
+      }
+      readLasPosition(p, result.written, h, c);
+      readLasAttributes(p, result.written, h, c);
+      ++result.written;
     }
   }
-  return checkLasBounds(h, low, high, error);
+  return checkLasBounds(h, low, high, result, error);
 }
 
 } // namespace gls
