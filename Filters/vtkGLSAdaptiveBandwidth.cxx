@@ -63,7 +63,12 @@ int vtkGLSAdaptiveBandwidth::ComputeOutputs(vtkGLSRun& run)
   cloud.Points.resize(3 * cloud.Owned);
   for (vtkIdType i = 0; i < n; ++i)
   {
-    run.Input->GetPoint(i, &cloud.Points[3 * static_cast<std::size_t>(i)]);
+    double* p = &cloud.Points[3 * static_cast<std::size_t>(i)];
+    run.Input->GetPoint(i, p);
+    for (int a = 0; a < 3; ++a)
+    {
+      p[a] -= run.Cloud.Anchor[a]; // the run's coordinates (vtkGLSCloud::Anchor)
+    }
   }
   std::vector<double> rawAll(raw->GetPointer(0), raw->GetPointer(0) + n);
   std::size_t ghosts = 0;

@@ -12,7 +12,12 @@
 
 struct vtkGLSCloud
 {
-  std::vector<double> Points;  ///< 3 per point
+  /// Points are the input's coordinates less this (the low corner of the finite bounds of the whole input, on every
+  /// process), so that every computation sees the same numbers wherever the data sits: a survey at UTM coordinates
+  /// and the same points moved to the origin give the same results (their differences are the same doubles). A
+  /// filter that writes positions adds it back.
+  double Anchor[3] = { 0.0, 0.0, 0.0 };
+  std::vector<double> Points;  ///< 3 per point, less Anchor
   std::vector<double> Normals; ///< 3 per point (empty when the filter has none, e.g. normal estimation)
   /// Bytes a point takes in Points and Normals.
   static constexpr double BytesPerPoint = 6 * sizeof(double);

@@ -554,6 +554,15 @@ bool vtkGLSFilterBase::BeginRun(vtkGLSRun& run)
   if (run.HasFinitePoints)
   {
     run.Diagonal = DiagonalOf(run.Bounds);
+    // The coordinates from the bounds' low corner (the same on every process; NaN rows stay NaN).
+    for (int a = 0; a < 3; ++a)
+    {
+      run.Cloud.Anchor[a] = run.Bounds[2 * a];
+    }
+    for (std::size_t i = 0; i < xyz.size(); ++i)
+    {
+      xyz[i] -= run.Cloud.Anchor[i % 3];
+    }
   }
   if (!(dist.Sum(static_cast<double>(n)) > 0.0))
   {

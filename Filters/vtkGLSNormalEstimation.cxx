@@ -287,7 +287,8 @@ void vtkGLSNormalEstimation::ResolveSettings(
     case UP_ALONG_SPANNING_TREE: settings.orientation = gls::NormalOrientation::UpAlongSpanningTree; break;
     default: settings.orientation = gls::NormalOrientation::AgreeWithReference; break; // GatherReference's
   }
-  settings.viewpoint = { plan.Point[0], plan.Point[1], plan.Point[2] };
+  const double* anchor = run.Cloud.Anchor; // the point in the cloud's coordinates
+  settings.viewpoint = { plan.Point[0] - anchor[0], plan.Point[1] - anchor[1], plan.Point[2] - anchor[2] };
   settings.up = { plan.Up[0], plan.Up[1], plan.Up[2] };
   settings.graphNeighbors = this->GraphNeighbors;
   settings.minimumSpread = this->MinimumSpread;
@@ -346,7 +347,8 @@ bool vtkGLSNormalEstimation::GatherReference(const vtkGLSRun& run, const Orienta
     existing->GetTuple(i, &reference[3 * i]);
     for (int a = 0; viewpoints && a < 3; ++a)
     {
-      reference[3 * i + a] -= run.Cloud.Points[3 * i + a]; // towards the viewpoint
+      // Towards the viewpoint, in the cloud's coordinates (from its anchor).
+      reference[3 * i + a] = (reference[3 * i + a] - run.Cloud.Anchor[a]) - run.Cloud.Points[3 * i + a];
     }
   }
   settings.orientation = gls::NormalOrientation::AgreeWithReference;

@@ -93,6 +93,19 @@ int vtkGLSProjection::Execute(vtkGLSRun& run)
   {
     return ABORTED; // the input passes through, no partial arrays
   }
+  // The projected positions in the input's coordinates: each input position moved as its point was in the run's
+  // (a point left in place, one left out of the run among them, keeps its coordinates bit for bit).
+  double* xyz = out.points;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    input->GetPoint(i, p);
+    for (int a = 0; a < 3; ++a)
+    {
+      const double moved = xyz[3 * i + a] - run.Cloud.Points[3 * i + a];
+      xyz[3 * i + a] = moved == 0.0 || !std::isfinite(moved) ? p[a] : p[a] + moved;
+    }
+  }
   this->LastScaleMode = mode;
   vtkPointSet* output = run.Output;
   output->SetPoints(moved);

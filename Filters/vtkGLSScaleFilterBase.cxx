@@ -360,10 +360,10 @@ void vtkGLSScaleFilterBase::LayOutPyramid(const vtkGLSRun& run, gls::Multiresolu
   // distributed run lays its pyramid out like the serial run.
   m.accuracy = this->Accuracy;
   m.haveBounds = run.HasFinitePoints;
-  for (int a = 0; a < 3; ++a)
+  for (int a = 0; a < 3; ++a) // in the cloud's coordinates (from its anchor)
   {
-    m.low[a] = run.Bounds[2 * a];
-    m.high[a] = run.Bounds[2 * a + 1];
+    m.low[a] = run.Bounds[2 * a] - run.Cloud.Anchor[a];
+    m.high[a] = run.Bounds[2 * a + 1] - run.Cloud.Anchor[a];
   }
   const double points = run.Distributed.Sum(static_cast<double>(run.Input->GetNumberOfPoints()));
   m.spacing = gls::surfaceSpacingOfBox(m.low, m.high, static_cast<std::size_t>(points));

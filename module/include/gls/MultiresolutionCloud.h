@@ -39,7 +39,7 @@ struct PyramidLayout
 {
   double finestCellSize = 0.0; ///< h0 (length unit); must be > 0
   double largestScale = 0.0;   ///< the top level's cells are at least twice this (or the 2^21 lattice is full)
-  Vec3 low{};                  ///< a corner below every point; the lattice origin is snapped below it
+  Vec3 low{};                  ///< a corner below every point: the lattice's origin (the cells move with the data)
   double accuracy = kDefaultAccuracy; ///< a cell is one sample where edge <= accuracy * distance
   int walkLevel = 0;           ///< the points of one cube of this level share a walk (MultiresolutionView)
   double linearizedDistance = kLinearizedDistance; ///< where the far parts begin (MultiresolutionView, FarRule)

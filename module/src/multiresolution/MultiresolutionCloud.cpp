@@ -116,12 +116,6 @@ int topLevelOf(const PyramidLayout& layout)
   return topLevel;
 }
 
-/// The lattice's origin: `low` snapped down to the top level's cells (edge H).
-Vec3 latticeOrigin(const Vec3& low, double H)
-{
-  return { std::floor(low.x / H) * H, std::floor(low.y / H) * H, std::floor(low.z / H) * H };
-}
-
 /// The keys of the admitted points on the finest lattice, with their indices (the k-th admitted point: k itself
 /// where all are), unsorted; false when the progress callback asked to abort.
 bool finestKeys(const double* xyz, std::size_t n, const unsigned char* admit, const Vec3& origin, double h0,
@@ -205,7 +199,7 @@ PyramidLayout choosePyramidLayout(const double low[3], const double high[3], dou
   {
     h = extent > 0.0 ? std::exp2(std::ceil(std::log2(extent / (0.5 * kLatticeCells)))) : 1.0;
   }
-  // The box and the origin's snap below it (at most one top cell, itself at most 2^20 h) fit in 2^21 cells.
+  // The box fits in half the lattice's 2^21 cells (the lattice starts at its low corner).
   while (extent / h >= 0.5 * kLatticeCells && isFinite(h))
   {
     h *= 2.0;
@@ -245,7 +239,7 @@ bool MultiresolutionCloud::build(const double* xyz, const double* normals, std::
   // Progress: the keys and the sort are the first 60%, the levels the rest.
   const int topLevel = topLevelOf(layout);
   const double h0 = layout.finestCellSize;
-  const Vec3 origin = latticeOrigin(layout.low, std::ldexp(h0, topLevel));
+  const Vec3 origin = layout.low; // the lattice moves with the data: a shifted cloud gets the same cells
   KeyedIndices keyed;
   if (!finestKeys(xyz, n, admit, origin, h0, buildStage(parallel, 0.0, 0.1), keyed))
   {
@@ -422,7 +416,7 @@ PyramidCounts MultiresolutionCloud::count(
   KeyedIndices keyed;
   ParallelOptions stage;
   stage.threads = threads;
-  finestKeys(xyz, n, admit, latticeOrigin(layout.low, std::ldexp(h0, topLevel)), h0, stage, keyed);
+  finestKeys(xyz, n, admit, layout.low, h0, stage, keyed);
   sortByKey(keyed, threads);
   return countLevels(keyed.size(), [&keyed](std::size_t c) { return keyed[c].key; }, topLevel);
 }
