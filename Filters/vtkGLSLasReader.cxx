@@ -17,6 +17,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnsignedShortArray.h"
 
+#include "gls/FileContent.h"
 #include "gls/LasFile.h"
 
 #include <algorithm>
@@ -213,7 +214,7 @@ int vtkGLSLasReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
   std::string error;
   if (!gls::readLasHeader(in, size, h, error))
   {
-    vtkErrorMacro("Cannot read the LAS file '" << this->FileName << "': " << error << ".");
+    vtkErrorMacro("Cannot read the LAS file '" << this->FileName << "': " << gls::printableText(error) << ".");
     return 0;
   }
   const vtkIdType n = static_cast<vtkIdType>(h.pointCount);
@@ -222,14 +223,14 @@ int vtkGLSLasReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInf
   gls::LasReadResult read;
   if (!gls::readLasPoints(in, h, arrays.columns, read, error))
   {
-    vtkErrorMacro("Cannot read the LAS file '" << this->FileName << "': " << error << ".");
+    vtkErrorMacro("Cannot read the LAS file '" << this->FileName << "': " << gls::printableText(error) << ".");
     return 0;
   }
   std::vector<std::string> quirks = h.quirks;
   quirks.insert(quirks.end(), read.quirks.begin(), read.quirks.end());
   for (const std::string& quirk : quirks)
   {
-    vtkWarningMacro("The LAS file '" << this->FileName << "' is read although " << quirk << ".");
+    vtkWarningMacro("The LAS file '" << this->FileName << "' is read although " << gls::printableText(quirk) << ".");
   }
   arrays.moveInto(output, static_cast<vtkIdType>(read.written));
   vtkFieldData* fd = output->GetFieldData();

@@ -127,7 +127,13 @@ bool vtkGLSMultiScaleDissimilarity::CheckParameters(vtkGLSRun& run)
   }
   // The query point (in a distributed run, this piece's index of it, -1 on the other ranks).
   vtkIdType query = wanted;
-  double best = VTK_DOUBLE_MAX;
+  double best = std::numeric_limits<double>::infinity();
+  const double* q = this->QueryPoint;
+  if (byCoordinates && !(std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2])))
+  {
+    vtkErrorMacro("QueryPoint (" << q[0] << ", " << q[1] << ", " << q[2] << ") must be finite (UseQueryPointCoordinates).");
+    return false;
+  }
   if (byCoordinates)
   {
     query = -1;
@@ -135,7 +141,7 @@ bool vtkGLSMultiScaleDissimilarity::CheckParameters(vtkGLSRun& run)
     {
       double p[3];
       input->GetPoint(i, p);
-      const double d2 = vtkMath::Distance2BetweenPoints(p, this->QueryPoint);
+      const double d2 = this->QueryDistance2(p);
       if (d2 < best)
       {
         best = d2;
@@ -145,6 +151,10 @@ bool vtkGLSMultiScaleDissimilarity::CheckParameters(vtkGLSRun& run)
     if (query < 0 && !dist.IsParallel())
     {
       vtkErrorMacro("No input point with finite coordinates to snap the query point to.");
+      return false;
+    }
+    if (!dist.IsParallel() && !this->CheckQueryPointIsNear(run, best))
+    {
       return false;
     }
   }
@@ -185,7 +195,7 @@ bool vtkGLSMultiScaleDissimilarity::BeginComposite(
       {
         double p[3];
         blocks[b]->GetPoint(i, p);
-        mine = std::min(mine, vtkMath::Distance2BetweenPoints(p, this->QueryPoint));
+        mine = std::min(mine, this->QueryDistance2(p));
       }
       mine = dist.Min(mine);
       if (mine < best)
@@ -369,6 +379,42 @@ int vtkGLSMultiScaleDissimilarity::WriteDissimilarity(
   return COMPLETED;
 }
 
+double vtkGLSMultiScaleDissimilarity::QueryDistanceScale() const
+{
+  const double largest =
+    std::max({ std::abs(this->QueryPoint[0]), std::abs(this->QueryPoint[1]), std::abs(this->QueryPoint[2]) });
+  // A power of two (exact: the order of distances is kept) that brings coordinates beyond 1e150 down to about 1.
+  return largest > 1e150 && std::isfinite(largest) ? std::ldexp(1.0, std::ilogb(largest)) : 1.0;
+}
+
+double vtkGLSMultiScaleDissimilarity::QueryDistance2(const double p[3]) const
+{
+  const double s = 1.0 / this->QueryDistanceScale();
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double d = p[a] * s - this->QueryPoint[a] * s;
+    d2 += d * d;
+  }
+  return std::isfinite(d2) ? d2 : std::numeric_limits<double>::infinity();
+}
+
+bool vtkGLSMultiScaleDissimilarity::CheckQueryPointIsNear(const vtkGLSRun& run, double best2)
+{
+  const double nearest = std::sqrt(best2) * this->QueryDistanceScale();
+  if (nearest <= run.Diagonal || run.Diagonal == 0.0)
+  {
+    return true;
+  }
+  const double* q = this->QueryPoint;
+  vtkErrorMacro("QueryPoint (" << q[0] << ", " << q[1] << ", " << q[2] << ") is " << nearest
+                               << " from the nearest input point, farther than the input's bounding-box diagonal ("
+                               << run.Diagonal
+                               << "): it is not on this cloud (coordinates of another frame?). Pick a point of the "
+                                  "cloud, or QueryPointId.");
+  return false;
+}
+
 bool vtkGLSMultiScaleDissimilarity::LocateDistributedQuery(const vtkGLSRun& run, vtkIdType wanted,
   double localBest2, vtkIdType& query, long long& globalId, int& owner)
 {
@@ -386,12 +432,16 @@ bool vtkGLSMultiScaleDissimilarity::LocateDistributedQuery(const vtkGLSRun& run,
       vtkErrorMacro("No input point with finite coordinates to snap the query point to.");
       return false;
     }
+    if (!this->CheckQueryPointIsNear(run, best2)) // every rank: the same global values
+    {
+      return false;
+    }
     double mine = none;
     for (std::size_t i = 0; i < ids.size(); ++i)
     {
       double p[3];
       input->GetPoint(static_cast<vtkIdType>(i), p);
-      if (vtkMath::Distance2BetweenPoints(p, this->QueryPoint) == best2)
+      if (this->QueryDistance2(p) == best2)
       {
         mine = std::min(mine, static_cast<double>(ids[i]));
       }

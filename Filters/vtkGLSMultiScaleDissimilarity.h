@@ -63,7 +63,8 @@ public:
 
   ///@{
   /// Coordinates of the query (snapped to the nearest input point with finite coordinates), used when
-  /// UseQueryPointCoordinates is on (default off).
+  /// UseQueryPointCoordinates is on (default off). Not finite, or farther from every input point than the input's
+  /// bounding-box diagonal (not on this cloud): an error.
   vtkSetVector3Macro(QueryPoint, double);
   vtkGetVector3Macro(QueryPoint, double);
   vtkSetMacro(UseQueryPointCoordinates, bool);
@@ -127,6 +128,15 @@ protected:
   /// piece's nearest squared distance `localBest2`), sets `query` to its index in this piece (-1 elsewhere),
   /// `globalId`, and `owner` (the rank whose piece holds it). False (with an error, on every rank) when no piece
   /// has it.
+  /// The squared distance from p to QueryPoint over the square of a power of two that keeps it finite wherever
+  /// QueryPoint lies (a query at 1e300 is compared without overflow): the order of the input points by it is their
+  /// order by distance, the same in a serial and a distributed run. QueryDistanceScale() gives that power of two.
+  double QueryDistance2(const double p[3]) const;
+  double QueryDistanceScale() const;
+  /// With UseQueryPointCoordinates: false, with an error, when QueryPoint is not finite, or when the nearest input
+  /// point (at the squared distance `best2` of QueryDistance2) lies farther than the input's diagonal (QueryPoint is
+  /// not on this cloud: another frame's coordinates?).
+  bool CheckQueryPointIsNear(const vtkGLSRun& run, double best2);
   bool LocateDistributedQuery(const vtkGLSRun& run, vtkIdType wanted, double localBest2, vtkIdType& query,
     long long& globalId, int& owner);
 

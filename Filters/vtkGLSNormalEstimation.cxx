@@ -178,14 +178,16 @@ bool vtkGLSNormalEstimation::PlanOrientation(const vtkGLSRun& run, OrientationPl
                   "TOWARDS_POINT" : "AWAY_FROM_POINT") << " orientation): the side of every normal is taken from it.");
     return false;
   }
-  if (plan.Mode == UP || plan.Mode == UP_ALONG_SPANNING_TREE)
+  if (plan.Mode == UP || plan.Mode == UP_ALONG_SPANNING_TREE || plan.Mode == GROUND_UP_ALONG_SPANNING_TREE)
   {
     const double* u = plan.Up;
     const double length = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
     if (!(length > 0.0) || !std::isfinite(length))
     {
       vtkErrorMacro("UpDirection " << Triple(u) << " must be a finite direction, not zero ("
-                                   << (plan.Mode == UP ? "UP" : "UP_ALONG_SPANNING_TREE") << " orientation).");
+                                   << (plan.Mode == UP ? "UP" : plan.Mode == UP_ALONG_SPANNING_TREE
+                                         ? "UP_ALONG_SPANNING_TREE" : "GROUND_UP_ALONG_SPANNING_TREE")
+                                   << " orientation).");
       return false;
     }
   }
@@ -200,7 +202,10 @@ bool vtkGLSNormalEstimation::PlanOrientation(const vtkGLSRun& run, OrientationPl
       case AGREE_WITH_EXISTING: plan.Report = "agreeing with the existing normals"; break;
       case TOWARDS_VIEWPOINT_ARRAY: plan.Report = "towards each point's viewpoint (the viewpoint array)"; break;
       case UP: plan.Report = "up " + Triple(plan.Up) + ", point by point"; break;
-      default: plan.Report = "up " + Triple(plan.Up) + ", the walls along the minimum spanning tree"; break;
+      case UP_ALONG_SPANNING_TREE:
+        plan.Report = "up " + Triple(plan.Up) + ", the walls along the minimum spanning tree";
+        break;
+      default: plan.Report = "minimum spanning tree, the ground or floor up " + Triple(plan.Up); break;
     }
     return true;
   }
@@ -255,8 +260,10 @@ bool vtkGLSNormalEstimation::PlanOrientation(const vtkGLSRun& run, OrientationPl
       std::copy(sensor, sensor + 3, plan.Point);
       break;
     case gls::OrientationSource::Airborne:
-      plan.Mode = UP_ALONG_SPANNING_TREE;
-      plan.Up[0] = plan.Up[1] = 0.0;
+    case gls::OrientationSource::Terrestrial:
+      plan.Mode = choice.source == gls::OrientationSource::Airborne ? UP_ALONG_SPANNING_TREE
+                                                                    : GROUND_UP_ALONG_SPANNING_TREE;
+      plan.Up[0] = plan.Up[1] = 0.0; // a lidar file's z is up
       plan.Up[2] = 1.0;
       break;
     default:
@@ -285,6 +292,9 @@ void vtkGLSNormalEstimation::ResolveSettings(
     case MINIMUM_SPANNING_TREE: settings.orientation = gls::NormalOrientation::MinimumSpanningTree; break;
     case UP: settings.orientation = gls::NormalOrientation::Up; break;
     case UP_ALONG_SPANNING_TREE: settings.orientation = gls::NormalOrientation::UpAlongSpanningTree; break;
+    case GROUND_UP_ALONG_SPANNING_TREE:
+      settings.orientation = gls::NormalOrientation::GroundUpAlongSpanningTree;
+      break;
     default: settings.orientation = gls::NormalOrientation::AgreeWithReference; break; // GatherReference's
   }
   const double* anchor = run.Cloud.Anchor; // the point in the cloud's coordinates
@@ -571,9 +581,8 @@ std::vector<double> orientGatheredRows(const std::vector<double>& all, const gls
   std::vector<double> normals = gls::distinctValues(shared, sortedNormals.data(), 3);
   const std::vector<double> degreeValues = gls::distinctValues(shared, sortedDegrees.data(), 1);
   const std::vector<int> degrees(degreeValues.begin(), degreeValues.end());
-  const bool up = settings.orientation == gls::NormalOrientation::UpAlongSpanningTree;
   gls::orientByMinimumSpanningTree(xyz.data(), xyz.size() / 3, settings.graphNeighbors, normals.data(),
-    settings.parallel, components, degrees.data(), up ? &settings.up : nullptr);
+    settings.parallel, components, degrees.data(), settings.orientation, settings.up);
   gls::scatterToCopies(shared, normals.data(), 3, sortedNormals.data());
   std::vector<double> oriented(3 * total);
   for (std::size_t j = 0; j < total; ++j)
@@ -670,7 +679,7 @@ void vtkGLSNormalEstimation::DescribeSettings(std::vector<SettingRange>& setting
   settings.push_back({ "RefinementScale", static_cast<double>(this->RefinementScale), static_cast<double>(0.5), static_cast<double>(10.0) });
   settings.push_back({ "MinimumSpread", static_cast<double>(this->MinimumSpread), static_cast<double>(0.0), static_cast<double>(1.0) });
   settings.push_back({ "MaximumGrowth", static_cast<double>(this->MaximumGrowth), static_cast<double>(1.0), static_cast<double>(64.0) });
-  settings.push_back({ "Orientation", static_cast<double>(this->Orientation), static_cast<double>(NONE), static_cast<double>(AUTOMATIC) });
+  settings.push_back({ "Orientation", static_cast<double>(this->Orientation), static_cast<double>(NONE), static_cast<double>(GROUND_UP_ALONG_SPANNING_TREE) });
   settings.push_back({ "GraphNeighbors", static_cast<double>(this->GraphNeighbors), static_cast<double>(1), static_cast<double>(1000) });
   settings.push_back({ "OutputPrecision", static_cast<double>(this->OutputPrecision),
     static_cast<double>(vtkAlgorithm::SINGLE_PRECISION), static_cast<double>(vtkAlgorithm::DOUBLE_PRECISION) });

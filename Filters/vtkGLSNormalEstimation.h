@@ -13,7 +13,8 @@
  *   merged scans) -> TOWARDS_VIEWPOINT_ARRAY with it; else the file's one sensor position, a field-data array
  *   `ScannerPosition` (a PCD's VIEWPOINT) -> TOWARDS_POINT it; else airborne lidar, as the point arrays `ScanAngle`,
  *   `NumberOfReturns` and `Classification` of a LAS file show it (scan angles recorded within a swath, multiple
- *   returns, or ground classified, each at 1% of the points or more) -> UP_ALONG_SPANNING_TREE; else
+ *   returns, or ground classified, each at 1% of the points or more) -> UP_ALONG_SPANNING_TREE; else, with those
+ *   arrays (a terrestrial or indoor scan exported as LAS) -> GROUND_UP_ALONG_SPANNING_TREE; else
  *   MINIMUM_SPANNING_TREE. The choice and why go to the field data `GLSOrientation` (every mode writes what it did).
  * - NONE: the eigen solver's sign (deterministic but not consistent).
  * - TOWARDS_POINT / AWAY_FROM_POINT: facing OrientationPoint (e.g. the scanner position) or away from it.
@@ -28,6 +29,10 @@
  *   face it point by point; the steeper ones (walls) agree with their neighbours along the minimum spanning tree,
  *   each connected component turned so that its upward normals face up: a building's walls face out, as its roof and
  *   the ground around it do, where UP would give each wall point a random side.
+ * - GROUND_UP_ALONG_SPANNING_TREE: terrestrial lidar (a scanner standing on the ground or a floor). The minimum
+ *   spanning tree, each connected component turned so that its ground faces UpDirection: the lowest near-horizontal
+ *   normals (within 25.8 degrees of UpDirection) of each column of a 64 x 64 grid over the cloud. Nothing else is
+ *   forced: a room's ceiling faces down into the room and its walls in, a building's walls face out.
  * - AGREE_WITH_EXISTING: flipped to agree with the normals selected by SetInputArrayToProcess(0, ...) (default: the
  *   active normals), e.g. a scanner's normals whose length or accuracy is poor; points whose existing normal is not
  *   finite keep the solver's sign. A per-point view direction (from the point towards its scanner) is such an array.
@@ -115,7 +120,8 @@ public:
     TOWARDS_VIEWPOINT_ARRAY = 5,
     UP = 6,
     UP_ALONG_SPANNING_TREE = 7,
-    AUTOMATIC = 8
+    AUTOMATIC = 8,
+    GROUND_UP_ALONG_SPANNING_TREE = 9
   };
 
   ///@{
@@ -182,6 +188,7 @@ public:
   vtkGetMacro(Orientation, int);
   void SetOrientationToAutomatic() { this->SetOrientation(AUTOMATIC); }
   void SetOrientationToUpAlongSpanningTree() { this->SetOrientation(UP_ALONG_SPANNING_TREE); }
+  void SetOrientationToGroundUpAlongSpanningTree() { this->SetOrientation(GROUND_UP_ALONG_SPANNING_TREE); }
   void SetOrientationToNone() { this->SetOrientation(NONE); }
   void SetOrientationToTowardsPoint() { this->SetOrientation(TOWARDS_POINT); }
   void SetOrientationToAwayFromPoint() { this->SetOrientation(AWAY_FROM_POINT); }
@@ -192,8 +199,8 @@ public:
   ///@}
 
   ///@{
-  /// The direction of UP and UP_ALONG_SPANNING_TREE orientation (input coordinates, any length but 0; default 0, 0,
-  /// 1; AUTOMATIC's airborne rule takes +z). Not finite or zero is an error.
+  /// The direction of UP, UP_ALONG_SPANNING_TREE and GROUND_UP_ALONG_SPANNING_TREE orientation (input coordinates,
+  /// any length but 0; default 0, 0, 1; AUTOMATIC's lidar rules take +z). Not finite or zero is an error.
   vtkSetVector3Macro(UpDirection, double);
   vtkGetVector3Macro(UpDirection, double);
   ///@}

@@ -2,6 +2,7 @@
 #include "TestClouds.h"
 
 #include "gls/NormalEstimation.h"
+#include "gls/OrientationChoice.h"
 
 #include <gtest/gtest.h>
 
@@ -413,6 +414,202 @@ TEST(NormalEstimation, AnAerialStripFacesUpByDefaultAndInTheUpMode)
     EXPECT_GT(counted, 25000);
     EXPECT_GE(static_cast<double>(up), 0.999 * counted);
   }
+}
+
+TEST(NormalEstimation, AnAerialStripsWallsFaceOutAlongTheTree)
+{
+  // Airborne lidar's rule (UpAlongSpanningTree): the ground, roofs and terrain up point by point, as Up does; the
+  // walls (true normals horizontal, outward) from their neighbours along the tree, where Up leaves each wall point's
+  // side to the sign of its estimate's small z.
+  const Cloud c = aerialStrip(17);
+  double share[2] = { 0.0, 0.0 };
+  int k = 0;
+  for (const gls::NormalOrientation orientation :
+    { gls::NormalOrientation::UpAlongSpanningTree, gls::NormalOrientation::Up })
+  {
+    gls::NormalEstimationSettings s;
+    s.orientation = orientation;
+    gls::NormalEstimationResult r;
+    ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+    long counted = 0, up = 0, walls = 0, out = 0;
+    for (std::size_t i = 0; i < c.size(); ++i)
+    {
+      if (!std::isfinite(r.normals[3 * i]) || !std::isfinite(c.normals[3 * i]))
+      {
+        continue;
+      }
+      if (c.normals[3 * i + 2] > 0.2)
+      {
+        ++counted;
+        up += r.normals[3 * i + 2] > 0.0 ? 1 : 0;
+      }
+      else if (std::abs(r.normals[3 * i + 2]) < gls::kUpAnchorCosine) // walls: the tree orients them
+      {
+        ++walls;
+        out += dot3(&r.normals[3 * i], &c.normals[3 * i]) > 0.0 ? 1 : 0;
+      }
+    }
+    share[k++] = static_cast<double>(out) / static_cast<double>(walls);
+    std::printf("aerial strip, orientation %d: %.3f%% of %ld non-vertical normals up; %.1f%% of %ld wall points out\n",
+      static_cast<int>(orientation), 100.0 * up / counted, counted, 100.0 * out / walls, walls);
+    EXPECT_GE(static_cast<double>(up), 0.999 * counted);
+    EXPECT_GT(walls, 300);
+  }
+  EXPECT_GE(share[0], 0.99); // along the tree (measured 100%; Up, by the sign of each point's tilt: 98.6% here)
+}
+
+namespace
+{
+
+/// A room 8 m x 6 m x 3 m (floor, ceiling, four walls) sampled every `spacing` (jittered, 2 mm of noise along the
+/// normals), true normals facing into the room; or, `building`, the same box without a floor standing on a 40 m x 40
+/// m ground (the ground's points outside its footprint), true normals facing out of it and the ground up.
+Cloud roomOrBuilding(bool building, double spacing, unsigned seed)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 0.002);
+  const double L[3] = { 8.0, 6.0, 3.0 };
+  const double side = building ? 1.0 : -1.0; // outward of the box, or into it
+  Cloud c;
+  // A rectangle: origin o, edges a and b (axes ia, ib of lengths la, lb), normal n.
+  const auto face = [&](const double o[3], int ia, double la, int ib, double lb, const double n[3]) {
+    const int na = static_cast<int>(la / spacing), nb = static_cast<int>(lb / spacing);
+    for (int i = 0; i < na; ++i)
+    {
+      for (int j = 0; j < nb; ++j)
+      {
+        double p[3] = { o[0], o[1], o[2] };
+        p[ia] += la * (i + u(rng)) / na;
+        p[ib] += lb * (j + u(rng)) / nb;
+        const double e = noise(rng);
+        if (building && n[2] > 0.5 && o[2] == 0.0 && p[0] > 0.0 && p[0] < L[0] && p[1] > 0.0 && p[1] < L[1])
+        {
+          continue; // the ground under the building is not seen
+        }
+        c.add(p[0] + e * n[0], p[1] + e * n[1], p[2] + e * n[2], n[0], n[1], n[2]);
+      }
+    }
+  };
+  const double floorOrigin[3] = { 0, 0, 0 }, ceilingOrigin[3] = { 0, 0, L[2] };
+  const double floorNormal[3] = { 0, 0, -side }, ceilingNormal[3] = { 0, 0, side };
+  if (building)
+  {
+    const double groundOrigin[3] = { -16, -17, 0 }, up[3] = { 0, 0, 1 };
+    face(groundOrigin, 0, 40.0, 1, 40.0, up);
+  }
+  else
+  {
+    face(floorOrigin, 0, L[0], 1, L[1], floorNormal);
+  }
+  face(ceilingOrigin, 0, L[0], 1, L[1], ceilingNormal);
+  for (int a = 0; a < 2; ++a)
+  {
+    for (int end = 0; end < 2; ++end)
+    {
+      double o[3] = { 0, 0, 0 }, n[3] = { 0, 0, 0 };
+      o[a] = end * L[a];
+      n[a] = (end ? 1.0 : -1.0) * side;
+      face(o, 1 - a, L[1 - a], 2, L[2], n);
+    }
+  }
+  return c;
+}
+
+/// The share of the finite estimated normals that agree with the true ones.
+double agreeing(const Cloud& c, const gls::NormalEstimationResult& r)
+{
+  double defined = 0.0, agree = 0.0;
+  for (std::size_t i = 0; i < c.size(); ++i)
+  {
+    if (std::isfinite(r.normals[3 * i]))
+    {
+      defined += 1.0;
+      agree += dot3(&r.normals[3 * i], &c.normals[3 * i]) > 0.0 ? 1.0 : 0.0;
+    }
+  }
+  return agree / defined;
+}
+
+} // namespace
+
+TEST(NormalEstimation, ATerrestrialScanFacesTheRoomItWasTakenIn)
+{
+  // Terrestrial lidar's rule (GroundUpAlongSpanningTree): each component turned so that its ground or floor faces
+  // up. A room scanned from inside then faces into the room (its ceiling down), where the outward rule of the
+  // minimum spanning tree turns it inside out; a building seen from the ground around it faces out (walls out, roof
+  // up). Nothing is forced up point by point.
+  for (const bool building : { false, true })
+  {
+    SCOPED_TRACE(building ? "building" : "room");
+    const Cloud c = roomOrBuilding(building, building ? 0.2 : 0.08, 5);
+    double share[2];
+    int k = 0;
+    for (const gls::NormalOrientation orientation :
+      { gls::NormalOrientation::GroundUpAlongSpanningTree, gls::NormalOrientation::MinimumSpanningTree })
+    {
+      gls::NormalEstimationSettings s;
+      s.orientation = orientation;
+      gls::NormalEstimationResult r;
+      ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+      share[k++] = agreeing(c, r);
+      std::printf("%s (%zu points), orientation %d: %.3f%% of the normals as seen from the scanner's side\n",
+        building ? "building on its ground" : "room", c.size(), static_cast<int>(orientation), 100.0 * share[k - 1]);
+    }
+    EXPECT_GE(share[0], 0.999);
+    if (!building)
+    {
+      EXPECT_LT(share[1], 0.5); // the outward rule turns the room inside out: hence the ground rule
+    }
+  }
+}
+
+TEST(OrientationChoice, TheFilesScannersAndLidarAttributesDecide)
+{
+  const double sensor[3] = { 1, 2, 3 };
+  gls::LidarEvidence none;
+  EXPECT_EQ(gls::chooseOrientation(true, sensor, none).source, gls::OrientationSource::ScannerPositions);
+  const gls::OrientationChoice atSensor = gls::chooseOrientation(false, sensor, none);
+  EXPECT_EQ(atSensor.source, gls::OrientationSource::SensorPosition);
+  EXPECT_NE(atSensor.reason.find("(1, 2, 3)"), std::string::npos) << atSensor.reason;
+  EXPECT_EQ(gls::chooseOrientation(false, nullptr, none).source, gls::OrientationSource::MinimumSpanningTree);
+
+  // 1,000 lidar points: an airborne swath (angles of -20 to 20 degrees), or one of its signs alone, against a
+  // terrestrial scan's export (angles 0, one return, unclassified) and a few stray values.
+  const std::size_t n = 1000;
+  const auto decide = [&](float angle, float angleSpread, std::uint8_t returns, std::uint8_t cls, std::size_t marked) {
+    std::vector<float> a(n);
+    std::vector<std::uint8_t> r(n, 1), k(n, 1);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      a[i] = angle + angleSpread * static_cast<float>(static_cast<double>(i) / n - 0.5);
+      if (i < marked)
+      {
+        r[i] = returns;
+        k[i] = cls;
+      }
+    }
+    gls::LidarEvidence e;
+    gls::countLidarEvidence(a.data(), r.data(), k.data(), nullptr, n, e);
+    return gls::chooseOrientation(false, nullptr, e);
+  };
+  const gls::OrientationChoice swath = decide(0.0f, 40.0f, 1, 1, 0);
+  EXPECT_EQ(swath.source, gls::OrientationSource::Airborne) << swath.reason;
+  EXPECT_NE(swath.reason.find("scan angles recorded at"), std::string::npos) << swath.reason;
+  EXPECT_EQ(decide(0.0f, 0.0f, 3, 1, 20).source, gls::OrientationSource::Airborne);  // 2% multiple returns
+  EXPECT_EQ(decide(0.0f, 0.0f, 1, 2, 400).source, gls::OrientationSource::Airborne); // 40% ground
+  EXPECT_EQ(decide(15.0f, 0.0f, 1, 1, 0).source, gls::OrientationSource::Airborne);  // one angle, off nadir
+  const gls::OrientationChoice room = decide(0.0f, 0.0f, 1, 1, 0);
+  EXPECT_EQ(room.source, gls::OrientationSource::Terrestrial) << room.reason;
+  EXPECT_EQ(decide(0.0f, 0.0f, 3, 2, 5).source, gls::OrientationSource::Terrestrial); // 0.5%: stray values
+  EXPECT_EQ(decide(0.0f, 360.0f, 1, 1, 0).source, gls::OrientationSource::Terrestrial); // a turning scanner's angles
+  // Points left out (the finite flags) are not counted.
+  std::vector<float> a(n, 20.0f);
+  std::vector<unsigned char> finite(n, 0);
+  gls::LidarEvidence e;
+  gls::countLidarEvidence(a.data(), nullptr, nullptr, finite.data(), n, e);
+  EXPECT_EQ(e.points, 0.0);
+  EXPECT_EQ(gls::chooseOrientation(false, nullptr, e).source, gls::OrientationSource::Terrestrial);
 }
 
 TEST(NormalEstimation, ARealRangeScanFacesItsScannerByDefault)

@@ -14,10 +14,12 @@ from shapes import sphere
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'paraview-plugin', 'python'))
 
 
-def run(analyze, *args):
+def run(analyze, *args, **popen):
+    """Runs the main job as a user does, without a display (its own virtual X server, as on a headless machine);
+    `popen`: more of subprocess.run's arguments (a preexec_fn)."""
     env = dict(os.environ)
-    env.pop('DISPLAY', None)  # the main job's own virtual X server, as on a headless machine
-    return subprocess.run([analyze, *args], capture_output=True, text=True, timeout=300, env=env)
+    env.pop('DISPLAY', None)
+    return subprocess.run([analyze, *args], capture_output=True, text=True, timeout=300, env=env, **popen)
 
 
 def failure_text(result):

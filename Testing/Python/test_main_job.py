@@ -374,7 +374,7 @@ class MainJob(unittest.TestCase):
             f.write('not a LAS file, but its name says so: long enough for a header to be read ' * 4)
         result = run(damaged)
         self.assertEqual(result.returncode, 2)
-        self.assertIn("not a LAS file (it does not begin with 'LASF')", result.stderr)
+        self.assertIn("not a LAS file (it does not begin with 'LASF'; by its content text)", result.stderr)
 
 
 if __name__ == '__main__':

@@ -12,6 +12,7 @@ import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import main_job_helpers as helpers  # (first: it makes the main job's own modules importable)
+import las_writer
 import gls_coincident  # noqa: E402 (the main job's own modules)
 import gls_io  # noqa: E402
 import gls_memory  # noqa: E402
@@ -40,22 +41,10 @@ def write_text(name, lines, first=None):
 
 
 def write_las(name, points, intensity, colours, compressed=False):
-    """A LAS 1.2 file of point format 3 (positions to the micrometre, intensity, GPS time, RGB), written from the
-    specification (ASPRS LAS 1.4 R15, tables 3 and 10); with `compressed`, the LAZ flag set in the format byte."""
-    import struct
-    scale, offset = 1e-6, points.min(axis=0) - 1.0
-    q = np.round((points - offset) / scale).astype(np.int64)
-    stored = q * scale + offset
-    header = struct.pack('<4sHH16sBB32s32sHHHIIBHI5I3d3d6d', b'LASF', 0, 0, b'', 1, 2, b'GLS test', b'test', 1, 2026,
-                         227, 227, 0, 3 | (0x80 if compressed else 0), 34, len(points), 0, 0, 0, 0, 0,
-                         scale, scale, scale, *offset,
-                         stored[:, 0].max(), stored[:, 0].min(), stored[:, 1].max(), stored[:, 1].min(),
-                         stored[:, 2].max(), stored[:, 2].min())
-    assert len(header) == 227
-    records = b''.join(struct.pack('<3iHBBbBHd3H', *q[i], int(intensity[i]), 1 | (1 << 3), 2, 0, 0, 0, float(i),
-                                   *(int(c) * 257 for c in colours[i])) for i in range(len(points)))
-    with open(path(name), 'wb') as f:
-        f.write(header + records)
+    """A LAS 1.2 file of point format 3 (positions to the micrometre, intensity, GPS time, RGB, every point ground);
+    with `compressed`, the LAZ flag set in the format byte. Returns its path and the positions as stored."""
+    stored = las_writer.write_las(path(name), points, point_format=3, scale=1e-6, classification=np.full(len(points), 2),
+                                  colours=colours, intensity=intensity, compressed=compressed)
     return path(name), stored
 
 
@@ -115,9 +104,10 @@ class DistinctPositions(unittest.TestCase):
         np.testing.assert_array_equal(inverse, [0, 1, 2, 2, 3, 3])
 
     def test_merge_releases_the_positions_and_scatter_rebuilds_them_bit_for_bit(self):
-        """The merged view holds the distinct positions only (the input's are released while the analysis runs);
-        the written cloud has the input's every position back, bit for bit (-0.0 copies included), float32 and
-        float64, with a result array copied to every copy."""
+        """The merged view holds the distinct finite positions only (the input's are released while the analysis
+        runs); the written cloud has the input's every position back, bit for bit (-0.0 copies included), float32
+        and float64, with a result array copied to every copy; a row with a NaN coordinate is left out of the
+        analysis, counted, and written back in its place with NaN coordinates and a NaN result."""
         from vtkmodules.util.numpy_support import numpy_to_vtk
         from vtkmodules.vtkCommonCore import vtkPoints
         from vtkmodules.vtkCommonDataModel import vtkPolyData
@@ -134,20 +124,28 @@ class DistinctPositions(unittest.TestCase):
             self.assertIsNotNone(merged)
             self.assertIsNone(polydata.GetPoints())
             self.assertEqual(merged.copies, 4)
+            self.assertEqual(merged.non_finite, 1)
             distinct = vtk_to_numpy(merged.polydata.GetPoints().GetData())
-            self.assertEqual(len(distinct), len(rows) - 4)
+            self.assertEqual(len(distinct), len(rows) - 4 - 1)
+            self.assertTrue(np.isfinite(distinct).all())
             value = numpy_to_vtk(np.arange(len(distinct), dtype=np.float64), deep=True)
             value.SetName('Value')
             merged.polydata.GetPointData().AddArray(value)
             out = merged.scatter(merged.polydata)
             back = vtk_to_numpy(out.GetPoints().GetData())
             self.assertEqual(back.dtype, rows.dtype)
-            np.testing.assert_array_equal(back.view(np.uint8), rows.view(np.uint8))
+            np.testing.assert_array_equal(back[:-1].view(np.uint8), rows[:-1].view(np.uint8))
+            self.assertTrue(np.isnan(back[-1]).all())  # the NaN row: NaN coordinates, its place kept
             _, inverse = gls_coincident.distinct_positions(rows)
+            inverse = inverse.astype(np.int64)
+            inverse[-1] = -1  # (the last row: numbering the others as before)
             np.testing.assert_array_equal(merged.inverse(), inverse)
             np.testing.assert_array_equal(merged.inverse(chunk=3), inverse)  # formed a few rows at a time
             np.testing.assert_array_equal(merged.distinct_of([len(rows) - 1, 0]), inverse[[len(rows) - 1, 0]])
-            np.testing.assert_array_equal(point_array(out, 'Value'), inverse)
+            expected = inverse.astype(np.float64)
+            expected[-1] = np.nan
+            np.testing.assert_array_equal(point_array(out, 'Value'), expected)
+            self.assertEqual(out.GetFieldData().GetArray('GLSNonFinitePoints').GetValue(0), 1)
 
 
 
@@ -398,7 +396,9 @@ class Inputs(unittest.TestCase):
         intensity = np.arange(len(self.points)) % 4096
         las, stored = write_las('tile.las', self.points, intensity, self.colours)
         out = path('las-out')
-        result = run(las, '--output-dir', out, *QUICK)
+        # A sphere is no lidar scene (its points classified ground here): the spanning tree's outward rule is asked
+        # for instead of the lidar rules (test_main_job_scans.py has those).
+        result = run(las, '--output-dir', out, '--orientation', 'mst', *QUICK)
         pd = self.assertSucceeds(result, out, 'tile')
         self.assertIn('LAS 1.2, point format 3, %d points' % len(self.points), result.stdout)
         np.testing.assert_allclose(vtk_to_numpy(pd.GetPoints().GetData()), stored, atol=1e-9)
@@ -408,7 +408,7 @@ class Inputs(unittest.TestCase):
         # Scales in the data's units: the sphere's diagonal is 2 sqrt(3), so 0.1 to 0.35 absolute.
         out = path('las-absolute-out')
         result = run(las, '--output-dir', out, '--scales', '5', '--min-scale', '0.1', '--max-scale', '0.35',
-                     '--absolute-scales')
+                     '--absolute-scales', '--orientation', 'mst')
         self.assertSucceeds(result, out, 'tile')
         self.assertIn('5 scales from 0.1 to 0.35 (length units of the data)', result.stdout)
         self.assertFailsInOneLine(run(las, '--output-dir', path('no-lengths'), '--absolute-scales'),

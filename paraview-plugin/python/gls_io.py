@@ -26,6 +26,8 @@ class InputError(Exception):
 
 def check_file(path):
     """Raises InputError unless `path` is a readable file of a supported type (before ParaView starts)."""
+    if os.path.isdir(path):
+        raise InputError('%s: a directory, not a file (gls-analyze reads one point cloud or mesh file)' % path)
     if not os.path.isfile(path):
         raise InputError('%s: no such file' % path)
     if not os.access(path, os.R_OK):

@@ -3,7 +3,7 @@
     gls-analyze [input] [--output-dir DIR] [--scales N] [--min-scale F] [--max-scale F] [--absolute-scales]
                 [--sigma S] [--noise F]
                 [--per-scale] [--full-precision] [--query ID] [--memory-budget GIB] [--no-directions]
-                [--orientation auto|up|sensor|mst]
+                [--orientation auto|up|ground|sensor|mst]
 
 Reads a point cloud or mesh (PLY, OBJ, STL, VTP, a text file: XYZ/PTS/CSV/TXT, a scanner's file: LAS, PTX, PCD;
 default: the bundled bunny scan), estimates oriented normals when the file has none, analyses N quadratic scales
@@ -55,8 +55,8 @@ NORMALS = gls_denoising.NORMALS
 
 
 # --orientation: GLS Normal Estimation's Orientation for each choice ('sensor': orientation_properties).
-ORIENTATIONS = {'auto': 'Automatic', 'up': 'Up, walls along the spanning tree', 'sensor': None,
-                'mst': 'Minimum spanning tree'}
+ORIENTATIONS = {'auto': 'Automatic', 'up': 'Up, walls along the spanning tree', 'ground': 'Spanning tree, ground up',
+                'sensor': None, 'mst': 'Minimum spanning tree'}
 
 
 class UsageError(Exception):
@@ -104,9 +104,11 @@ def parse_arguments(argv):
     p.add_argument('--orientation', choices=ORIENTATIONS, default='auto',
                    help='which side the estimated normals face: auto (default: from what the file says, in this '
                         'order: each point\'s scanner (PTX), the file\'s sensor (a PCD\'s VIEWPOINT), up for '
-                        'airborne lidar (a LAS file\'s scan angles, returns or ground class), else the minimum '
-                        'spanning tree), up (ground and roofs up, walls along the spanning tree), sensor (towards the '
-                        'file\'s scanner positions; refused when it has none) or mst (the minimum spanning tree)')
+                        'airborne lidar (a LAS file\'s scan angles, returns or ground class), the spanning tree '
+                        'with the ground up for other lidar files, else the minimum spanning tree), up '
+                        '(ground and roofs up, walls along the spanning tree: airborne scans), ground (the spanning '
+                        'tree with the ground or floor up: terrestrial scans, rooms), sensor (towards the file\'s '
+                        'scanner positions; refused when it has none) or mst (the minimum spanning tree)')
     p.add_argument('--no-directions', action='store_true',
                    help='leave the principal curvatures out of the fused pass (they make it about 1.9 times as '
                         'long) and with them the direction arrays and the shape-index picture')
@@ -417,10 +419,15 @@ def main(argv):
         return fail(e)
     try:
         analyze(args, outputs)
+        written = outputs.commit()
     except (gls_io.InputError, gls_watch.StageError, gls_memory.BudgetError, AnalysisError,
             gls_outputs.OutputError) as e:
         outputs.discard()
         return fail('%s; no results written' % e)
+    except OSError as e:  # a picture, the state or a move failed: a full disk, a quota, a read-only folder
+        outputs.discard()
+        return fail('cannot write the results in %s: %s%s; no results written' % (
+            args.output_dir, e.strerror or e, ' (%s)' % os.path.basename(e.filename) if e.filename else ''))
     except (gls_watch.Interrupted, KeyboardInterrupt):
         outputs.discard()
         return fail('interrupted; no results written', 130)
@@ -430,7 +437,7 @@ def main(argv):
             raise
         traceback.print_exc()
         return fail('internal error (the traceback above); no results written', 1)
-    for path in outputs.commit():
+    for path in written:
         print('wrote %s' % path)
     return 0
 

@@ -1,7 +1,7 @@
 """The main job's result files: written into a staging folder inside the output directory, moved into place only
 when every stage succeeded (commit), removed otherwise (discard): a failed run leaves no result behind (files of
 an earlier run keep their place). Creating the staging folder first checks that the output directory is writable,
-before any computation."""
+before any computation, and removes what a killed job left there (its process gone)."""
 import ctypes
 import os
 import shutil
@@ -19,13 +19,41 @@ class OutputError(Exception):
     """The output directory cannot be created or written, or a file in it (one line for the user)."""
 
 
+STAGING_PREFIX = '.gls-analyze-'
+
+
+def remove_stale_staging(directory):
+    """Removes the staging folders (<STAGING_PREFIX><pid>-...) that a job left behind in `directory` when it was
+    killed (SIGKILL, a power cut): those whose process no longer runs. A running job's folder stays."""
+    try:
+        entries = os.listdir(directory)
+    except OSError:
+        return
+    for entry in entries:
+        if not entry.startswith(STAGING_PREFIX):
+            continue
+        owner = entry[len(STAGING_PREFIX):].split('-')[0]
+        alive = False
+        if owner.isdigit():
+            try:
+                os.kill(int(owner), 0)
+                alive = True
+            except ProcessLookupError:
+                pass
+            except PermissionError:  # another user's running job
+                alive = True
+        if not alive:
+            shutil.rmtree(os.path.join(directory, entry), ignore_errors=True)
+
+
 class Outputs:
     def __init__(self, directory, name):
         self.directory = directory
         self.name = name
         try:
             os.makedirs(directory, exist_ok=True)
-            self.staging = tempfile.mkdtemp(prefix='.gls-analyze-', dir=directory)
+            remove_stale_staging(directory)
+            self.staging = tempfile.mkdtemp(prefix='%s%d-' % (STAGING_PREFIX, os.getpid()), dir=directory)
         except OSError as e:
             raise OutputError('cannot write to the output directory %s: %s' % (directory, e.strerror or e))
         self.staged = []
@@ -72,31 +100,38 @@ class BackgroundWrite:
     (at 10M points about 9 s of one core). The child is forked: it sees the data as they are at the fork
     (copy-on-write: no second copy in memory, and nothing the job does next can change what is written). It dies
     with the job (Ctrl-C reaches it at once; it is killed if the job is). finish() waits for it and raises
-    OutputError if it failed; cancel() kills it, so that the staging folder can be removed. Without os.fork (not
-    POSIX) the file is written at once (OutputError then comes from the constructor)."""
+    OutputError with the child's reason (sent through a pipe: the job's one error line says it) if it failed;
+    cancel() kills it, so that the staging folder can be removed. Without os.fork (not POSIX) the file is written
+    at once (OutputError then comes from the constructor)."""
 
     def __init__(self, path, polydata):
         self.path = path
         self.pid = None
+        self.reason = None  # the read end of the pipe the child writes why it failed to
         if not hasattr(os, 'fork'):
             write_vtp(path, polydata)
             return
         sys.stdout.flush()
         sys.stderr.flush()
         parent = os.getpid()
+        reason, report = os.pipe()
         pid = os.fork()
         if pid == 0:
-            _write_and_exit(path, polydata, parent)
-        self.pid = pid
+            os.close(reason)
+            _write_and_exit(path, polydata, parent, report)
+        os.close(report)
+        self.pid, self.reason = pid, reason
 
     def finish(self):
         if self.pid is None:
             return
         _, status = os.waitpid(self.pid, 0)
         self.pid = None
+        with os.fdopen(self.reason, 'rb') as pipe:
+            why = pipe.read().decode(errors='replace').strip()
+        self.reason = None
         if status != 0:
-            raise OutputError('cannot write %s (the message above says why; the writing process ended with status '
-                              '%d)' % (self.path, status))
+            raise OutputError(why or 'cannot write %s (the writing process ended with status %d)' % (self.path, status))
 
     def cancel(self):
         if self.pid is None:
@@ -106,12 +141,14 @@ class BackgroundWrite:
         except ProcessLookupError:
             pass
         os.waitpid(self.pid, 0)
-        self.pid = None
+        os.close(self.reason)
+        self.pid, self.reason = None, None
 
 
-def _write_and_exit(path, polydata, parent):
-    """The forked child of BackgroundWrite: writes and ends with status 0, or says why not and ends with 1, without
-    running any of the job's exit handlers (os._exit: the X connection and the staging folder are the job's)."""
+def _write_and_exit(path, polydata, parent, report):
+    """The forked child of BackgroundWrite: writes and ends with status 0, or writes why not to the descriptor
+    `report` and ends with 1, without running any of the job's exit handlers (os._exit: the X connection and the
+    staging folder are the job's)."""
     status = 1
     try:
         signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C (the terminal signals the whole group) ends it now
@@ -129,7 +166,7 @@ def _write_and_exit(path, polydata, parent):
             status = 0
     except BaseException as e:  # the child must reach os._exit whatever happens
         try:
-            os.write(2, ('gls-analyze: writing %s: %s\n' % (path, e)).encode(errors='replace'))
+            os.write(report, str(e).encode(errors='replace'))
         except OSError:
             pass
     finally:
@@ -256,8 +293,10 @@ def write_vtp(path, polydata):
         writer.SetIdTypeToInt32()  # the cells' ids in 4 bytes
     errors = reported_errors(writer)  # VTK's writer says why (it cannot open the file, the disk is full)
     if writer.Write() != 1 or writer.GetErrorCode() != 0 or errors:  # Write() returns 1 on some failures
-        raise OutputError('cannot write %s: %s' % (path, errors[0] if errors else 'VTK error code %d'
-                                                   % writer.GetErrorCode()))
+        code = writer.GetErrorCode()
+        # Below VTK's own codes (vtkErrorCode), the writer reports the system's errno (28: no space left).
+        why = os.strerror(code) if 0 < code < 20000 else errors[0] if errors else 'VTK error code %d' % code
+        raise OutputError('cannot write %s: %s' % (path, why))
 
 
 # The most points of the stand-in cloud that the state is built on (save_state).
@@ -301,6 +340,18 @@ def stand_in(polydata, limit=STATE_STAND_IN_POINTS):
     return out
 
 
+def stand_in_points(reader):
+    """The positions the state's reader gives (its stand-in cloud)."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from paraview import servermanager
+    return vtk_to_numpy(servermanager.Fetch(reader).GetPoints().GetData())
+
+
+def _finite_rows(points):
+    import numpy as np
+    return points[np.isfinite(points).all(axis=1)]
+
+
 def check_written(vtp, polydata):
     """Reads the written file's XML header back (not its data: a 10M-point file would take seconds): the reader
     must parse it without an error and find the points and point arrays of `polydata`."""
@@ -331,8 +382,12 @@ def save_state(path, vtp, final_vtp, polydata):
     file's header is checked first (check_written)."""
     from paraview import simple
     check_written(vtp, polydata)
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    import gls_render
     stand_in_vtp = os.path.join(os.path.dirname(vtp), '.state-stand-in.vtp')
-    write_vtp(stand_in_vtp, stand_in(polydata))
+    shown = stand_in(polydata)
+    write_vtp(stand_in_vtp, shown)
     simple.ResetSession()
     reader = simple.XMLPolyDataReader(registrationName=os.path.basename(final_vtp),
                                       FileName=[os.path.abspath(stand_in_vtp)])
@@ -343,7 +398,11 @@ def save_state(path, vtp, final_vtp, polydata):
     lut.ApplyPreset('Inferno (matplotlib)', True)
     lut.RescaleTransferFunction(0.0, 1.0)
     display.SetScalarBarVisibility(view, True)
-    view.ResetCamera()
+    # The camera framing the data, set here (ParaView's default camera looks at the origin: a georeferenced result
+    # would open far out of view; nothing is rendered, so no window is made): looking along the direction the points
+    # spread least, from as far as the bounding sphere needs at the view angle.
+    points = vtk_to_numpy(shown.GetPoints().GetData())
+    gls_render.frame_camera(view, points[np.isfinite(points).all(axis=1)])
     simple.SaveState(path)
     os.remove(stand_in_vtp)
     with open(path) as f:

@@ -47,14 +47,43 @@ def aim_camera(view, points, normals=None):
     view.CameraViewUp = list(map(float, up))
 
 
+# The width of a title's character, as a fraction of its font size (ParaView's default Arial: 0.5 on average; a
+# margin for wide letters), which decides where a long title is wrapped.
+TITLE_CHARACTER_WIDTH = 0.62
+
+
+def wrapped_title(title, font_size, width):
+    """`title` broken at spaces into lines that fit `width` pixels at `font_size` (a long file name's title is not
+    cut at both sides of the picture)."""
+    import textwrap
+    per_line = max(20, int(width / (TITLE_CHARACTER_WIDTH * font_size)))
+    return '\n'.join(textwrap.wrap(title, per_line, break_long_words=True)) or title
+
+
+def frame_camera(view, points):
+    """aim_camera, then the camera's distance set from the points' bounding sphere and the view angle (what
+    ResetCamera does, without rendering)."""
+    if len(points) == 0:
+        return
+    aim_camera(view, points)
+    centre = np.asarray(view.CameraFocalPoint, dtype=float)
+    direction = np.asarray(view.CameraPosition, dtype=float) - centre
+    radius = max(0.5 * float(np.linalg.norm(np.max(points, axis=0) - np.min(points, axis=0))), 1e-12 * (1.0 + float(
+        np.abs(centre).max())))
+    distance = radius / math.sin(math.radians(0.5 * float(view.CameraViewAngle)))
+    view.CameraPosition = list(map(float, centre + distance * direction / np.linalg.norm(direction)))
+    view.CameraParallelScale = radius
+
+
 def save_picture(path, view, lut, bar_title, title, font_size, resolution, dolly=1.0):
-    """Shows the scalar bar of `lut` titled `bar_title` and `title` above, fits the camera to the shown data
-    (zoomed in by `dolly`), renders and saves a `resolution` screenshot to `path`; removes the title again."""
+    """Shows the scalar bar of `lut` titled `bar_title` and `title` above (wrapped to the picture's width), fits the
+    camera to the shown data (zoomed in by `dolly`), renders and saves a `resolution` screenshot to `path`; removes
+    the title again."""
     from paraview import simple
     bar = simple.GetScalarBar(lut, view)
     bar.Title = bar_title
     bar.ComponentTitle = ''
-    text = simple.Text(registrationName='Title', Text=title)
+    text = simple.Text(registrationName='Title', Text=wrapped_title(title, font_size, resolution[0]))
     text_display = simple.Show(text, view)
     text_display.WindowLocation = 'Upper Center'
     text_display.FontSize = font_size

@@ -39,18 +39,31 @@ enum class NormalOrientation
                            ///< the components facing down are turned up (kTerrainCoherence)
   AgreeWithReference = 4,  ///< n . reference >= 0 where the reference normal is finite and non-zero
   Up = 5,                  ///< n . up >= 0 at every point (aerial scans: PDAL's always_up, CloudCompare's +Z)
-  UpAlongSpanningTree = 6  ///< airborne lidar: every normal within acos(kUpAnchorCosine) of the up direction faces up,
+  UpAlongSpanningTree = 6, ///< airborne lidar: every normal within acos(kUpAnchorCosine) of the up direction faces up,
                            ///< point by point (ground, roofs, terrain); the others (walls, steep slopes, the sides of
                            ///< trees) agree with their neighbours along the minimum spanning tree, each component
                            ///< turned so that its upward normals, weighted by n . up, face up (a building's walls
                            ///< then face out, away from it, as its roof and the ground around it do)
+  GroundUpAlongSpanningTree = 7 ///< terrestrial lidar (a scanner standing on the ground or a floor): the minimum
+                           ///< spanning tree, each component turned so that its ground faces up: the lowest
+                           ///< near-horizontal normals (|n . up| >= kGroundCosine) of each column of a grid over the
+                           ///< cloud (kGroundColumns a side), weighted by n . up. The rest follows the tree: a room's
+                           ///< ceiling faces down into the room, its walls in; a building's walls face out
 };
 
 /// Whether an orientation propagates along the minimum spanning tree (its graph and forest are made).
 constexpr bool orientsAlongSpanningTree(NormalOrientation o)
 {
-  return o == NormalOrientation::MinimumSpanningTree || o == NormalOrientation::UpAlongSpanningTree;
+  return o == NormalOrientation::MinimumSpanningTree || o == NormalOrientation::UpAlongSpanningTree ||
+    o == NormalOrientation::GroundUpAlongSpanningTree;
 }
+
+/// GroundUpAlongSpanningTree: the columns of the grid over the cloud's horizontal extent (this many along its longer
+/// side), the normals within acos(kGroundCosine) of up that count as ground or floor, and how far above its column's
+/// lowest such point one still counts (this fraction of a column's side: a floor's noise and slope within it).
+constexpr int kGroundColumns = 64;
+constexpr double kGroundCosine = 0.9;
+constexpr double kGroundLayer = 0.25;
 
 /// UpAlongSpanningTree: the normals with |n . up| at least this (within 72.5 degrees of vertical: ground, roofs,
 /// slopes up to 72 degrees) face up one by one; the steeper ones (walls, within 17.5 degrees of horizontal, where a
@@ -146,9 +159,11 @@ double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOpti
 /// queries on parallel.threads threads). `degrees` (n, or null) raises a point's k above graphNeighbors: the
 /// estimate passes graphNeighbors times the growth of the point's neighbourhood, so that the graph of a scan reaches
 /// across the lines where the neighbourhoods had to. `components` receives the number of connected components.
-/// `up` (unit, or null): the UpAlongSpanningTree rule instead of MinimumSpanningTree's outward and terrain rules.
-/// Returns false if the progress callback asked to abort (the normals are then partly oriented and must not be used).
+/// `rule` (MinimumSpanningTree, UpAlongSpanningTree or GroundUpAlongSpanningTree) turns the components, `up` (any
+/// length but 0) for the last two. Returns false if the progress callback asked to abort (the normals are then partly
+/// oriented and must not be used).
 bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,
-  const ParallelOptions& parallel, std::size_t& components, const int* degrees = nullptr, const Vec3* up = nullptr);
+  const ParallelOptions& parallel, std::size_t& components, const int* degrees = nullptr,
+  NormalOrientation rule = NormalOrientation::MinimumSpanningTree, Vec3 up = { 0.0, 0.0, 1.0 });
 
 } // namespace gls

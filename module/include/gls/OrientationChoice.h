@@ -6,7 +6,10 @@
 //      that point.
 //   3. Airborne lidar (a LAS/LAZ file's attributes show it, lidarLooksAirborne): up, the walls along the minimum
 //      spanning tree (NormalOrientation::UpAlongSpanningTree).
-//   4. Otherwise the minimum spanning tree (outward from each component's farthest point; terrain-like clouds up).
+//   4. Other lidar (a LAS/LAZ file's attributes without those signs: a terrestrial or indoor scan exported as LAS):
+//      the minimum spanning tree with each component's ground or floor facing up (GroundUpAlongSpanningTree): walls
+//      and ceilings are not forced up (a room's ceiling faces down, into it).
+//   5. Otherwise the minimum spanning tree (outward from each component's farthest point; terrain-like clouds up).
 #pragma once
 
 #include <cstddef>
@@ -54,6 +57,7 @@ enum class OrientationSource
   ScannerPositions,     ///< towards each point's own scanner position
   SensorPosition,       ///< towards the file's one sensor position
   Airborne,             ///< NormalOrientation::UpAlongSpanningTree
+  Terrestrial,          ///< NormalOrientation::GroundUpAlongSpanningTree
   MinimumSpanningTree   ///< NormalOrientation::MinimumSpanningTree
 };
 

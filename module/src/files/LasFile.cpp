@@ -1,5 +1,7 @@
 #include "gls/LasFile.h"
 
+#include "gls/FileContent.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -158,7 +160,8 @@ bool readLasPreamble(std::istream& in, std::uint64_t fileSize, unsigned char* b,
   }
   if (std::memcmp(b, "LASF", 4) != 0)
   {
-    error = "not a LAS file (it does not begin with 'LASF')";
+    const std::string kind = binaryContentKind(reinterpret_cast<const char*>(b), 227);
+    error = "not a LAS file (it does not begin with 'LASF'; by its content " + (kind.empty() ? "text" : kind) + ")";
     return false;
   }
   h.versionMajor = b[24];

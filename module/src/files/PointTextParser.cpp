@@ -1,9 +1,12 @@
 #include "gls/PointTextParser.h"
 
+#include "gls/FileContent.h"
+
 #include "PointTextLayout.h"
 #include "PointTextTable.h"
 #include "TextCloudFormat.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -118,9 +121,11 @@ PointText parsePointText(const char* text, std::size_t size)
 namespace
 {
 
-/// parse(bytes, size) of the file's whole content, its error and warning prefixed with the path; an error naming the
-/// path when the file cannot be opened.
-PointText parseFile(const std::string& path, PointText (*parse)(const char*, std::size_t))
+/// parse(bytes, size) of the file's whole content, its error and warning prefixed with the path (file content in
+/// them made printable); an error naming the path when the file cannot be opened, and one naming what the file is
+/// when its content is no text (`expected`: what the parser reads, e.g. "a text point cloud") and it has no PCD
+/// header (a binary PCD's data follow its text header).
+PointText parseFile(const std::string& path, PointText (*parse)(const char*, std::size_t), const char* expected)
 {
   std::ifstream in(path, std::ios::binary);
   if (!in)
@@ -132,10 +137,23 @@ PointText parseFile(const std::string& path, PointText (*parse)(const char*, std
   std::ostringstream buffer;
   buffer << in.rdbuf();
   const std::string bytes = buffer.str();
+  const std::size_t head = std::min(bytes.size(), pointCloudHeadBytes);
+  const std::string kind =
+    textCloudFormat(bytes.data(), head) == TextCloudFormat::Pcd ? "" : binaryContentKind(bytes.data(), head);
+  if (!kind.empty())
+  {
+    PointText failed;
+    const auto dot = path.find_last_of("./");
+    const std::string ext = dot != std::string::npos && path[dot] == '.' ? path.substr(dot) : "no extension";
+    failed.error = path + ": " + kind + " by its content (named " + ext + "), not " + expected +
+      (kind == "a LAS file" || kind == "a LAZ file" ? ": open it as .las (.laz)"
+        : kind == "a PLY file" ? ": open it as .ply" : "");
+    return failed;
+  }
   PointText out = parse(bytes.data(), bytes.size());
   if (!out.error.empty())
   {
-    out.error = path + ": " + out.error;
+    out.error = path + ": " + printableText(out.error);
   }
   if (!out.warning.empty())
   {
@@ -148,17 +166,17 @@ PointText parseFile(const std::string& path, PointText (*parse)(const char*, std
 
 PointText readPointTextFile(const std::string& path)
 {
-  return parseFile(path, pointtext::parseTextCloud);
+  return parseFile(path, pointtext::parseTextCloud, "a text point cloud");
 }
 
 PointText readPtxFile(const std::string& path)
 {
-  return parseFile(path, parsePtx);
+  return parseFile(path, parsePtx, "a PTX scan");
 }
 
 PointText readPcdFile(const std::string& path)
 {
-  return parseFile(path, parsePcd);
+  return parseFile(path, parsePcd, "a PCD file");
 }
 
 } // namespace gls

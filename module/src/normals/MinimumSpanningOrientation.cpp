@@ -164,7 +164,9 @@ inline double edgeCost(const Vec3& a, const Vec3& b)
 /// mean z is below -kTerrainCoherence is turned over, to face +z; pieces of a closed surface keep their sides.
 /// With an up direction (UpAlongSpanningTree) instead: each component is turned so that the sum of n . up over its
 /// upward nodes (|n . up| >= kUpAnchorCosine) is positive (one without any keeps the outward rule), then every upward
-/// node faces up on its own. The components are numbered in the order of their lowest original index and their sums
+/// node faces up on its own. GroundUpAlongSpanningTree: each component is turned so that the sum of n . up over its
+/// ground nodes (the lowest near-horizontal ones of each column of the cloud) is positive; nothing more. The
+/// components are numbered in the order of their lowest original index and their sums
 /// run in the original order of their points, so the result does not depend on the grid's numbering.
 template <typename Index>
 class ComponentOrientation
@@ -172,11 +174,12 @@ class ComponentOrientation
 public:
   /// nodeOf: the node of each original index (none for the points that are not nodes).
   ComponentOrientation(const GridView& g, const std::vector<Index>& nodeOf, const SignedForest<Index>& forest,
-    Vec3* normal, const Vec3* up)
+    Vec3* normal, NormalOrientation rule, const Vec3& up)
     : G(g)
     , NodeOf(nodeOf)
     , Forest(forest)
     , Normal(normal)
+    , Rule(rule)
     , Up(up)
     , Slot(g.count, std::numeric_limits<Index>::max())
   {
@@ -187,16 +190,20 @@ public:
   {
     this->Number();
     this->ChooseRoots();
-    if (this->Up)
+    if (this->Rule == NormalOrientation::UpAlongSpanningTree)
     {
-      this->ChooseUpward();
+      this->TurnBy([](const Vec3&, double u) { return std::abs(u) >= kUpAnchorCosine; });
+    }
+    else if (this->Rule == NormalOrientation::GroundUpAlongSpanningTree)
+    {
+      this->TurnByGround();
     }
     this->Apply(parallel, [this](std::size_t s, const Component& c) { return (this->Forest.turned[s] ^ c.turn) != 0; });
-    if (this->Up)
+    if (this->Rule == NormalOrientation::UpAlongSpanningTree)
     {
       this->FaceUpOneByOne(parallel);
     }
-    else if (this->Flat())
+    else if (this->Rule == NormalOrientation::MinimumSpanningTree && this->Flat())
     {
       this->FaceUpIfTerrain(parallel);
     }
@@ -302,9 +309,10 @@ private:
     });
   }
 
-  /// The up rule's turn of each component that has upward nodes (see the class): their n . up summed as the tree
-  /// orients them (Forest.turned), in the original order.
-  void ChooseUpward()
+  /// The turn of each component that has voting nodes (`votes(n, n . up)`: whether node s with normal n votes): their
+  /// n . up summed as the tree orients them (Forest.turned), in the original order, must be positive.
+  template <typename Votes>
+  void TurnBy(const Votes& votes)
   {
     const Index none = std::numeric_limits<Index>::max();
     std::vector<double> vote(this->Components.size(), 0.0);
@@ -314,8 +322,8 @@ private:
       {
         continue;
       }
-      const double u = dot(this->Normal[s], *this->Up);
-      if (std::abs(u) >= kUpAnchorCosine)
+      const double u = dot(this->Normal[s], this->Up);
+      if (votes(this->G.points[s], u))
       {
         vote[this->Slot[this->Forest.tree[s]]] += this->Forest.turned[s] ? -u : u;
       }
@@ -329,6 +337,58 @@ private:
     }
   }
 
+  /// The ground rule (see the class): the nodes whose normal is within acos(kGroundCosine) of up and whose height
+  /// (along up) is within kGroundLayer of a column's side of the lowest such node of their column (a grid of
+  /// kGroundColumns along the longer horizontal side of the nodes' box) vote.
+  void TurnByGround()
+  {
+    // A horizontal frame: two directions across up.
+    const Vec3 helper = std::abs(this->Up.x) < 0.9 ? Vec3{ 1.0, 0.0, 0.0 } : Vec3{ 0.0, 1.0, 0.0 };
+    const Vec3 e1 = (1.0 / std::sqrt(squaredNorm(cross(this->Up, helper)))) * cross(this->Up, helper);
+    const Vec3 e2 = cross(this->Up, e1);
+    double low[2] = { 0.0, 0.0 }, high[2] = { 0.0, 0.0 };
+    bool any = false;
+    for (std::size_t s = 0; s < this->G.count; ++s)
+    {
+      if (this->Slot[this->Forest.tree[s]] == std::numeric_limits<Index>::max())
+      {
+        continue; // not a node
+      }
+      const double c[2] = { dot(this->G.points[s], e1), dot(this->G.points[s], e2) };
+      for (int a = 0; a < 2; ++a)
+      {
+        low[a] = any ? std::min(low[a], c[a]) : c[a];
+        high[a] = any ? std::max(high[a], c[a]) : c[a];
+      }
+      any = true;
+    }
+    const double side = std::max(high[0] - low[0], high[1] - low[1]) / kGroundColumns;
+    if (!any || !(side > 0.0))
+    {
+      return;
+    }
+    const int columns = kGroundColumns + 1;
+    const auto column = [&](const Vec3& p) {
+      const int i = std::min(columns - 1, static_cast<int>((dot(p, e1) - low[0]) / side));
+      const int j = std::min(columns - 1, static_cast<int>((dot(p, e2) - low[1]) / side));
+      return static_cast<std::size_t>(i) * columns + static_cast<std::size_t>(j);
+    };
+    std::vector<double> lowest(static_cast<std::size_t>(columns) * columns, std::numeric_limits<double>::infinity());
+    for (std::size_t s = 0; s < this->G.count; ++s)
+    {
+      const double u = dot(this->Normal[s], this->Up);
+      if (std::abs(u) >= kGroundCosine && this->Slot[this->Forest.tree[s]] != std::numeric_limits<Index>::max())
+      {
+        double& l = lowest[column(this->G.points[s])];
+        l = std::min(l, dot(this->G.points[s], this->Up));
+      }
+    }
+    const double layer = kGroundLayer * side;
+    this->TurnBy([&](const Vec3& p, double u) {
+      return std::abs(u) >= kGroundCosine && dot(p, this->Up) <= lowest[column(p)] + layer;
+    });
+  }
+
   /// Every upward node (|n . up| >= kUpAnchorCosine) facing up.
   void FaceUpOneByOne(const ParallelOptions& parallel)
   {
@@ -339,7 +399,7 @@ private:
       for (std::size_t s = begin; s < end; ++s)
       {
         Vec3& v = this->Normal[s];
-        if (dot(v, *this->Up) <= -kUpAnchorCosine)
+        if (dot(v, this->Up) <= -kUpAnchorCosine)
         {
           v = { -v.x, -v.y, -v.z };
         }
@@ -393,7 +453,8 @@ private:
   const std::vector<Index>& NodeOf;
   const SignedForest<Index>& Forest;
   Vec3* Normal;
-  const Vec3* Up; ///< the up rule's direction (unit), or null
+  NormalOrientation Rule; ///< how the components turn (see the class)
+  Vec3 Up;                ///< the up and ground rules' direction (unit)
   std::vector<Index> Slot; ///< per tree (its Forest.tree node): its component
   std::vector<Component> Components;
 };
@@ -436,7 +497,7 @@ bool orientWith(OrientationGraph& graph, Vec3* normal, const ParallelOptions& pa
       nodeOf[g.ids[s]] = static_cast<Index>(s);
     }
   }
-  components = ComponentOrientation<Index>(g, nodeOf, forest, normal, graph.up).orient(parallel);
+  components = ComponentOrientation<Index>(g, nodeOf, forest, normal, graph.rule, graph.up).orient(parallel);
   return true;
 }
 

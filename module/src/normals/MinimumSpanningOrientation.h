@@ -1,10 +1,11 @@
 // Hoppe's orientation of unit normals (the MinimumSpanningTree and UpAlongSpanningTree modes of NormalEstimation):
 // the orientation propagates along the minimum spanning tree of the points' k-nearest-neighbour graph for the cost
 // 1 - |n_i . n_j|; each connected component is oriented from its point farthest from its centroid (outward), or,
-// with an up direction, so that its upward normals face up (and those then face up one by one).
+// with an up direction, so that its upward normals face up (and those then face up one by one), or its ground does.
 #pragma once
 
 #include "gls/NeighborGrid.h"
+#include "gls/NormalEstimation.h"
 #include "gls/ParallelFor.h"
 #include "gls/Vec3.h"
 
@@ -33,8 +34,10 @@ struct OrientationGraph
   /// its nearest other points (nearest first, kNoNeighbor-padded). A point whose list is complete, holds nodes only
   /// and needs no more than graphNeighbors is not queried again. Empty: every node is queried.
   std::vector<std::uint32_t> nearestOthers;
-  /// UpAlongSpanningTree: the up direction (unit); null for MinimumSpanningTree (outward, then the terrain rule).
-  const Vec3* up = nullptr;
+  /// How the components are turned: MinimumSpanningTree (outward, then the terrain rule), UpAlongSpanningTree or
+  /// GroundUpAlongSpanningTree (NormalEstimation.h), the last two with `up` (unit).
+  NormalOrientation rule = NormalOrientation::MinimumSpanningTree;
+  Vec3 up{ 0.0, 0.0, 1.0 };
 };
 
 /// The padding of OrientationGraph::nearestOthers.

@@ -418,8 +418,8 @@ public:
     graph.nodes = nodes.data();
     graph.nearestOthers = std::move(NearestOthers);
     graph.listsMade = [this] { Estimates.graphMade(); };
-    const Vec3 up = normalized(Settings.up);
-    graph.up = Settings.orientation == NormalOrientation::UpAlongSpanningTree ? &up : nullptr;
+    graph.rule = Settings.orientation;
+    graph.up = normalized(Settings.up);
     return gls::orientAlongSpanningTree(graph, Estimates.normals.data(), stage, components);
   }
 
@@ -713,7 +713,7 @@ double kNearestReach(const double* xyz, std::size_t n, int k, const ParallelOpti
 }
 
 bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeighbors, double* normals,
-  const ParallelOptions& parallel, std::size_t& components, const int* degrees, const Vec3* up)
+  const ParallelOptions& parallel, std::size_t& components, const int* degrees, NormalOrientation rule, Vec3 up)
 {
   // Graph nodes: points with a finite position and a finite normal.
   std::vector<unsigned char> usable(n, 0);
@@ -737,8 +737,8 @@ bool orientByMinimumSpanningTree(const double* xyz, std::size_t n, int graphNeig
   graph.n = n;
   graph.graphNeighbors = graphNeighbors;
   graph.sortedDegrees = degrees ? sortedDegrees.data() : nullptr;
-  const Vec3 unitUp = up ? normalized(*up) : Vec3{ 0.0, 0.0, 1.0 };
-  graph.up = up ? &unitUp : nullptr;
+  graph.rule = rule;
+  graph.up = normalized(up);
   if (!orientAlongSpanningTree(graph, sortedNormals.data(), parallel, components))
   {
     return false;

@@ -95,7 +95,7 @@ bool lidarLooksAirborne(const LidarEvidence& e, std::string& why)
     why = found.str();
     return true;
   }
-  why = "no scan angles off nadir within a swath, no multiple returns, no ground class (a terrestrial scan's export)";
+  why = "no scan angles off nadir within a swath, no multiple returns, no ground class";
   return false;
 }
 
@@ -125,9 +125,14 @@ OrientationChoice chooseOrientation(bool scannerPositions, const double* sensor,
     choice.reason = "up, the walls along the minimum spanning tree: airborne lidar (" + why + ")";
     return choice;
   }
+  if (evidence.hasScanAngle || evidence.hasReturns || evidence.hasClasses)
+  {
+    choice.source = OrientationSource::Terrestrial;
+    choice.reason = "minimum spanning tree, the ground or floor up: terrestrial lidar (" + why + ")";
+    return choice;
+  }
   choice.source = OrientationSource::MinimumSpanningTree;
-  choice.reason = "minimum spanning tree, outward (the file gives no sensor position" +
-    (evidence.hasScanAngle || evidence.hasReturns || evidence.hasClasses ? "; not airborne lidar: " + why : "") + ")";
+  choice.reason = "minimum spanning tree, outward (the file gives no sensor position and no lidar attributes)";
   return choice;
 }
 
