@@ -2,6 +2,7 @@
 // (gls/LasFile.h), PCD and PTX (gls/PointTextParser.h). Invariants: no crash, no sanitizer report, no allocation
 // beyond what the file can hold; LAS: a header is accepted only with its points inside the file; PCD and PTX: on
 // success whole points with per-point attributes, on failure an error and nothing else; a refusal always says why.
+#include "gls/FileContent.h"
 #include "gls/LasFile.h"
 #include "gls/PointTextParser.h"
 
@@ -46,6 +47,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 {
   checkCloud(gls::parsePcd(reinterpret_cast<const char*>(data), size));
   checkCloud(gls::parsePtx(reinterpret_cast<const char*>(data), size));
+  gls::printableText(gls::binaryContentKind(reinterpret_cast<const char*>(data), size) +
+    std::string(reinterpret_cast<const char*>(data), size < 64 ? size : 64));
   const std::string bytes(reinterpret_cast<const char*>(data), size);
   std::istringstream in(bytes);
   gls::LasHeader h;
@@ -66,18 +69,38 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t n = static_cast<std::size_t>(h.pointCount);
   std::vector<double> xyz(3 * n), gps(n);
   std::vector<std::uint16_t> intensity(n), rgb(3 * n), nir(n);
-  std::vector<std::vector<double>> extra(h.extra.size(), std::vector<double>(n));
+  std::vector<std::uint8_t> withheld(n), synthetic(n), keyPoint(n), overlap(n), direction(n), edge(n), channel(n);
+  std::vector<std::vector<double>> extra;
+  for (const gls::LasExtraBytes& x : h.extra)
+  {
+    if (x.components < 1 || x.components > 3)
+    {
+      std::abort();
+    }
+    extra.emplace_back(static_cast<std::size_t>(x.components) * n);
+  }
   gls::LasColumns c;
   c.xyz = xyz.data();
   c.intensity = intensity.data();
   c.gpsTime = gps.data();
   c.rgb = rgb.data();
   c.nir = nir.data();
+  c.withheld = withheld.data();
+  c.synthetic = synthetic.data();
+  c.keyPoint = keyPoint.data();
+  c.overlap = overlap.data();
+  c.scanDirection = direction.data();
+  c.edgeOfFlightLine = edge.data();
+  c.scannerChannel = channel.data();
+  c.skipWithheld = size % 2 == 1; // both ways, from the input's parity
   for (auto& e : extra)
   {
     c.extra.push_back(e.data());
   }
-  if (!gls::readLasPoints(in, h, c, error) && error.empty())
+  gls::LasReadResult read;
+  const bool ok = gls::readLasPoints(in, h, c, read, error);
+  if ((!ok && error.empty()) || read.written > n || read.withheld > n ||
+    (ok && read.written + (c.skipWithheld ? read.withheld : 0) != n))
   {
     std::abort();
   }

@@ -154,6 +154,28 @@ class PluginProxies(unittest.TestCase):
         self.assertEqual(opened.GetDataInformation().GetDataSetTypeAsString(), 'vtkTable')
         simple.Delete(opened)
 
+    def test_las_files_open_with_the_las_reader_without_gdals_failed_probe(self):
+        # ParaView asks every reader whether it reads a .las file, GDAL's among them, whose failed probe printed
+        # "ERROR 4: ... not recognized as a supported file format" on every open; the plugin drops that message for
+        # .las and .laz files only (another file's still shows). In a pvpython of its own, whose output is read.
+        import subprocess
+        import las_writer
+        folder = tempfile.mkdtemp()
+        las, other = os.path.join(folder, 'tile.las'), os.path.join(folder, 'image.tif')
+        las_writer.write_las(las, sphere(200)[0], point_format=1)
+        with open(other, 'w') as f:
+            f.write('not an image')
+        script = ('from paraview.simple import *\n'
+                  'LoadPlugin(%r, remote=False, ns=globals())\n'
+                  'r = OpenDataFile(%r)\nprint(r.GetXMLName())\nr.UpdatePipeline()\n'
+                  'print(r.GetDataInformation().GetNumberOfPoints())\n'
+                  'from vtkmodules.vtkIOGDAL import vtkGDALRasterReader\n'
+                  'g = vtkGDALRasterReader()\ng.SetFileName(%r)\ng.UpdateInformation()\n' % (PLUGIN, las, other))
+        result = subprocess.run(['pvpython', '-c', script], capture_output=True, text=True, timeout=120)
+        self.assertEqual(result.stdout.split()[:2], ['GLSLasReader', '200'], result.stderr[-2000:])
+        self.assertNotIn("tile.las' not recognized", result.stderr)
+        self.assertIn("image.tif' not recognized", result.stderr)  # GDAL's other messages pass
+
     def test_an_unstructured_grid_and_a_multiblock_are_in_every_filters_input_domain(self):
         # The GUI greys out a filter whose input domain refuses the selected source (once vtkPolyData only).
         grid = simple.AppendDatasets(Input=simple.Sphere())  # a vtkUnstructuredGrid
