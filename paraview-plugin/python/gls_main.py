@@ -79,7 +79,9 @@ def parse_arguments(argv):
                    help='point cloud or mesh (default: the bundled bunny)')
     p.add_argument('--output-dir', default='gls-output', help='where the results go (default ./gls-output)')
     p.add_argument('--plugin', default=os.environ.get('GLS_PLUGIN'), help='path of GrowingLeastSquares.so')
-    p.add_argument('--scales', type=int, default=20, help='number of scales, at least 2 (default 20)')
+    p.add_argument('--scales', type=int, default=20,
+                   help='number of scales, at least 2 (default 20; each adds a small fit per point: thousands of '
+                        'scales cost about 0.5 microseconds a point each)')
     p.add_argument('--min-scale', type=float, default=None,
                    help='smallest scale / diagonal, > 0 (default 0.008); with --absolute-scales a length')
     p.add_argument('--max-scale', type=float, default=None,

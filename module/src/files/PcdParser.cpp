@@ -292,7 +292,17 @@ std::string layOutFields(PcdHeader& h, PcdRoles& r)
       *role = static_cast<int>(k);
     }
   }
-  return r.x < 0 || r.y < 0 || r.z < 0 ? "the PCD file has no x, y and z fields (of one value each)" : "";
+  if (r.x >= 0 && r.y >= 0 && r.z >= 0)
+  {
+    return "";
+  }
+  std::string fields;
+  for (const PcdField& f : h.fields)
+  {
+    fields += (fields.empty() ? "" : " ") + f.name;
+  }
+  return "the PCD file has no x, y and z fields of one value each (its fields: " + fields +
+    "): not a point cloud (an image's PCD?)";
 }
 
 /// The low 32 bits of the integer value (two's complement for negative values), as a packed colour reads them; 0 for
