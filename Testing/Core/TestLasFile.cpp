@@ -487,6 +487,26 @@ TEST(LasFile, WritersQuirksAreReadWithANote)
   ASSERT_EQ(c.error, "");
   EXPECT_EQ(c.h.pointCount, points.size());
   EXPECT_TRUE(quirk(c, "legacy field only"));
+  // Records longer than their format with no Extra Bytes record (laspy's unregistered_extra_bytes.las): 4 bytes each
+  // not read.
+  std::string padded = lasFile(4, 6, points);
+  {
+    // Each record 4 bytes longer: the header's record length and the points rewritten with padding.
+    const std::size_t start = 375, length = gls::lasFormatSize(6);
+    std::string body;
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      body += padded.substr(start + i * length, length) + std::string(4, '\x7f');
+    }
+    padded = padded.substr(0, start) + body;
+    padded[105] = static_cast<char>(length + 4);
+    padded.replace(235, 8, std::string(8, '\0')); // no extended records
+  }
+  const Decoded p = decode(padded);
+  ASSERT_EQ(p.error, "");
+  EXPECT_EQ(p.read.written, points.size());
+  EXPECT_EQ(p.xyz[3], points[1].x * kScale[0] + kOffset[0]);
+  EXPECT_TRUE(quirk(p, "hold 4 bytes each beyond the 30 that format 6 describe"));
   // Extended records said to lie past the end of the file: not read, the points are.
   LasOptions outside;
   outside.extendedOutside = true;

@@ -3,8 +3,9 @@
 // plain arrays (positions in double precision: X scale + offset, so that a position is the file's integer exactly).
 // The coordinate system (OGC WKT, or the GeoTIFF keys) is read from the records and the extended records of LAS 1.4.
 // Common quirks of real writers are read with a note naming each (LasHeader::quirks, LasReadResult::quirks): Extra
-// Bytes descriptors of the deprecated array types, a header whose bounds are stored unscaled, a LAS 1.4 point count in
-// the legacy field only. LAZ (compressed LAS) is recognised and refused.
+// Bytes descriptors of the deprecated array types, bytes at the end of each record that no descriptor describes, a
+// header whose bounds are stored unscaled, a LAS 1.4 point count in the legacy field only. LAZ (compressed LAS) is
+// recognised and refused.
 #pragma once
 
 #include <cstddef>
@@ -49,6 +50,7 @@ struct LasHeader
   double scale[3] = { 1, 1, 1 }, offset[3] = { 0, 0, 0 };
   double min[3] = { 0, 0, 0 }, max[3] = { 0, 0, 0 }; ///< the header's bounds
   std::vector<LasExtraBytes> extra;
+  std::size_t describedLength = 0;  ///< bytes of a record its format and the Extra Bytes descriptors account for
   LasCoordinateSystem coordinateSystem;
   std::vector<std::string> quirks;  ///< what the header did not hold as the specification says, read anyway
 

@@ -134,6 +134,7 @@ bool parseExtraBytes(const unsigned char* data, std::size_t length, LasHeader& h
     error = msg.str();
     return false;
   }
+  h.describedLength = at;
   return true;
 }
 
@@ -404,9 +405,23 @@ bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& h, std::
   unsigned char b[375] = {};
   std::size_t headerSize = 0;
   std::uint32_t vlrCount = 0;
-  return readLasPreamble(in, fileSize, b, h, headerSize, error) && readLasFields(b, h, vlrCount, error) &&
-    checkLasRecords(h, headerSize, fileSize, error) && readVariableLengthRecords(in, headerSize, vlrCount, h, error) &&
-    readExtendedRecords(in, b, fileSize, h, error);
+  if (!readLasPreamble(in, fileSize, b, h, headerSize, error) || !readLasFields(b, h, vlrCount, error) ||
+    !checkLasRecords(h, headerSize, fileSize, error))
+  {
+    return false;
+  }
+  h.describedLength = lasFormatSize(h.format); // until an Extra Bytes record describes more
+  if (!readVariableLengthRecords(in, headerSize, vlrCount, h, error) || !readExtendedRecords(in, b, fileSize, h, error))
+  {
+    return false;
+  }
+  if (h.recordLength > h.describedLength)
+  {
+    h.quirks.push_back("its point records hold " + std::to_string(h.recordLength - h.describedLength) +
+      " bytes each beyond the " + std::to_string(h.describedLength) + " that format " + std::to_string(h.format) +
+      (h.extra.empty() ? "" : " and its Extra Bytes record") + " describe: not read");
+  }
+  return true;
 }
 
 namespace
