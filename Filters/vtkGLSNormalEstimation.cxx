@@ -65,8 +65,12 @@ int vtkGLSNormalEstimation::Execute(vtkGLSRun& run)
   gls::NormalEstimationSettings settings;
   OrientationPlan plan;
   std::vector<double> reference;
-  if (!this->CheckRun(run) || !this->PlanOrientation(run, plan) ||
-    (this->ResolveSettings(run, plan, settings), !this->GatherReference(run, plan, reference, settings)) ||
+  if (!this->CheckRun(run) || !this->PlanOrientation(run, plan))
+  {
+    return FAILED;
+  }
+  this->ResolveSettings(run, plan, settings);
+  if (!this->GatherReference(run, plan, reference, settings) ||
     !this->AgreeToContinue(run, this->CheckMemoryBudget(this->NeededBytes(run, settings, reference),
                                   "the normal estimation",
                                   "Use fewer NumberOfNeighbors or GraphNeighbors, or raise MemoryBudget.")))
@@ -191,25 +195,30 @@ bool vtkGLSNormalEstimation::PlanOrientation(const vtkGLSRun& run, OrientationPl
       return false;
     }
   }
-  if (plan.Mode != AUTOMATIC)
+  if (plan.Mode == AUTOMATIC)
   {
-    switch (plan.Mode)
-    {
-      case NONE: plan.Report = "none (the eigen solver's sign)"; break;
-      case TOWARDS_POINT: plan.Report = "towards the point " + Triple(plan.Point); break;
-      case AWAY_FROM_POINT: plan.Report = "away from the point " + Triple(plan.Point); break;
-      case MINIMUM_SPANNING_TREE: plan.Report = "minimum spanning tree, outward"; break;
-      case AGREE_WITH_EXISTING: plan.Report = "agreeing with the existing normals"; break;
-      case TOWARDS_VIEWPOINT_ARRAY: plan.Report = "towards each point's viewpoint (the viewpoint array)"; break;
-      case UP: plan.Report = "up " + Triple(plan.Up) + ", point by point"; break;
-      case UP_ALONG_SPANNING_TREE:
-        plan.Report = "up " + Triple(plan.Up) + ", the walls along the minimum spanning tree";
-        break;
-      default: plan.Report = "minimum spanning tree, the ground or floor up " + Triple(plan.Up); break;
-    }
+    this->ChooseOrientation(run, plan);
     return true;
   }
-  // AUTOMATIC: what the input says of its scanners, over every process.
+  switch (plan.Mode)
+  {
+    case NONE: plan.Report = "none (the eigen solver's sign)"; break;
+    case TOWARDS_POINT: plan.Report = "towards the point " + Triple(plan.Point); break;
+    case AWAY_FROM_POINT: plan.Report = "away from the point " + Triple(plan.Point); break;
+    case MINIMUM_SPANNING_TREE: plan.Report = "minimum spanning tree, outward"; break;
+    case AGREE_WITH_EXISTING: plan.Report = "agreeing with the existing normals"; break;
+    case TOWARDS_VIEWPOINT_ARRAY: plan.Report = "towards each point's viewpoint (the viewpoint array)"; break;
+    case UP: plan.Report = "up " + Triple(plan.Up) + ", point by point"; break;
+    case UP_ALONG_SPANNING_TREE:
+      plan.Report = "up " + Triple(plan.Up) + ", the walls along the minimum spanning tree";
+      break;
+    default: plan.Report = "minimum spanning tree, the ground or floor up " + Triple(plan.Up); break;
+  }
+  return true;
+}
+
+void vtkGLSNormalEstimation::ChooseOrientation(const vtkGLSRun& run, OrientationPlan& plan)
+{
   vtkPointSet* input = run.Input;
   const vtkGLSDistributedCloud& dist = run.Distributed;
   const vtkIdType n = input->GetNumberOfPoints();
@@ -239,14 +248,17 @@ bool vtkGLSNormalEstimation::PlanOrientation(const vtkGLSRun& run, OrientationPl
   gls::LidarEvidence mine, all;
   gls::countLidarEvidence(angle.empty() ? nullptr : angle.data(), returns.empty() ? nullptr : returns.data(),
     classes.empty() ? nullptr : classes.data(), finite.data(), finite.size(), mine);
-  all.points = dist.Sum(mine.points);
-  all.hasScanAngle = dist.Sum(mine.hasScanAngle ? 1.0 : 0.0) > 0.0;
-  all.nonZeroAngle = dist.Sum(mine.nonZeroAngle);
-  all.angleBeyondSwath = dist.Sum(mine.angleBeyondSwath);
-  all.hasReturns = dist.Sum(mine.hasReturns ? 1.0 : 0.0) > 0.0;
-  all.multipleReturns = dist.Sum(mine.multipleReturns);
-  all.hasClasses = dist.Sum(mine.hasClasses ? 1.0 : 0.0) > 0.0;
-  all.ground = dist.Sum(mine.ground);
+  // Summed over the pieces (a flag as a count: any piece that has the attribute).
+  const auto sum = [&dist](double v) { return dist.Sum(v); };
+  const auto any = [&dist](bool b) { return dist.Sum(b ? 1.0 : 0.0) > 0.0; };
+  all.points = sum(mine.points);
+  all.hasScanAngle = any(mine.hasScanAngle);
+  all.nonZeroAngle = sum(mine.nonZeroAngle);
+  all.angleBeyondSwath = sum(mine.angleBeyondSwath);
+  all.hasReturns = any(mine.hasReturns);
+  all.multipleReturns = sum(mine.multipleReturns);
+  all.hasClasses = any(mine.hasClasses);
+  all.ground = sum(mine.ground);
   const gls::OrientationChoice choice = gls::chooseOrientation(everyScanner, hasSensor ? sensor : nullptr, all);
   plan.Report = "automatic: " + choice.reason;
   switch (choice.source)
@@ -270,7 +282,6 @@ bool vtkGLSNormalEstimation::PlanOrientation(const vtkGLSRun& run, OrientationPl
       plan.Mode = MINIMUM_SPANNING_TREE;
       break;
   }
-  return true;
 }
 
 void vtkGLSNormalEstimation::ResolveSettings(

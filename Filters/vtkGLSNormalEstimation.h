@@ -256,9 +256,11 @@ protected:
     std::string Report;
   };
   /// The run's orientation: the properties checked (a non-finite OrientationPoint or UpDirection, a zero UpDirection:
-  /// false, with an error naming it), and AUTOMATIC's choice from the input's arrays (gls::chooseOrientation, its
-  /// evidence summed over every process). Collective.
+  /// false, with an error naming it), and AUTOMATIC's choice (ChooseOrientation). Collective.
   bool PlanOrientation(const vtkGLSRun& run, OrientationPlan& plan);
+  /// AUTOMATIC's choice from the input's arrays: gls::chooseOrientation of its ScannerPosition point or field-data
+  /// array and its lidar attributes (counted over its finite points, summed over every process). Collective.
+  void ChooseOrientation(const vtkGLSRun& run, OrientationPlan& plan);
   /// The core's settings from the properties and the plan.
   void ResolveSettings(const vtkGLSRun& run, const OrientationPlan& plan, gls::NormalEstimationSettings& settings);
   /// AGREE_WITH_EXISTING and TOWARDS_VIEWPOINT_ARRAY: the reference directions of every point (the selected normals,

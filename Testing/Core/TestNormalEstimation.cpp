@@ -416,6 +416,21 @@ TEST(NormalEstimation, AnAerialStripFacesUpByDefaultAndInTheUpMode)
   }
 }
 
+namespace
+{
+
+/// The normals of a cloud estimated with the default settings and `orientation`.
+gls::NormalEstimationResult estimatedWith(const Cloud& c, gls::NormalOrientation orientation)
+{
+  gls::NormalEstimationSettings s;
+  s.orientation = orientation;
+  gls::NormalEstimationResult r;
+  EXPECT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+  return r;
+}
+
+} // namespace
+
 TEST(NormalEstimation, AnAerialStripsWallsFaceOutAlongTheTree)
 {
   // Airborne lidar's rule (UpAlongSpanningTree): the ground, roofs and terrain up point by point, as Up does; the
@@ -427,10 +442,7 @@ TEST(NormalEstimation, AnAerialStripsWallsFaceOutAlongTheTree)
   for (const gls::NormalOrientation orientation :
     { gls::NormalOrientation::UpAlongSpanningTree, gls::NormalOrientation::Up })
   {
-    gls::NormalEstimationSettings s;
-    s.orientation = orientation;
-    gls::NormalEstimationResult r;
-    ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
+    const gls::NormalEstimationResult r = estimatedWith(c, orientation);
     long counted = 0, up = 0, walls = 0, out = 0;
     for (std::size_t i = 0; i < c.size(); ++i)
     {
@@ -548,11 +560,7 @@ TEST(NormalEstimation, ATerrestrialScanFacesTheRoomItWasTakenIn)
     for (const gls::NormalOrientation orientation :
       { gls::NormalOrientation::GroundUpAlongSpanningTree, gls::NormalOrientation::MinimumSpanningTree })
     {
-      gls::NormalEstimationSettings s;
-      s.orientation = orientation;
-      gls::NormalEstimationResult r;
-      ASSERT_TRUE(gls::estimateNormals(c.points.data(), c.size(), s, r));
-      share[k++] = agreeing(c, r);
+      share[k++] = agreeing(c, estimatedWith(c, orientation));
       std::printf("%s (%zu points), orientation %d: %.3f%% of the normals as seen from the scanner's side\n",
         building ? "building on its ground" : "room", c.size(), static_cast<int>(orientation), 100.0 * share[k - 1]);
     }

@@ -433,7 +433,7 @@ TEST(DissimilarityFilter, QueryByCoordinatesSnapsToTheNearestPoint)
   double p[3];
   ss->GetPoint(1000, p);
   vtkNew<vtkGLSMultiScaleDissimilarity> f;
-  f->UseQueryPointCoordinatesOn();
+  f->SetUseQueryPointCoordinates(true);
   f->SetQueryPoint(p[0] + 1e-6, p[1], p[2]);
   f->SetPriorShapeToLogGaussian();
   auto out = run(f.Get(), ss);
@@ -461,6 +461,25 @@ TEST(DissimilarityFilter, BadQueryAndPriorGiveClearErrors)
   f->Update();
   EXPECT_NE(errors->Message.find("prior"), std::string::npos) << errors->Message;
   EXPECT_EQ(f->GetOutput()->GetPointData()->GetArray("GLSDissimilarity"), nullptr);
+  // A query point by coordinates: far from the cloud (at 1e300, "no input point with finite coordinates" once), or
+  // not finite.
+  f->SetPriorMinScale(0.0);
+  f->SetPriorMaxScale(0.0);
+  f->SetUseQueryPointCoordinates(true);
+  f->SetQueryPoint(1e300, 0.0, 0.0);
+  f->Update();
+  EXPECT_EQ(errors->Count, 4);
+  EXPECT_NE(errors->Message.find("is 1e+300 from the nearest input point, farther than the input's bounding-box "
+                                 "diagonal"), std::string::npos) << errors->Message;
+  f->SetQueryPoint(0.0, std::numeric_limits<double>::infinity(), 0.0);
+  f->Update();
+  EXPECT_EQ(errors->Count, 5);
+  EXPECT_NE(errors->Message.find("QueryPoint (0, inf, 0) must be finite"), std::string::npos) << errors->Message;
+  // Near the cloud: the nearest point, no error.
+  f->SetQueryPoint(0.0, 0.0, 1.1);
+  f->Update();
+  EXPECT_EQ(errors->Count, 5);
+  EXPECT_NE(f->GetOutput()->GetPointData()->GetArray("GLSDissimilarity"), nullptr);
 }
 
 TEST(FeaturesFilter, ZeroNegativeOrNonFiniteSigmaIsAnError)

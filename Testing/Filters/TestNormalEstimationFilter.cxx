@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 using namespace glstest;
 
@@ -114,11 +115,33 @@ TEST(NormalEstimationFilter, BadInputGivesClearErrors)
   EXPECT_EQ(errors->Count, 3);
   EXPECT_NE(errors->Message.find("AGREE_WITH_EXISTING"), std::string::npos) << errors->Message;
 
+  // A point or direction that is not finite names its property (it oriented nothing, silently, once).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  f->SetOrientationToTowardsPoint();
+  f->SetOrientationPoint(0.0, nan, 0.0);
+  f->Update();
+  EXPECT_EQ(errors->Count, 4);
+  EXPECT_NE(errors->Message.find("OrientationPoint (0, nan, 0) must be finite"), std::string::npos) << errors->Message;
+  EXPECT_EQ(f->GetOutput()->GetPointData()->GetNormals(), nullptr);
+  f->SetOrientationToGroundUpAlongSpanningTree();
+  f->SetUpDirection(nan, 0.0, 1.0);
+  f->Update();
+  EXPECT_EQ(errors->Count, 5);
+  EXPECT_NE(errors->Message.find("UpDirection (nan, 0, 1) must be a finite direction"), std::string::npos)
+    << errors->Message;
+  // A viewpoint array that is not there is named as one (it was "the selected normals array").
+  f->SetOrientationToTowardsViewpointArray();
+  f->SetInputArrayToProcess(1, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Scanners");
+  f->Update();
+  EXPECT_EQ(errors->Count, 6);
+  EXPECT_NE(errors->Message.find("the selected viewpoint array 'Scanners' is not a point array"), std::string::npos)
+    << errors->Message;
+
   // Two points: too few neighbours, NaN normals, no error.
   f->SetOrientationToNone();
   f->SetInputData(makePolyData(std::vector<double>{ 0, 0, 0, 1, 0, 0 }, {}));
   f->Update();
-  EXPECT_EQ(errors->Count, 3);
+  EXPECT_EQ(errors->Count, 6);
   EXPECT_TRUE(std::isnan(f->GetOutput()->GetPointData()->GetNormals()->GetComponent(0, 0)));
 }
 

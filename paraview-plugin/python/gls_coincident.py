@@ -65,6 +65,10 @@ class Merged:
             out[start:start + chunk] = self.distinct_of(np.arange(start, min(start + chunk, self.count)))
         return out
 
+    def left_out_rows(self):
+        """The rows left out of the analysis (a non-finite coordinate), increasing."""
+        return self.copy_rows[self.copy_targets < 0]
+
     def note(self):
         """The note on the coincident points for the main job's log ('' when none coincide; the non-finite rows
         are counted in its input line)."""
@@ -83,7 +87,7 @@ class Merged:
         rows = vtk_to_numpy(self.polydata.GetPoints().GetData())[np.maximum(
             self.inverse() if inverse is None else inverse, 0)]
         rows[self.copy_rows] = self.copy_points
-        rows[self.copy_rows[self.copy_targets < 0]] = np.nan
+        rows[self.left_out_rows()] = np.nan
         points = vtkPoints()
         points.SetData(numpy_to_vtk(rows, deep=True))
         return points
@@ -99,7 +103,7 @@ class Merged:
         out.ShallowCopy(self.source)
         inverse = self.inverse()  # formed once, for the positions and every array
         out.SetPoints(self.source_points(inverse))
-        left_out = self.copy_rows[self.copy_targets < 0]
+        left_out = self.left_out_rows()
         inverse[left_out] = 0
         arrays = result.GetPointData()
         for i in range(arrays.GetNumberOfArrays()):
