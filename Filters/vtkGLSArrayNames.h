@@ -3,6 +3,8 @@
 #ifndef vtkGLSArrayNames_h
 #define vtkGLSArrayNames_h
 
+#include "gls/LasFile.h" // the LAS attributes' names
+
 namespace vtkGLSArrayNames
 {
 constexpr const char* Normals = "Normals";
@@ -55,13 +57,16 @@ constexpr const char* Bandwidth = "GLSBandwidth";          // adaptive bandwidth
 constexpr const char* RawBandwidth = "GLSRawBandwidth";    // adaptive bandwidth before smoothing (length)
 constexpr const char* Displacement = "GLSDisplacement";    // projection: distance moved (length)
 constexpr const char* ProjectionIterations = "GLSProjectionIterations"; // projection: fits made per point
-constexpr const char* Colors = "RGB";                      // point cloud reader: 0-255 colours (as VTK's PLY reader)
+constexpr const char* Colors = gls::lasname::Rgb;          // readers: colours (0-255 text, 0-65535 LAS; VTK's PLY
+                                                           // reader's name)
 constexpr const char* ScannerPosition = "ScannerPosition"; // readers: the scanner that saw a point (point data: PTX)
                                                            // or every point (field data, one tuple: a PCD's VIEWPOINT)
 constexpr const char* Orientation = "GLSOrientation";      // field data of the normal estimation: how it oriented
-constexpr const char* ScanAngle = "ScanAngle";             // LAS reader: degrees from nadir
-constexpr const char* NumberOfReturns = "NumberOfReturns"; // LAS reader: returns of the point's pulse
-constexpr const char* Classification = "Classification";   // LAS reader: the ASPRS class (2: ground)
+// The LAS reader's attributes that other filters read (the lidar evidence of the Automatic orientation): named in
+// the table of gls/LasFile.h (forEachLasAttribute).
+constexpr const char* ScanAngle = gls::lasname::ScanAngle;             // degrees from nadir
+constexpr const char* NumberOfReturns = gls::lasname::NumberOfReturns; // returns of the point's pulse
+constexpr const char* Classification = gls::lasname::Classification;   // the ASPRS class (2: ground)
 // LAS reader, field data: the file's coordinate system (OGC WKT; GeoTIFF keys), its scale and offset (3 each: a
 // position is X scale + offset), the withheld points left out.
 constexpr const char* CoordinateSystemWKT = "CoordinateSystemWKT";
@@ -71,7 +76,7 @@ constexpr const char* GeoAsciiParams = "GeoAsciiParams";
 constexpr const char* LasScale = "LasScale";
 constexpr const char* LasOffset = "LasOffset";
 constexpr const char* WithheldPoints = "GLSWithheldPoints";
-constexpr const char* Intensity = "Intensity";             // point cloud reader: a scanner's return intensity
+constexpr const char* Intensity = gls::lasname::Intensity; // readers: a scanner's return intensity
 }
 
 #endif

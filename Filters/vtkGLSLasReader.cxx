@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 
 vtkStandardNewMacro(vtkGLSLasReader);
 
@@ -85,35 +86,14 @@ struct LasArrays
   {
     xyz = newArray<vtkDoubleArray>("Points", 3, n);
     columns.xyz = xyz->GetPointer(0);
-    columns.intensity = add<vtkUnsignedShortArray>("Intensity", 1, n);
-    columns.returnNumber = add<vtkUnsignedCharArray>("ReturnNumber", 1, n);
-    columns.numberOfReturns = add<vtkUnsignedCharArray>(vtkGLSArrayNames::NumberOfReturns, 1, n);
-    columns.classification = add<vtkUnsignedCharArray>(vtkGLSArrayNames::Classification, 1, n);
-    columns.scanAngle = add<vtkFloatArray>(vtkGLSArrayNames::ScanAngle, 1, n);
-    columns.userData = add<vtkUnsignedCharArray>("UserData", 1, n);
-    columns.pointSourceId = add<vtkUnsignedShortArray>("PointSourceId", 1, n);
-    columns.withheld = add<vtkUnsignedCharArray>("Withheld", 1, n);
-    columns.synthetic = add<vtkUnsignedCharArray>("Synthetic", 1, n);
-    columns.keyPoint = add<vtkUnsignedCharArray>("KeyPoint", 1, n);
-    columns.overlap = add<vtkUnsignedCharArray>("Overlap", 1, n);
-    columns.scanDirection = add<vtkUnsignedCharArray>("ScanDirection", 1, n);
-    columns.edgeOfFlightLine = add<vtkUnsignedCharArray>("EdgeOfFlightLine", 1, n);
-    if (h.extended())
-    {
-      columns.scannerChannel = add<vtkUnsignedCharArray>("ScannerChannel", 1, n);
-    }
-    if (h.hasGpsTime())
-    {
-      columns.gpsTime = add<vtkDoubleArray>("GpsTime", 1, n);
-    }
-    if (h.hasRgb())
-    {
-      columns.rgb = add<vtkUnsignedShortArray>("RGB", 3, n);
-    }
-    if (h.hasNir())
-    {
-      columns.nir = add<vtkUnsignedShortArray>("NIR", 1, n);
-    }
+    // Every attribute the format holds, named and typed as the table of gls/LasFile.h says.
+    gls::forEachLasAttribute(columns, [&](const char* name, int components, gls::LasPresence presence, auto& column) {
+      using Value = std::remove_pointer_t<std::remove_reference_t<decltype(column)>>;
+      if (gls::presentIn(presence, h.format))
+      {
+        column = add<vtkGLSArrayOf<Value>>(name, components, n);
+      }
+    });
     for (const gls::LasExtraBytes& x : h.extra)
     {
       columns.extra.push_back(add<vtkDoubleArray>(x.name.c_str(), x.components, n));
@@ -128,11 +108,42 @@ struct LasArrays
     points->SetData(xyz);
     output->SetPoints(points);
     output->SetVerts(vtkGLSVertexCells(written));
-    for (const auto& a : attributes)
+    for (std::size_t k = 0; k < attributes.size(); ++k)
     {
-      a->SetNumberOfTuples(written);
-      output->GetPointData()->AddArray(a);
+      attributes[k]->SetNumberOfTuples(written);
+      const vtkSmartPointer<vtkDataArray> vector =
+        k + 2 < attributes.size() ? VectorOf(attributes[k], attributes[k + 1], attributes[k + 2]) : nullptr;
+      output->GetPointData()->AddArray(vector ? vector.Get() : attributes[k].Get());
+      k += vector ? 2 : 0;
     }
+  }
+
+  /// Three Extra Bytes fields `<name>_x`, `<name>_y`, `<name>_z` (a vector the GLS LAS Writer wrote, such as
+  /// Normals) as one 3-component array `<name>`; null for any other three arrays.
+  static vtkSmartPointer<vtkDataArray> VectorOf(vtkDataArray* x, vtkDataArray* y, vtkDataArray* z)
+  {
+    const std::string nx = x->GetName() ? x->GetName() : "", ny = y->GetName() ? y->GetName() : "",
+                      nz = z->GetName() ? z->GetName() : "";
+    const std::size_t base = nx.size() >= 2 ? nx.size() - 2 : 0;
+    const bool named = base > 0 && nx.compare(base, 2, "_x") == 0 && ny == nx.substr(0, base) + "_y" &&
+      nz == nx.substr(0, base) + "_z";
+    auto* dx = vtkDoubleArray::SafeDownCast(x);
+    auto* dy = vtkDoubleArray::SafeDownCast(y);
+    auto* dz = vtkDoubleArray::SafeDownCast(z);
+    if (!named || !dx || !dy || !dz || dx->GetNumberOfComponents() != 1 || dy->GetNumberOfComponents() != 1 ||
+      dz->GetNumberOfComponents() != 1)
+    {
+      return nullptr;
+    }
+    const vtkIdType n = dx->GetNumberOfTuples();
+    auto v = newArray<vtkDoubleArray>(nx.substr(0, base).c_str(), 3, n);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      v->SetTypedComponent(i, 0, dx->GetValue(i));
+      v->SetTypedComponent(i, 1, dy->GetValue(i));
+      v->SetTypedComponent(i, 2, dz->GetValue(i));
+    }
+    return v;
   }
 
 private:

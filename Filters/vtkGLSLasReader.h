@@ -21,10 +21,11 @@
  * `KeyPoint`, `Overlap` (formats 0-5: class 12), `ScanDirection` and `EdgeOfFlightLine` (unsigned char, 0 or 1),
  * and where the format has them `ScannerChannel` (unsigned char 0-3, formats 6-10), `GpsTime` (double, seconds as
  * stored), `RGB` (unsigned short, 3 components, as stored: 0-65535), `NIR` (unsigned short), and one double array per
- * Extra Bytes field, named as its descriptor, with its scale and offset applied. Field data: the coordinate system
- * where the file has one, `CoordinateSystemWKT` (OGC WKT, a string) and/or `GeoKeyDirectory` (unsigned short),
- * `GeoDoubleParams` (double), `GeoAsciiParams` (string): the GeoTIFF keys as stored; `LasScale` and `LasOffset` (3
- * doubles each). The GLS filters pass field data on, so every output downstream keeps them.
+ * Extra Bytes field, named as its descriptor, with its scale and offset applied (three fields `<name>_x`, `<name>_y`,
+ * `<name>_z` in a row, a vector as the GLS LAS Writer writes one, as one 3-component array `<name>`). Field data: the
+ * coordinate system where the file has one, `CoordinateSystemWKT` (OGC WKT, a string) and/or `GeoKeyDirectory`
+ * (unsigned short), `GeoDoubleParams` (double), `GeoAsciiParams` (string): the GeoTIFF keys as stored; `LasScale`
+ * and `LasOffset` (3 doubles each). The GLS filters pass field data on, so every output downstream keeps them.
  */
 #ifndef vtkGLSLasReader_h
 #define vtkGLSLasReader_h

@@ -444,28 +444,29 @@ TEST(LasFile, TheCoordinateSystemComesFromTheRecordsOrTheExtendedOnes)
 TEST(LasFile, WritersQuirksAreReadWithANote)
 {
   const std::vector<Point> points = somePoints();
-  const auto quirk = [](const Decoded& d, const std::string& words) {
+  // Reads a file with a quirk: no error, every point, and a note holding `words`.
+  const auto readWithQuirk = [&points](const std::string& file, const std::string& words) {
+    Decoded d = decode(file);
+    EXPECT_EQ(d.error, "");
+    EXPECT_EQ(d.read.written, points.size());
     std::string all;
-    for (const auto& q : d.h.quirks)
+    for (const auto* quirks : { &d.h.quirks, &d.read.quirks })
     {
-      all += q + "; ";
+      for (const auto& q : *quirks)
+      {
+        all += q + "; ";
+      }
     }
-    for (const auto& q : d.read.quirks)
-    {
-      all += q + "; ";
-    }
-    return all.find(words) != std::string::npos ? testing::AssertionSuccess()
-                                                : testing::AssertionFailure() << "no '" << words << "' in: " << all;
+    EXPECT_NE(all.find(words), std::string::npos) << "no '" << words << "' in: " << all;
+    return d;
   };
   // The deprecated array type 23 (three u16; laspy's extrabytes.las): three components, each its own scale and
   // offset.
   LasOptions deprecated;
   deprecated.extraType = 23;
-  const Decoded a = decode(lasFile(4, 3, points, deprecated));
-  ASSERT_EQ(a.error, "");
+  const Decoded a = readWithQuirk(lasFile(4, 3, points, deprecated), "deprecated array type 23");
   ASSERT_EQ(a.h.extra.size(), 1u);
   EXPECT_EQ(a.h.extra[0].components, 3);
-  EXPECT_TRUE(quirk(a, "deprecated array type 23"));
   for (std::size_t i = 0; i < points.size(); ++i)
   {
     const std::uint16_t v = static_cast<std::uint16_t>(points[i].extra);
@@ -476,17 +477,11 @@ TEST(LasFile, WritersQuirksAreReadWithANote)
   // Bounds stored as the integers (simple1_3.las).
   LasOptions unscaled;
   unscaled.unscaledBounds = true;
-  const Decoded b = decode(lasFile(3, 1, points, unscaled));
-  ASSERT_EQ(b.error, "");
-  EXPECT_EQ(b.read.written, points.size());
-  EXPECT_TRUE(quirk(b, "bounds are stored unscaled"));
+  readWithQuirk(lasFile(3, 1, points, unscaled), "bounds are stored unscaled");
   // A LAS 1.4 count in the legacy field only.
   LasOptions legacy;
   legacy.legacyCountOnly = true;
-  const Decoded c = decode(lasFile(4, 1, points, legacy));
-  ASSERT_EQ(c.error, "");
-  EXPECT_EQ(c.h.pointCount, points.size());
-  EXPECT_TRUE(quirk(c, "legacy field only"));
+  EXPECT_EQ(readWithQuirk(lasFile(4, 1, points, legacy), "legacy field only").h.pointCount, points.size());
   // Records longer than their format with no Extra Bytes record (laspy's unregistered_extra_bytes.las): 4 bytes each
   // not read.
   std::string padded = lasFile(4, 6, points);
@@ -502,18 +497,12 @@ TEST(LasFile, WritersQuirksAreReadWithANote)
     padded[105] = static_cast<char>(length + 4);
     padded.replace(235, 8, std::string(8, '\0')); // no extended records
   }
-  const Decoded p = decode(padded);
-  ASSERT_EQ(p.error, "");
-  EXPECT_EQ(p.read.written, points.size());
+  const Decoded p = readWithQuirk(padded, "hold 4 bytes each beyond the 30 that format 6 describe");
   EXPECT_EQ(p.xyz[3], points[1].x * kScale[0] + kOffset[0]);
-  EXPECT_TRUE(quirk(p, "hold 4 bytes each beyond the 30 that format 6 describe"));
   // Extended records said to lie past the end of the file: not read, the points are.
   LasOptions outside;
   outside.extendedOutside = true;
-  const Decoded e = decode(lasFile(4, 6, points, outside));
-  ASSERT_EQ(e.error, "");
-  EXPECT_EQ(e.read.written, points.size());
-  EXPECT_TRUE(quirk(e, "lies outside the file"));
+  readWithQuirk(lasFile(4, 6, points, outside), "lies outside the file");
 }
 
 TEST(LasFile, DamagedFilesAreRefusedWithWhatIsWrong)

@@ -1,4 +1,4 @@
-"""Writes docs/filters.md, the reference of every GLS filter and reader, from the plugin's server-manager XML (the
+"""Writes docs/filters.md, the reference of every GLS filter, reader and writer, from the plugin's server-manager XML (the
 one place where the properties, their defaults, ranges and documentation are written).
 
     python3 filters_doc.py GrowingLeastSquares.xml docs/filters.md            # write
@@ -37,7 +37,7 @@ def load(path):
     root = ET.parse(path).getroot()
     proxies, order = {}, []
     for group in root.findall('ProxyGroup'):
-        for proxy in group.findall('SourceProxy'):
+        for proxy in group.findall('SourceProxy') + group.findall('WriterProxy'):
             key = (group.get('name'), proxy.get('name'))
             proxies[key] = proxy
             order.append(key)
@@ -96,13 +96,18 @@ def render(path):
     proxies, order = load(path)
     out = [HEADER]
     for key in order:
-        if key[0] not in ('sources', 'filters'):
+        if key[0] not in ('sources', 'filters', 'writers'):
             continue
         proxy = proxies[key]
         short, long_doc = documentation(proxy)
         out.append('## %s\n' % proxy.get('label'))
-        out.append('`%s` (pvpython `%s`, VTK class `%s`). %s\n' % (
-            proxy.get('name'), re.sub(r'[^A-Za-z0-9]', '', proxy.get('label')), proxy.get('class'), short))
+        if proxy.tag == 'WriterProxy':
+            extension = proxy.find('Hints/WriterFactory').get('extensions')
+            out.append('`%s` (File > Save Data as .%s; pvpython `SaveData(\'out.%s\', source)`, VTK class `%s`). %s\n'
+                       % (proxy.get('name'), extension, extension, proxy.get('class'), short))
+        else:
+            out.append('`%s` (pvpython `%s`, VTK class `%s`). %s\n' % (
+                proxy.get('name'), re.sub(r'[^A-Za-z0-9]', '', proxy.get('label')), proxy.get('class'), short))
         if long_doc:
             out.append(long_doc + '\n')
         out.append('| property | default | values | what it does |')

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <istream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace gls
@@ -40,6 +41,20 @@ struct LasCoordinateSystem
   bool empty() const { return this->wkt.empty() && this->geoKeys.empty(); }
 };
 
+/// Where the fields after the position (12 bytes of X Y Z) and the intensity (2) lie in a point record of a format
+/// (bytes from the record's start; -1: not in the format), as LAS 1.4 R15's tables 7-17 place them. Formats 0-5: the
+/// returns byte (return number, number of returns, scan direction, edge of flight line), the classification byte
+/// (the class in 5 bits, synthetic, key-point, withheld), an 8-bit scan angle rank; formats 6-10: 4-bit returns, a
+/// flags byte (synthetic, key-point, withheld, overlap, the scanner channel, scan direction, edge of flight line), a
+/// whole classification byte and a 16-bit scan angle in steps of 0.006 degree.
+struct LasRecordLayout
+{
+  bool extended = false;
+  int returns = 14, flags = 15, classification = 15, scanAngle = 16, userData = 17, pointSourceId = 18;
+  int gpsTime = -1, rgb = -1, nir = -1;
+};
+LasRecordLayout lasRecordLayout(int format);
+
 struct LasHeader
 {
   int versionMajor = 1, versionMinor = 0;
@@ -54,14 +69,15 @@ struct LasHeader
   LasCoordinateSystem coordinateSystem;
   std::vector<std::string> quirks;  ///< what the header did not hold as the specification says, read anyway
 
-  bool hasGpsTime() const { return this->format == 1 || this->format >= 3; }
-  bool hasRgb() const { return this->format == 2 || this->format == 3 || this->format == 5 || this->format >= 7; }
-  bool hasNir() const { return this->format == 8 || this->format == 10; }
+  bool hasGpsTime() const { return lasRecordLayout(this->format).gpsTime >= 0; }
+  bool hasRgb() const { return lasRecordLayout(this->format).rgb >= 0; }
+  bool hasNir() const { return lasRecordLayout(this->format).nir >= 0; }
   bool extended() const { return this->format >= 6; } ///< formats 6-10: 4-bit returns, 16-bit scan angle
 };
 
 /// The size of a point record of each format (the standard fields only).
 std::size_t lasFormatSize(int format);
+
 
 /// Reads the header, the variable-length records and (LAS 1.4) the extended ones of a LAS file of `fileSize` bytes.
 /// False with `error` saying what is wrong: not a LAS file, LAZ, an unknown version or format, a record length below
@@ -69,30 +85,86 @@ std::size_t lasFormatSize(int format);
 /// records, a record that runs into the points or past the end.
 bool readLasHeader(std::istream& in, std::uint64_t fileSize, LasHeader& header, std::string& error);
 
-/// Where the points go: arrays of header.pointCount values (3 per point for xyz, rgb), null for what is not wanted
-/// or not in the format.
-struct LasColumns
+/// A LAS point's attributes (all but its position), one pointer per column: T* where a read writes them, const T*
+/// where a write takes them. Null: not wanted (read), or absent (written as 0; one return of one).
+template <bool Const>
+struct LasAttributesT
 {
-  double* xyz = nullptr;                  ///< X * scale + offset, and so on (double precision)
-  std::uint16_t* intensity = nullptr;
-  std::uint8_t* returnNumber = nullptr;
-  std::uint8_t* numberOfReturns = nullptr;
-  std::uint8_t* classification = nullptr; ///< formats 0-5: the low 5 bits (the class); 6-10: the whole byte
-  float* scanAngle = nullptr;             ///< degrees (formats 6-10: the stored value times 0.006)
-  std::uint8_t* userData = nullptr;
-  std::uint16_t* pointSourceId = nullptr;
-  double* gpsTime = nullptr;
-  std::uint16_t* rgb = nullptr;
-  std::uint16_t* nir = nullptr;
+  template <typename T>
+  using Column = std::conditional_t<Const, const T*, T*>;
+
+  Column<std::uint16_t> intensity = nullptr;
+  Column<std::uint8_t> returnNumber = nullptr;
+  Column<std::uint8_t> numberOfReturns = nullptr;
+  Column<std::uint8_t> classification = nullptr; ///< formats 0-5: the low 5 bits (the class); 6-10: the whole byte
+  Column<float> scanAngle = nullptr;             ///< degrees (formats 6-10: the stored value times 0.006)
+  Column<std::uint8_t> userData = nullptr;
+  Column<std::uint16_t> pointSourceId = nullptr;
   // The flags, 0 or 1 each: formats 0-5 keep synthetic, key-point and withheld beside the class (overlap is class 12
   // there), 6-10 in a byte of their own with overlap and the scanner channel (0-3).
-  std::uint8_t* withheld = nullptr;
-  std::uint8_t* synthetic = nullptr;
-  std::uint8_t* keyPoint = nullptr;
-  std::uint8_t* overlap = nullptr;
-  std::uint8_t* scanDirection = nullptr;  ///< the mirror's direction (1: positive, left to right)
-  std::uint8_t* edgeOfFlightLine = nullptr;
-  std::uint8_t* scannerChannel = nullptr; ///< formats 6-10 only
+  Column<std::uint8_t> withheld = nullptr;
+  Column<std::uint8_t> synthetic = nullptr;
+  Column<std::uint8_t> keyPoint = nullptr;
+  Column<std::uint8_t> overlap = nullptr;
+  Column<std::uint8_t> scanDirection = nullptr;  ///< the mirror's direction (1: positive, left to right)
+  Column<std::uint8_t> edgeOfFlightLine = nullptr;
+  Column<std::uint8_t> scannerChannel = nullptr; ///< formats 6-10 only
+  Column<double> gpsTime = nullptr;
+  Column<std::uint16_t> rgb = nullptr;           ///< 3 per point, as stored (0-65535)
+  Column<std::uint16_t> nir = nullptr;
+};
+
+/// Which point formats hold an attribute.
+enum class LasPresence
+{
+  Always,
+  WithGpsTime,
+  WithRgb,
+  WithNir,
+  Extended ///< formats 6-10
+};
+bool presentIn(LasPresence presence, int format);
+
+/// The names of the attributes that other parts read (the normal estimation's lidar evidence, the text readers'
+/// colours and intensity), as forEachLasAttribute gives them.
+namespace lasname
+{
+constexpr const char* Intensity = "Intensity";
+constexpr const char* NumberOfReturns = "NumberOfReturns";
+constexpr const char* Classification = "Classification";
+constexpr const char* ScanAngle = "ScanAngle";
+constexpr const char* Rgb = "RGB";
+}
+
+/// Calls visit(name, components, presence, column) for each attribute of `a` (a LasAttributesT), in the order the
+/// readers list them: the one table of their names (the readers' point arrays, the writers' fields) and formats.
+template <typename Attributes, typename Visit>
+void forEachLasAttribute(Attributes& a, Visit&& visit)
+{
+  visit(lasname::Intensity, 1, LasPresence::Always, a.intensity);
+  visit("ReturnNumber", 1, LasPresence::Always, a.returnNumber);
+  visit(lasname::NumberOfReturns, 1, LasPresence::Always, a.numberOfReturns);
+  visit(lasname::Classification, 1, LasPresence::Always, a.classification);
+  visit(lasname::ScanAngle, 1, LasPresence::Always, a.scanAngle);
+  visit("UserData", 1, LasPresence::Always, a.userData);
+  visit("PointSourceId", 1, LasPresence::Always, a.pointSourceId);
+  visit("Withheld", 1, LasPresence::Always, a.withheld);
+  visit("Synthetic", 1, LasPresence::Always, a.synthetic);
+  visit("KeyPoint", 1, LasPresence::Always, a.keyPoint);
+  visit("Overlap", 1, LasPresence::Always, a.overlap);
+  visit("ScanDirection", 1, LasPresence::Always, a.scanDirection);
+  visit("EdgeOfFlightLine", 1, LasPresence::Always, a.edgeOfFlightLine);
+  visit("ScannerChannel", 1, LasPresence::Extended, a.scannerChannel);
+  visit("GpsTime", 1, LasPresence::WithGpsTime, a.gpsTime);
+  visit(lasname::Rgb, 3, LasPresence::WithRgb, a.rgb);
+  visit("NIR", 1, LasPresence::WithNir, a.nir);
+}
+
+/// Where the points go: arrays of header.pointCount values (3 per point for xyz, rgb), null for what is not wanted
+/// or not in the format.
+struct LasColumns : LasAttributesT<false>
+{
+  double* xyz = nullptr;                  ///< X * scale + offset, and so on (double precision)
   std::vector<double*> extra;             ///< one per header.extra (its components per point), scaled and shifted
   bool skipWithheld = false;              ///< leave the withheld points out (the arrays then hold the others first)
 };

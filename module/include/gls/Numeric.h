@@ -60,4 +60,10 @@ GLS_INLINE bool isFinite(T v)
   return v == v && absolute(v) <= std::numeric_limits<T>::max();
 }
 
+/// Whether the three coordinates of a point are finite.
+GLS_INLINE bool isFinitePoint(const double* p)
+{
+  return isFinite(p[0]) && isFinite(p[1]) && isFinite(p[2]);
+}
+
 } // namespace gls

@@ -146,6 +146,40 @@ std::size_t lasFormatSize(int format)
   return format >= 0 && format <= 10 ? sizes[format] : 0;
 }
 
+bool presentIn(LasPresence presence, int format)
+{
+  const LasRecordLayout l = lasRecordLayout(format);
+  switch (presence)
+  {
+    case LasPresence::WithGpsTime: return l.gpsTime >= 0;
+    case LasPresence::WithRgb: return l.rgb >= 0;
+    case LasPresence::WithNir: return l.nir >= 0;
+    case LasPresence::Extended: return l.extended;
+    default: return true;
+  }
+}
+
+LasRecordLayout lasRecordLayout(int format)
+{
+  LasRecordLayout l;
+  if (format >= 6)
+  {
+    l.extended = true;
+    l.flags = 15;
+    l.classification = 16;
+    l.userData = 17;
+    l.scanAngle = 18;
+    l.pointSourceId = 20;
+    l.gpsTime = 22;
+    l.rgb = format == 7 || format == 8 || format == 10 ? 30 : -1;
+    l.nir = format == 8 || format == 10 ? 36 : -1;
+    return l;
+  }
+  l.gpsTime = format == 1 || format >= 3 ? 20 : -1;
+  l.rgb = format == 2 ? 20 : format == 3 || format == 5 ? 28 : -1;
+  return l;
+}
+
 namespace
 {
 
@@ -468,17 +502,17 @@ void readLasFlags(const unsigned char* p, std::uint64_t i, const LasHeader& h, L
   }
 }
 
-/// Point i's attributes from its record p into the columns asked for (formats 6-10: 4-bit returns, the whole
-/// classification byte, a 16-bit scan angle).
-void readLasAttributes(const unsigned char* p, std::uint64_t i, const LasHeader& h, LasColumns& c)
+/// Point i's attributes from its record p into the columns asked for, where `l` (its format's) places them.
+void readLasAttributes(const unsigned char* p, std::uint64_t i, const LasHeader& h, const LasRecordLayout& l,
+  LasColumns& c)
 {
-  const bool ext = h.extended();
+  const bool ext = l.extended;
   readLasFlags(p, i, h, c);
   if (c.intensity)
   {
     c.intensity[i] = u16(p + 12);
   }
-  const int returns = p[14];
+  const int returns = p[l.returns];
   if (c.returnNumber)
   {
     c.returnNumber[i] = static_cast<std::uint8_t>(ext ? returns & 15 : returns & 7);
@@ -489,36 +523,35 @@ void readLasAttributes(const unsigned char* p, std::uint64_t i, const LasHeader&
   }
   if (c.classification)
   {
-    c.classification[i] = ext ? p[16] : static_cast<std::uint8_t>(p[15] & 31);
+    c.classification[i] = ext ? p[l.classification] : static_cast<std::uint8_t>(p[l.classification] & 31);
   }
   if (c.scanAngle)
   {
-    c.scanAngle[i] = ext ? static_cast<float>(static_cast<std::int16_t>(u16(p + 18)) * 0.006)
-                         : static_cast<float>(static_cast<std::int8_t>(p[16]));
+    c.scanAngle[i] = ext ? static_cast<float>(static_cast<std::int16_t>(u16(p + l.scanAngle)) * 0.006)
+                         : static_cast<float>(static_cast<std::int8_t>(p[l.scanAngle]));
   }
   if (c.userData)
   {
-    c.userData[i] = p[17];
+    c.userData[i] = p[l.userData];
   }
   if (c.pointSourceId)
   {
-    c.pointSourceId[i] = u16(p + (ext ? 20 : 18));
+    c.pointSourceId[i] = u16(p + l.pointSourceId);
   }
-  if (c.gpsTime && h.hasGpsTime())
+  if (c.gpsTime && l.gpsTime >= 0)
   {
-    c.gpsTime[i] = f64(p + (ext ? 22 : 20));
+    c.gpsTime[i] = f64(p + l.gpsTime);
   }
-  if (c.rgb && h.hasRgb())
+  if (c.rgb && l.rgb >= 0)
   {
-    const std::size_t at = ext ? 30 : (h.format == 2 ? 20 : 28);
     for (int a = 0; a < 3; ++a)
     {
-      c.rgb[3 * i + a] = u16(p + at + 2 * a);
+      c.rgb[3 * i + a] = u16(p + l.rgb + 2 * a);
     }
   }
-  if (c.nir && h.hasNir())
+  if (c.nir && l.nir >= 0)
   {
-    c.nir[i] = u16(p + 36);
+    c.nir[i] = u16(p + l.nir);
   }
   for (std::size_t e = 0; e < h.extra.size() && e < c.extra.size(); ++e)
   {
@@ -594,6 +627,7 @@ bool readLasPoints(std::istream& in, const LasHeader& h, LasColumns& c, LasReadR
   const std::size_t block = static_cast<std::size_t>(
     std::max<std::uint64_t>(1, std::min<std::uint64_t>(h.pointCount, (std::size_t(4) << 20) / h.recordLength)));
   std::vector<unsigned char> buffer(block * h.recordLength);
+  const LasRecordLayout layout = lasRecordLayout(h.format);
   double low[3], high[3];
   for (std::uint64_t first = 0; first < h.pointCount; first += block)
   {
@@ -619,7 +653,7 @@ bool readLasPoints(std::istream& in, const LasHeader& h, LasColumns& c, LasReadR
         continue;
       }
       readLasPosition(p, result.written, h, c);
-      readLasAttributes(p, result.written, h, c);
+      readLasAttributes(p, result.written, h, layout, c);
       ++result.written;
     }
   }

@@ -1,0 +1,57 @@
+/**
+ * @class   vtkGLSPlyWriter
+ * @brief   Writes a point set as a binary PLY file whose point arrays other tools load: every numeric array as
+ *          properties `scalar_<name>` (CloudCompare's scalar fields, loaded without a dialog).
+ *
+ * Vertices: x y z in the points' own type (float32 stays float32, doubles stay doubles), `Normals` as nx ny nz
+ * (float), `RGB` as red green blue (uchar; 16-bit colours divided by 257), and every other numeric point array as
+ * properties `scalar_<name>` (double for a double array, such as a LAS file's GpsTime; float otherwise; a
+ * 3-component array as `scalar_<name>_x`, `_y`, `_z`; blanks in names as '_').
+ * Faces: the polygons of a vtkPolyData (3 to 255 points each) as vertex_indices lists; strips and lines are not
+ * written. A point with a non-finite coordinate (a missing return) is left out, with the faces that use it (counted
+ * in the Description, one warning). The field data's coordinate system (CoordinateSystemWKT) goes in a header
+ * comment.
+ *
+ * Errors (vtkErrorMacro, nothing written): no input points, no file name, a file that cannot be written.
+ */
+#ifndef vtkGLSPlyWriter_h
+#define vtkGLSPlyWriter_h
+
+#include "vtkGLSFiltersModule.h"
+#include "vtkWriter.h"
+
+#include <string>
+
+class VTKGLSFILTERS_EXPORT vtkGLSPlyWriter : public vtkWriter
+{
+public:
+  static vtkGLSPlyWriter* New();
+  vtkTypeMacro(vtkGLSPlyWriter, vtkWriter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The file to write.
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+  ///@}
+
+  /// What the last write did, e.g. "binary PLY, 35947 vertices (float), 12 scalar properties, 69451 faces"; empty
+  /// before a write and after a failed one.
+  vtkGetCharFromStdStringMacro(Description);
+
+protected:
+  vtkGLSPlyWriter();
+  ~vtkGLSPlyWriter() override;
+
+  void WriteData() override;
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  std::string FileName;
+  std::string Description;
+
+private:
+  vtkGLSPlyWriter(const vtkGLSPlyWriter&) = delete;
+  void operator=(const vtkGLSPlyWriter&) = delete;
+};
+
+#endif
