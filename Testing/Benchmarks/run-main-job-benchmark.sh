@@ -4,7 +4,8 @@
 # only (glsSampleMesh); then L1 (the fused features alone, glsLargeScanBenchmark --case L1), the normals alone (M3,
 # --case normals) and the main job end to end (M1: with --no-directions, the path M1's targets were set for; M1d: by
 # default, with the principal directions' fused pass) run one after the other, the main job under /usr/bin/time for
-# its peak resident memory, and the output's bytes per point are measured.
+# its peak resident memory, and the output's bytes per point are measured; the default run's result is then written
+# as .vtp, .las and .ply in turn (output_formats.py).
 #   Testing/Benchmarks/run-main-job-benchmark.sh [build dir (build)] [points (10000000)] [models (bunny rocker-arm)]
 set -euo pipefail
 build="${1:-build}"
@@ -40,6 +41,10 @@ for model in $models; do
         printf "M3 %s %d points: normals %s s (L1 %s s: %.2fx, target <= 0.33)\n", m, n, nr, l1,
                (l1 > 0 ? nr / l1 : 0) } }'
     grep -E "^(normals|GLS pipeline|principal directions|denoising|wrote the data|memory)" "$work/log"
+    if [ "$variant" = default ]; then  # the same result written as .vtp, .las and .ply, in turn (docs/performance.md)
+      PYTHONPATH="$build/lib/python3/dist-packages" pvpython "$(dirname "$0")/output_formats.py" "$vtp" 2>&1 |
+        grep -v L2_NORM_RANGE
+    fi
     rm -rf "$work/out"
   done
   rm -rf "$work/out" "$ply"

@@ -69,3 +69,45 @@ def write_las(path, points, point_format=6, scale=1e-3, offset=None, returns=Non
     with open(path, 'wb') as f:
         f.write(header + vlrs + b''.join(rows))
     return stored
+
+
+# The fields of LAS 1.4's point formats 6, 7 and 8 (table 16; 7 adds colours, 8 colours and near infrared).
+_FORMAT_6 = [('X', '<i4'), ('Y', '<i4'), ('Z', '<i4'), ('intensity', '<u2'), ('returns', 'u1'), ('flags', 'u1'),
+             ('classification', 'u1'), ('user_data', 'u1'), ('scan_angle', '<i2'), ('point_source', '<u2'),
+             ('gps_time', '<f8')]
+_POINT_FIELDS = {6: _FORMAT_6, 7: _FORMAT_6 + [('rgb', '<u2', 3)], 8: _FORMAT_6 + [('rgb', '<u2', 3), ('nir', '<u2')]}
+
+
+def read_las(path):
+    """Reads a LAS 1.4 file in point format 6, 7 or 8 from the specification, independently of the project's reader:
+    returns a dict with the header's `scale`, `offset` and `count`, the variable-length `records` ({(user id, record
+    id): bytes}), `points` (a numpy record array of the standard fields, X Y Z the integers), and `extra` ({name:
+    values} of the float32 Extra Bytes fields its descriptors name)."""
+    with open(path, 'rb') as f:
+        data = f.read()
+    assert data[:4] == b'LASF', path
+    header_size, point_offset, record_count = struct.unpack_from('<HII', data, 94)
+    point_format, record_length = data[104] & 0x3F, struct.unpack_from('<H', data, 105)[0]
+    scale, offset = np.array(struct.unpack_from('<3d', data, 131)), np.array(struct.unpack_from('<3d', data, 155))
+    count = struct.unpack_from('<Q', data, 247)[0]
+    records, at = {}, header_size
+    for _ in range(record_count):
+        user, rid, length = struct.unpack_from('<2x16sHH', data, at)
+        records[(user.rstrip(b'\0').decode(), rid)] = data[at + 54:at + 54 + length]
+        at += 54 + length
+    fields = _POINT_FIELDS[point_format]
+    standard = np.dtype(fields).itemsize
+    extra_fields, names = [], []
+    descriptors = records.get(('LASF_Spec', 4), b'')
+    for d in range(len(descriptors) // 192):
+        data_type, name = descriptors[192 * d + 2], descriptors[192 * d + 4:192 * d + 36].rstrip(b'\0').decode()
+        assert data_type == 9, 'only float32 fields expected here'
+        extra_fields.append(('extra_%d' % d, '<f4'))
+        names.append(name)
+    padding = record_length - standard - 4 * len(names)
+    assert padding >= 0, 'records shorter than their fields'
+    dtype = np.dtype(fields + extra_fields + ([('padding', 'u1', padding)] if padding else []))
+    points = np.frombuffer(data, dtype=dtype, count=count, offset=point_offset)
+    extra = {name: points['extra_%d' % d] for d, name in enumerate(names)}
+    return {'scale': scale, 'offset': offset, 'count': count, 'records': records, 'points': points,
+            'extra': extra, 'format': point_format}

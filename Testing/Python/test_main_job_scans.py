@@ -4,8 +4,9 @@ angles, classes, withheld points, a coordinate system), a terrestrial room scan 
 and the messages and leftovers of what goes wrong. Oracles: the side each normal must face (the sensor's, the sky's,
 the room's), the integers written to the file, the counts of what was left out.
 
-    pvpython test_main_job_scans.py <build/bin/gls-analyze> <work dir>"""
+    pvpython test_main_job_scans.py <build/bin/gls-analyze> <work dir> [Scans.test_name ...]"""
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -162,6 +163,38 @@ def room(spacing=0.08, seed=4):
     return np.vstack(points) + [10.0, 20.0, 30.0], np.vstack(normals)
 
 
+def read_ply(file):
+    """The vertices of a binary little-endian PLY file as a numpy record array, read from the format's description
+    (independently of the project's writer)."""
+    types = {'char': 'i1', 'uchar': 'u1', 'short': '<i2', 'ushort': '<u2', 'int': '<i4', 'uint': '<u4',
+             'float': '<f4', 'double': '<f8'}
+    with open(file, 'rb') as f:
+        data = f.read()
+    end = data.index(b'end_header\n') + len(b'end_header\n')
+    fields, count, element = [], 0, None
+    for line in data[:end].decode('ascii').splitlines():
+        words = line.split()
+        if words[:1] == ['format']:
+            assert words[1] == 'binary_little_endian', line
+        elif words[:1] == ['element']:
+            element = words[1]
+            if element == 'vertex':
+                count = int(words[2])
+        elif words[:1] == ['property'] and element == 'vertex':
+            fields.append((words[2], types[words[1]]))
+    return np.frombuffer(data, dtype=np.dtype(fields), count=count, offset=end)
+
+
+def cloudcompare_scalar_fields(ply, asc):
+    """The scalar fields CloudCompare 2.11 loads from `ply`: it opens the file without a window and saves it as
+    text with a header line naming its columns."""
+    subprocess.run(['CloudCompare', '-SILENT', '-NO_TIMESTAMP', '-AUTO_SAVE', 'OFF', '-O', ply, '-C_EXPORT_FMT', 'ASC',
+                    '-ADD_HEADER', '-SAVE_CLOUDS', 'FILE', asc], check=True, capture_output=True, timeout=300,
+                   env=dict(os.environ, QT_QPA_PLATFORM='offscreen'))
+    with open(asc) as f:
+        return f.readline().lstrip('/').split()
+
+
 class Scans(unittest.TestCase):
 
     def assertSucceeds(self, result, out, name):
@@ -241,6 +274,48 @@ class Scans(unittest.TestCase):
         self.assertTrue(np.all(focal >= low - 1.0) and np.all(focal <= high + 1.0), focal)
         distance = np.linalg.norm(self.camera(state, 'CameraPosition') - focal)
         self.assertLess(distance, 10.0 * np.linalg.norm(high - low))
+
+    def test_results_as_las_and_ply_for_the_other_tools(self):
+        # --output-format las,ply,vtp: the LAS file holds the input's own integers, scale, offset, attributes and
+        # coordinate system with every GLS array as an Extra Bytes field; the PLY file every GLS array as a scalar
+        # field; both read here from their specifications, the PLY also by CloudCompare (a peer, when installed).
+        points, _, angle, returns, classes, withheld = aerial_strip(seed=5)
+        las = path('tile.las')
+        intensity = np.arange(len(points)) % 4000
+        las_writer.write_las(las, points, point_format=6, scale=0.01, returns=returns, scan_angle=angle,
+                             classification=classes, withheld=withheld, intensity=intensity,
+                             records=[las_writer.projection_wkt_record(WKT)])
+        out = path('tile-out')
+        result = run(las, '--output-dir', out, '--output-format', 'las, ply,vtp', *QUICK)
+        pd = self.assertSucceeds(result, out, 'tile')
+        self.assertIn('wrote the data (las):', result.stdout)
+        self.assertIn('wrote the data (ply):', result.stdout)
+        source, written = las_writer.read_las(las), las_writer.read_las(os.path.join(out, 'tile-gls.las'))
+        kept = source['points'][~withheld]
+        self.assertEqual(written['count'], len(kept))
+        np.testing.assert_array_equal(written['scale'], source['scale'])
+        np.testing.assert_array_equal(written['offset'], source['offset'])
+        for field in ('X', 'Y', 'Z', 'intensity', 'returns', 'classification', 'scan_angle', 'gps_time'):
+            np.testing.assert_array_equal(written['points'][field], kept[field], field)
+        self.assertEqual(written['records'][('LASF_Projection', 2112)].rstrip(b'\0').decode(), WKT)
+        feature = point_array(pd, 'GLSFeature')
+        np.testing.assert_array_equal(written['extra']['GLSFeature'], feature.astype(np.float32))
+        normals = point_array(pd, 'Normals')
+        for c, axis in enumerate('xyz'):
+            np.testing.assert_array_equal(written['extra']['Normals_' + axis], normals[:, c].astype(np.float32))
+        # The PLY: x y z as the input's doubles, nx ny nz, and the GLS arrays.
+        ply = read_ply(os.path.join(out, 'tile-gls.ply'))
+        np.testing.assert_array_equal(np.column_stack([ply['x'], ply['y'], ply['z']]),
+                                      vtk_to_numpy(pd.GetPoints().GetData()))
+        np.testing.assert_array_equal(ply['nx'], normals[:, 0])
+        np.testing.assert_array_equal(ply['scalar_GLSFeature'], feature)
+        if shutil.which('CloudCompare'):
+            fields = cloudcompare_scalar_fields(os.path.join(out, 'tile-gls.ply'), path('tile-cc.asc'))
+            for name in ('GLSFeature', 'GLSStableKappa'):
+                self.assertIn(name, fields)
+        # A format the job does not write: one line, before any work.
+        self.assertFailsInOneLine(run(las, '--output-dir', path('xyz-out'), '--output-format', 'vtp,xyz'),
+                                  '--output-format takes a comma list of vtp, las, ply', path('xyz-out'))
 
     @staticmethod
     def camera(state, name):
@@ -391,4 +466,4 @@ class Scans(unittest.TestCase):
 
 if __name__ == '__main__':
     os.makedirs(WORK, exist_ok=True)
-    unittest.main(argv=sys.argv[:1], verbosity=2)
+    unittest.main(argv=sys.argv[:1] + sys.argv[3:], verbosity=2)

@@ -3,7 +3,7 @@
     gls-analyze [input] [--output-dir DIR] [--scales N] [--min-scale F] [--max-scale F] [--absolute-scales]
                 [--sigma S] [--noise F]
                 [--per-scale] [--full-precision] [--query ID] [--memory-budget GIB] [--no-directions]
-                [--orientation auto|up|ground|sensor|mst]
+                [--orientation auto|up|ground|sensor|mst] [--output-format vtp,las,ply]
 
 Reads a point cloud or mesh (PLY, OBJ, STL, VTP, a text file: XYZ/PTS/CSV/TXT, a scanner's file: LAS, PTX, PCD;
 default: the bundled bunny scan), estimates oriented normals when the file has none, analyses N quadratic scales
@@ -111,6 +111,11 @@ def parse_arguments(argv):
                         '(ground and roofs up, walls along the spanning tree: airborne scans), ground (the spanning '
                         'tree with the ground or floor up: terrestrial scans, rooms), sensor (towards the file\'s '
                         'scanner positions; refused when it has none) or mst (the minimum spanning tree)')
+    p.add_argument('--output-format', default='vtp',
+                   help='the data files to write, a comma list of vtp (VTK XML polydata, with the ParaView state), las '
+                        '(LAS 1.4: the GLS arrays as Extra Bytes fields; a LAS input\'s positions, attributes and '
+                        'coordinate system kept) and ply (binary PLY: the GLS arrays as scalar_<name> properties, '
+                        'which CloudCompare loads as scalar fields); default vtp')
     p.add_argument('--no-directions', action='store_true',
                    help='leave the principal curvatures out of the fused pass (they make it about 1.9 times as '
                         'long) and with them the direction arrays and the shape-index picture')
@@ -146,6 +151,12 @@ def validate(args):
         raise UsageError('--query must be a point id (0 or more); got %d' % args.query)
     if not (math.isfinite(args.noise) and args.noise >= 0):
         raise UsageError('--noise must be 0 or positive; got %g' % args.noise)
+    formats = [f.strip().lower() for f in args.output_format.split(',') if f.strip()]
+    unknown = [f for f in formats if f not in gls_outputs.FORMATS]
+    if unknown or not formats:
+        raise UsageError('--output-format takes a comma list of %s; got %r' % (', '.join(gls_outputs.FORMATS),
+                                                                           args.output_format))
+    args.output_format = list(dict.fromkeys(formats))  # in the given order, once each
 
 
 def gls_filter(name, **properties):
@@ -352,7 +363,8 @@ def analyze(args, outputs):
         del feature, pd
         result.Initialize()
         gls_io.release_output(features)
-    writing = outputs.write_in_background('-gls.vtp', output)  # compressed while the pictures are made
+    # Written while the pictures are made (the .vtp compressed, the LAS and PLY files encoded), one process each.
+    writing = [outputs.write_in_background(output_format, output) for output_format in args.output_format]
     pictures = [(outputs.path('-features.png'), gls_render.FEATURES,
                  'GLS continuous features: %s (%d points)' % (outputs.name, count - non_finite))]
     if not args.no_directions:
@@ -393,9 +405,13 @@ def analyze(args, outputs):
         gls_cross_section.plot(outputs.path('-scale-space.png'),
                                'GLS scale-space image of the central cross-section of %s (%d points)'
                                % (outputs.name, curve.GetNumberOfPoints()), curve, axis, image, crossings)
-    writing.finish()
-    print('wrote the data: %.1f bytes per point' % (os.path.getsize(writing.path) / float(count)))
-    gls_outputs.save_state(outputs.path('-gls.pvsm'), writing.path, outputs.final('-gls.vtp'), output)
+    for write in writing:
+        write.finish()
+        print('wrote the data (%s): %.1f bytes per point' % (os.path.splitext(write.path)[1][1:],
+                                                             os.path.getsize(write.path) / float(count)))
+    if 'vtp' in args.output_format:
+        vtp = writing[args.output_format.index('vtp')]
+        gls_outputs.save_state(outputs.path('-gls.pvsm'), vtp.path, outputs.final('-gls.vtp'), output)
 
 
 def fail(message, status=2):
@@ -428,6 +444,9 @@ def main(argv):
         return fail('%s; no results written' % e)
     except OSError as e:  # a picture, the state or a move failed: a full disk, a quota, a read-only folder
         outputs.discard()
+        elsewhere = e.filename and not os.path.abspath(str(e.filename)).startswith(os.path.abspath(args.output_dir))
+        if elsewhere:  # not one of the results (no stage writes elsewhere: a file it reads)
+            return fail('%s: %s; no results written' % (e.filename, e.strerror or e))
         return fail('cannot write the results in %s: %s%s; no results written' % (
             args.output_dir, e.strerror or e, ' (%s)' % os.path.basename(e.filename) if e.filename else ''))
     except (gls_watch.Interrupted, KeyboardInterrupt):

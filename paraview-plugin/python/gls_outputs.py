@@ -59,10 +59,10 @@ class Outputs:
         self.staged = []
         self.writes = []  # BackgroundWrite of staged files, finished by commit, cancelled by discard
 
-    def write_in_background(self, suffix, polydata):
-        """Starts writing `polydata` to <name><suffix> (a .vtp) while the job goes on; returns the BackgroundWrite
-        (finish() it before reading the file)."""
-        write = BackgroundWrite(self.path(suffix), polydata)
+    def write_in_background(self, output_format, polydata):
+        """Starts writing `polydata` to <name>-gls.<output_format> (FORMATS) while the job goes on; returns the
+        BackgroundWrite (finish() it before reading the file)."""
+        write = BackgroundWrite(self.path('-gls.' + output_format), polydata, FORMATS[output_format])
         self.writes.append(write)
         return write
 
@@ -96,20 +96,21 @@ class Outputs:
 
 
 class BackgroundWrite:
-    """write_vtp in a child process, so that the pictures, the profiles and the denoising run while zlib compresses
-    (at 10M points about 9 s of one core). The child is forked: it sees the data as they are at the fork
+    """A file writer (write_vtp, write_las, write_ply) in a child process, so that the pictures, the profiles and the
+    denoising run while it writes (the .vtp's zlib at 10M points: about 9 s of one core). The child is forked: it sees the data as they are at the fork
     (copy-on-write: no second copy in memory, and nothing the job does next can change what is written). It dies
     with the job (Ctrl-C reaches it at once; it is killed if the job is). finish() waits for it and raises
     OutputError with the child's reason (sent through a pipe: the job's one error line says it) if it failed;
     cancel() kills it, so that the staging folder can be removed. Without os.fork (not POSIX) the file is written
     at once (OutputError then comes from the constructor)."""
 
-    def __init__(self, path, polydata):
+    def __init__(self, path, polydata, write=None):
+        write = write or write_vtp
         self.path = path
         self.pid = None
         self.reason = None  # the read end of the pipe the child writes why it failed to
         if not hasattr(os, 'fork'):
-            write_vtp(path, polydata)
+            write(path, polydata)
             return
         sys.stdout.flush()
         sys.stderr.flush()
@@ -118,7 +119,7 @@ class BackgroundWrite:
         pid = os.fork()
         if pid == 0:
             os.close(reason)
-            _write_and_exit(path, polydata, parent, report)
+            _write_and_exit(write, path, polydata, parent, report)
         os.close(report)
         self.pid, self.reason = pid, reason
 
@@ -145,10 +146,10 @@ class BackgroundWrite:
         self.pid, self.reason = None, None
 
 
-def _write_and_exit(path, polydata, parent, report):
-    """The forked child of BackgroundWrite: writes and ends with status 0, or writes why not to the descriptor
-    `report` and ends with 1, without running any of the job's exit handlers (os._exit: the X connection and the
-    staging folder are the job's)."""
+def _write_and_exit(write, path, polydata, parent, report):
+    """The forked child of BackgroundWrite: write(path, polydata) and ends with status 0, or writes why not to the
+    descriptor `report` and ends with 1, without running any of the job's exit handlers (os._exit: the X connection
+    and the staging folder are the job's)."""
     status = 1
     try:
         signal.signal(signal.SIGINT, signal.SIG_DFL)  # Ctrl-C (the terminal signals the whole group) ends it now
@@ -162,7 +163,7 @@ def _write_and_exit(path, polydata, parent, report):
         from vtkmodules.vtkCommonCore import vtkSMPTools
         vtkSMPTools.SetBackend('Sequential')
         if os.getppid() == parent:  # else the job ended before prctl took effect
-            write_vtp(path, polydata)
+            write(path, polydata)
             status = 0
     except BaseException as e:  # the child must reach os._exit whatever happens
         try:
@@ -297,6 +298,36 @@ def write_vtp(path, polydata):
         # Below VTK's own codes (vtkErrorCode), the writer reports the system's errno (28: no space left).
         why = os.strerror(code) if 0 < code < 20000 else errors[0] if errors else 'VTK error code %d' % code
         raise OutputError('cannot write %s: %s' % (path, why))
+
+
+def _write_with(writer, path, polydata):
+    """Runs a GLS writer (vtkGLSLasWriter, vtkGLSPlyWriter) on `polydata`; OutputError with its reason."""
+    writer.SetFileName(path)
+    writer.SetInputData(polydata)
+    errors = reported_errors(writer)
+    if writer.Write() != 1 or errors:
+        code = writer.GetErrorCode()
+        raise OutputError(errors[0] if errors else 'cannot write %s: %s' % (
+            path, os.strerror(code) if 0 < code < 20000 else 'VTK error code %d' % code))
+
+
+def write_las(path, polydata):
+    """LAS 1.4 (vtkGLSLasWriter): the points as the file gave them (a LAS input's integers, scale and offset; else a
+    scale chosen for their extent; missing returns left out), its lidar attributes, every GLS array as float32 Extra
+    Bytes fields, the coordinate system."""
+    from glsvtk.vtkGLSFilters import vtkGLSLasWriter
+    _write_with(vtkGLSLasWriter(), path, polydata)
+
+
+def write_ply(path, polydata):
+    """Binary PLY (vtkGLSPlyWriter): the points, nx ny nz, red green blue, every GLS array as scalar_<name> float
+    properties (CloudCompare's scalar fields), the faces; missing returns left out."""
+    from glsvtk.vtkGLSFilters import vtkGLSPlyWriter
+    _write_with(vtkGLSPlyWriter(), path, polydata)
+
+
+# --output-format: the writer of each format (the file is <name>-gls.<format>).
+FORMATS = {'vtp': write_vtp, 'las': write_las, 'ply': write_ply}
 
 
 # The most points of the stand-in cloud that the state is built on (save_state).
