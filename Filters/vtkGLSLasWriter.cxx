@@ -30,12 +30,6 @@ vtkGLSLasWriter::vtkGLSLasWriter() = default;
 
 vtkGLSLasWriter::~vtkGLSLasWriter() = default;
 
-int vtkGLSLasWriter::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
-  return 1;
-}
-
 namespace
 {
 
@@ -84,20 +78,13 @@ gls::LasCoordinateSystem CoordinateSystemOf(vtkFieldData* fd)
 
 void vtkGLSLasWriter::WriteData()
 {
-  this->Description.clear();
-  vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInput());
-  const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
-  if (this->FileName.empty() || n == 0)
+  std::vector<double> xyz;
+  vtkPointSet* input = this->InputPositions(xyz);
+  if (!input)
   {
-    vtkErrorMacro(<< (this->FileName.empty() ? "No FileName set." : "The input has no points to write."));
-    this->SetErrorCode(this->FileName.empty() ? vtkErrorCode::NoFileNameError : vtkErrorCode::UnknownError);
     return;
   }
-  std::vector<double> xyz(3 * static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    input->GetPoint(i, &xyz[3 * static_cast<std::size_t>(i)]);
-  }
+  const vtkIdType n = input->GetNumberOfPoints();
   gls::LasWriteSource source;
   source.n = static_cast<std::size_t>(n);
   source.xyz = xyz.data();
@@ -140,32 +127,17 @@ void vtkGLSLasWriter::WriteData()
     e.name = a->GetName();
     e.description = std::string("GLS: ") + a->GetName();
     e.components = a->GetNumberOfComponents();
-    if (a->GetDataType() == VTK_DOUBLE)
-    {
-      e.doubles = vtkGLSValuesAs<double>(a, 1.0, kept);
-    }
-    else
-    {
-      e.floats = vtkGLSValuesAs<float>(a, 1.0, kept);
-    }
+    PerPointValues(a, e.floats, e.doubles, kept);
     source.extra.push_back(e);
   }
-  std::ofstream out(this->FileName, std::ios::binary);
   gls::LasWriteResult result;
-  std::string error;
-  if (!out || !gls::writeLas(out, source, result, error) || !out.flush())
+  if (!this->WriteStream("LAS", [&](std::ostream& out, std::string& error) {
+        return gls::writeLas(out, source, result, error);
+      }))
   {
-    vtkErrorMacro("Cannot write the LAS file '" << this->FileName << "': "
-                                                << (error.empty() ? "it cannot be opened or written" : error) << ".");
-    this->SetErrorCode(vtkErrorCode::GetLastSystemError() ? vtkErrorCode::GetLastSystemError()
-                                                          : vtkErrorCode::CannotOpenFileError);
     return;
   }
-  if (result.leftOut > 0)
-  {
-    vtkWarningMacro(<< result.leftOut << " of the " << n << " points have a non-finite coordinate and are not written "
-                    << "to '" << this->FileName << "' (LAS has no NaN).");
-  }
+  this->WarnPointsLeftOut(result.leftOut, source.n, "LAS has no NaN");
   std::size_t fields = 0;
   for (const gls::LasExtraSource& e : source.extra)
   {
@@ -180,11 +152,4 @@ void vtkGLSLasWriter::WriteData()
   d << ", " << fields << " Extra Bytes fields; scale " << source.scale[0] << " " << source.scale[1] << " "
     << source.scale[2] << (own ? ", the input's own" : ", chosen for the points' extent");
   this->Description = d.str();
-}
-
-void vtkGLSLasWriter::PrintSelf(ostream& os, vtkIndent indent)
-{
-  this->Superclass::PrintSelf(os, indent);
-  os << indent << "FileName: " << this->FileName << "\n";
-  os << indent << "Description: " << this->Description << "\n";
 }

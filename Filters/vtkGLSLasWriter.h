@@ -19,42 +19,28 @@
  * warning). The coordinate system of the field data (`CoordinateSystemWKT`, the GeoTIFF keys) is written as LAS
  * records.
  *
+ * Description after a write: e.g. "LAS 1.4, point format 6, 35947 points, 12 Extra Bytes fields; scale 1e-10 1e-10
+ * 1e-10, chosen for the points' extent".
+ *
  * Errors (vtkErrorMacro, nothing written): no input points, no file name, a file that cannot be written.
  */
 #ifndef vtkGLSLasWriter_h
 #define vtkGLSLasWriter_h
 
 #include "vtkGLSFiltersModule.h"
-#include "vtkWriter.h"
+#include "vtkGLSPointWriter.h"
 
-#include <string>
-
-class VTKGLSFILTERS_EXPORT vtkGLSLasWriter : public vtkWriter
+class VTKGLSFILTERS_EXPORT vtkGLSLasWriter : public vtkGLSPointWriter
 {
 public:
   static vtkGLSLasWriter* New();
-  vtkTypeMacro(vtkGLSLasWriter, vtkWriter);
-  void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /// The file to write.
-  vtkSetStdStringFromCharMacro(FileName);
-  vtkGetCharFromStdStringMacro(FileName);
-  ///@}
-
-  /// What the last write did, e.g. "LAS 1.4, point format 6, 35947 points, 12 Extra Bytes fields; scale 1e-10, the
-  /// input's own"; empty before a write and after a failed one.
-  vtkGetCharFromStdStringMacro(Description);
+  vtkTypeMacro(vtkGLSLasWriter, vtkGLSPointWriter);
 
 protected:
   vtkGLSLasWriter();
   ~vtkGLSLasWriter() override;
 
   void WriteData() override;
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-
-  std::string FileName;
-  std::string Description;
 
 private:
   vtkGLSLasWriter(const vtkGLSLasWriter&) = delete;

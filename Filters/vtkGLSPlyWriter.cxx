@@ -28,30 +28,17 @@ vtkGLSPlyWriter::vtkGLSPlyWriter() = default;
 
 vtkGLSPlyWriter::~vtkGLSPlyWriter() = default;
 
-int vtkGLSPlyWriter::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
-  return 1;
-}
-
 void vtkGLSPlyWriter::WriteData()
 {
-  this->Description.clear();
-  vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInput());
-  const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
-  if (this->FileName.empty() || n == 0)
+  std::vector<double> xyz;
+  vtkPointSet* input = this->InputPositions(xyz);
+  if (!input)
   {
-    vtkErrorMacro(<< (this->FileName.empty() ? "No FileName set." : "The input has no points to write."));
-    this->SetErrorCode(this->FileName.empty() ? vtkErrorCode::NoFileNameError : vtkErrorCode::UnknownError);
     return;
   }
+  const vtkIdType n = input->GetNumberOfPoints();
   gls::PlyWriteSource source;
   source.n = static_cast<std::size_t>(n);
-  std::vector<double> xyz(3 * source.n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    input->GetPoint(i, &xyz[3 * static_cast<std::size_t>(i)]);
-  }
   source.xyz = xyz.data();
   source.floatPositions = input->GetPoints()->GetDataType() == VTK_FLOAT;
   vtkPointData* pd = input->GetPointData();
@@ -81,14 +68,7 @@ void vtkGLSPlyWriter::WriteData()
     gls::PlyScalarSource scalar;
     scalar.name = a->GetName();
     scalar.components = a->GetNumberOfComponents();
-    if (a->GetDataType() == VTK_DOUBLE)
-    {
-      scalar.doubles = vtkGLSValuesAs<double>(a, 1.0, kept);
-    }
-    else
-    {
-      scalar.floats = vtkGLSValuesAs<float>(a, 1.0, kept);
-    }
+    PerPointValues(a, scalar.floats, scalar.doubles, kept);
     source.scalars.push_back(scalar);
   }
   if (auto* mesh = vtkPolyData::SafeDownCast(input))
@@ -110,22 +90,15 @@ void vtkGLSPlyWriter::WriteData()
   {
     source.comments.push_back("coordinate system: " + wkt->GetValue(0));
   }
-  std::ofstream out(this->FileName, std::ios::binary);
   gls::PlyWriteResult result;
-  std::string error;
-  if (!out || !gls::writePly(out, source, result, error) || !out.flush())
+  if (!this->WriteStream("PLY", [&](std::ostream& out, std::string& error) {
+        return gls::writePly(out, source, result, error);
+      }))
   {
-    vtkErrorMacro("Cannot write the PLY file '" << this->FileName << "': "
-                                                << (error.empty() ? "it cannot be opened or written" : error) << ".");
-    this->SetErrorCode(vtkErrorCode::GetLastSystemError() ? vtkErrorCode::GetLastSystemError()
-                                                          : vtkErrorCode::CannotOpenFileError);
     return;
   }
-  if (result.leftOut > 0)
-  {
-    vtkWarningMacro(<< result.leftOut << " of the " << n << " points have a non-finite coordinate and are not written "
-                    << "to '" << this->FileName << "' (" << result.facesLeftOut << " faces with them).");
-  }
+  this->WarnPointsLeftOut(
+    result.leftOut, source.n, std::to_string(result.facesLeftOut) + " faces with them");
   std::ostringstream d;
   d << "binary PLY, " << result.written << " vertices (" << (source.floatPositions ? "float" : "double") << ")";
   if (result.leftOut > 0)
@@ -134,11 +107,4 @@ void vtkGLSPlyWriter::WriteData()
   }
   d << ", " << source.scalars.size() << " scalar arrays, " << result.faces << " faces";
   this->Description = d.str();
-}
-
-void vtkGLSPlyWriter::PrintSelf(ostream& os, vtkIndent indent)
-{
-  this->Superclass::PrintSelf(os, indent);
-  os << indent << "FileName: " << this->FileName << "\n";
-  os << indent << "Description: " << this->Description << "\n";
 }

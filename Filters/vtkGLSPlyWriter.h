@@ -12,42 +12,27 @@
  * in the Description, one warning). The field data's coordinate system (CoordinateSystemWKT) goes in a header
  * comment.
  *
+ * Description after a write: e.g. "binary PLY, 35947 vertices (float), 12 scalar arrays, 69451 faces".
+ *
  * Errors (vtkErrorMacro, nothing written): no input points, no file name, a file that cannot be written.
  */
 #ifndef vtkGLSPlyWriter_h
 #define vtkGLSPlyWriter_h
 
 #include "vtkGLSFiltersModule.h"
-#include "vtkWriter.h"
+#include "vtkGLSPointWriter.h"
 
-#include <string>
-
-class VTKGLSFILTERS_EXPORT vtkGLSPlyWriter : public vtkWriter
+class VTKGLSFILTERS_EXPORT vtkGLSPlyWriter : public vtkGLSPointWriter
 {
 public:
   static vtkGLSPlyWriter* New();
-  vtkTypeMacro(vtkGLSPlyWriter, vtkWriter);
-  void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /// The file to write.
-  vtkSetStdStringFromCharMacro(FileName);
-  vtkGetCharFromStdStringMacro(FileName);
-  ///@}
-
-  /// What the last write did, e.g. "binary PLY, 35947 vertices (float), 12 scalar properties, 69451 faces"; empty
-  /// before a write and after a failed one.
-  vtkGetCharFromStdStringMacro(Description);
+  vtkTypeMacro(vtkGLSPlyWriter, vtkGLSPointWriter);
 
 protected:
   vtkGLSPlyWriter();
   ~vtkGLSPlyWriter() override;
 
   void WriteData() override;
-  int FillInputPortInformation(int port, vtkInformation* info) override;
-
-  std::string FileName;
-  std::string Description;
 
 private:
   vtkGLSPlyWriter(const vtkGLSPlyWriter&) = delete;
