@@ -119,3 +119,25 @@ def write_ply(path, polydata, binary=False):
     else:
         writer.SetFileTypeToASCII()
     writer.Write()
+
+
+def read_ply(file):
+    """The vertices of a binary little-endian PLY file whose first element is the vertex, as a numpy record array,
+    read from the format's description (independently of the project's writer)."""
+    types = {'char': 'i1', 'uchar': 'u1', 'short': '<i2', 'ushort': '<u2', 'int': '<i4', 'uint': '<u4',
+             'float': '<f4', 'double': '<f8'}
+    with open(file, 'rb') as f:
+        data = f.read()
+    end = data.index(b'end_header\n') + len(b'end_header\n')
+    fields, count, element = [], 0, None
+    for line in data[:end].decode('ascii').splitlines():
+        words = line.split()
+        if words[:1] == ['format']:
+            assert words[1] == 'binary_little_endian', line
+        elif words[:1] == ['element']:
+            element = words[1]
+            if element == 'vertex':
+                count = int(words[2])
+        elif words[:1] == ['property'] and element == 'vertex':
+            fields.append((words[2], types[words[1]]))
+    return np.frombuffer(data, dtype=np.dtype(fields), count=count, offset=end)

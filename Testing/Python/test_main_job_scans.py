@@ -20,7 +20,7 @@ import main_job_helpers as helpers  # (first: it makes the main job's own module
 import las_writer
 import gls_outputs  # noqa: E402 (the main job's own modules)
 import gls_render  # noqa: E402
-from main_job_helpers import central_background, error_lines, failure_text, point_array, read_vtp
+from main_job_helpers import central_background, error_lines, failure_text, point_array, read_ply, read_vtp
 
 ANALYZE, WORK = sys.argv[1], sys.argv[2]
 QUICK = ('--scales', '6')
@@ -161,28 +161,6 @@ def room(spacing=0.08, seed=4):
             points.append(face)
             normals.append(np.tile(n, (len(grid), 1)))
     return np.vstack(points) + [10.0, 20.0, 30.0], np.vstack(normals)
-
-
-def read_ply(file):
-    """The vertices of a binary little-endian PLY file as a numpy record array, read from the format's description
-    (independently of the project's writer)."""
-    types = {'char': 'i1', 'uchar': 'u1', 'short': '<i2', 'ushort': '<u2', 'int': '<i4', 'uint': '<u4',
-             'float': '<f4', 'double': '<f8'}
-    with open(file, 'rb') as f:
-        data = f.read()
-    end = data.index(b'end_header\n') + len(b'end_header\n')
-    fields, count, element = [], 0, None
-    for line in data[:end].decode('ascii').splitlines():
-        words = line.split()
-        if words[:1] == ['format']:
-            assert words[1] == 'binary_little_endian', line
-        elif words[:1] == ['element']:
-            element = words[1]
-            if element == 'vertex':
-                count = int(words[2])
-        elif words[:1] == ['property'] and element == 'vertex':
-            fields.append((words[2], types[words[1]]))
-    return np.frombuffer(data, dtype=np.dtype(fields), count=count, offset=end)
 
 
 def cloudcompare_scalar_fields(ply, asc):

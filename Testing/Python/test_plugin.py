@@ -176,6 +176,34 @@ class PluginProxies(unittest.TestCase):
         self.assertNotIn("tile.las' not recognized", result.stderr)
         self.assertIn("image.tif' not recognized", result.stderr)  # GDAL's other messages pass
 
+    def test_results_saved_as_las_and_ply_with_every_gls_array(self):
+        # File > Save Data (pvpython SaveData) as .las and .ply takes the GLS writers: the LAS read back by the GLS LAS
+        # Reader (OpenDataFile) with GLSFeature and the Normals as float32, the PLY parsed here with the
+        # scalar_GLSFeature property CloudCompare loads as a scalar field.
+        from main_job_helpers import read_ply
+        folder = tempfile.mkdtemp()
+        features = NS['GLSContinuousFeatures'](Input=producer(polydata(self.points, self.normals)))
+        computed = fetch(features)
+        feature = array(computed, 'GLSFeature')
+        las, ply = os.path.join(folder, 'sphere.las'), os.path.join(folder, 'sphere.ply')
+        simple.SaveData(las, proxy=features)
+        simple.SaveData(ply, proxy=features)
+        opened = simple.OpenDataFile(las)
+        self.assertEqual(opened.GetXMLName(), 'GLSLasReader')
+        back = fetch(opened)
+        np.testing.assert_array_equal(array(back, 'GLSFeature'), feature.astype(np.float32))
+        np.testing.assert_array_equal(array(back, 'Normals'), self.normals.astype(np.float32))
+        # A point set from no LAS file: the finest power of ten whose 32-bit integers hold the 4 m extent, 1e-8; each
+        # position within half of it.
+        scale = vtk_to_numpy(back.GetFieldData().GetArray('LasScale'))[0]
+        np.testing.assert_array_equal(scale, [1e-8, 1e-8, 1e-8])
+        np.testing.assert_allclose(vtk_to_numpy(back.GetPoints().GetData()), self.points, rtol=0, atol=0.5e-8 * 1.001)
+        vertices = read_ply(ply)
+        np.testing.assert_array_equal(vertices['scalar_GLSFeature'], feature)
+        np.testing.assert_array_equal(vertices['nx'], self.normals[:, 0].astype(np.float32))
+        simple.Delete(opened)
+        simple.Delete(features)
+
     def test_an_unstructured_grid_and_a_multiblock_are_in_every_filters_input_domain(self):
         # The GUI greys out a filter whose input domain refuses the selected source (once vtkPolyData only).
         grid = simple.AppendDatasets(Input=simple.Sphere())  # a vtkUnstructuredGrid
