@@ -2,7 +2,7 @@
 and no result files; each readable case gives the right numbers (a unit sphere: kappa = 1) and the arrays of its
 columns. The catalogue is in Testing/README.md ("Real inputs").
 
-    pvpython test_main_job_inputs.py <build/bin/gls-analyze> <work dir> <Testing/Data>"""
+    pvpython test_main_job_inputs.py <build/bin/gls-analyze> <work dir> <Testing/Data> [Inputs.test_name ...]"""
 import os
 import shutil
 import sys
@@ -465,25 +465,33 @@ class Inputs(unittest.TestCase):
             shutil.rmtree(out)
         self.assertIsNone(gls_io.announced_point_count(path('cloud.xyz')))  # text: no header count
 
-    def test_ptx_scan_faces_its_scanner(self):
-        # The upper half of the sphere seen from (0, 0, 10), registered by a translation of (5, 0, 0), plus 40
-        # missing returns: registered points, the scanner's position per point, normals facing it.
+    def test_ptx_scans_face_their_scanners(self):
+        # A range scan from two positions: the upper half of the sphere seen from (0, 0, 10) with 40 missing returns,
+        # the lower half from (0, 0, -10), both registered by a translation of (5, 0, 0): registered points, each
+        # point's scanner position, normals facing it (outward on both halves, where the first scanner alone would
+        # turn the lower half inward).
         upper = self.points[self.points[:, 2] > 0.1]
-        lines = ['%d' % (len(upper) + 40), '1', '5 0 10', '1 0 0', '0 1 0', '0 0 1',
-                 '1 0 0 0', '0 1 0 0', '0 0 1 0', '5 0 0 1']
+        lower = self.points[self.points[:, 2] < -0.1]
+        registration = ['1 0 0 0', '0 1 0 0', '0 0 1 0', '5 0 0 1']
+        lines = ['%d' % (len(upper) + 40), '1', '5 0 10', '1 0 0', '0 1 0', '0 0 1'] + registration
         lines += ['%.9f %.9f %.9f 0.5' % tuple(p) for p in upper] + ['0 0 0 0.5'] * 40
+        lines += ['%d' % len(lower), '1', '5 0 -10', '1 0 0', '0 1 0', '0 0 1'] + registration
+        lines += ['%.9f %.9f %.9f 0.5' % tuple(p) for p in lower]
         ptx = write_text('scan.ptx', lines)
         out = path('ptx-out')
         result = run(ptx, '--output-dir', out, *QUICK)
         pd = self.assertSucceeds(result, out, 'scan')
-        self.assertIn('PTX: 1 scan, x y z intensity, 40 missing returns (0 0 0) dropped', result.stdout)
+        self.assertIn('PTX: 2 scans, x y z intensity, 40 missing returns (0 0 0) dropped', result.stdout)
         self.assertIn("oriented automatic: towards each point's scanner", result.stdout)
         points = vtk_to_numpy(pd.GetPoints().GetData())
-        np.testing.assert_allclose(points, upper + [5.0, 0.0, 0.0], atol=1e-6)
+        np.testing.assert_allclose(points, np.vstack([upper, lower]) + [5.0, 0.0, 0.0], atol=1e-6)
         scanners = point_array(pd, 'ScannerPosition')
-        np.testing.assert_array_equal(scanners, np.tile([5.0, 0.0, 10.0], (len(upper), 1)))
+        np.testing.assert_array_equal(scanners, np.vstack([np.tile([5.0, 0.0, 10.0], (len(upper), 1)),
+                                                           np.tile([5.0, 0.0, -10.0], (len(lower), 1))]))
         facing = np.einsum('ij,ij->i', point_array(pd, 'Normals'), scanners - points)
         self.assertEqual(np.count_nonzero(facing < 0), 0)
+        outward = np.einsum('ij,ij->i', point_array(pd, 'Normals'), points - [5.0, 0.0, 0.0])
+        self.assertEqual(np.count_nonzero(outward < 0), 0)
 
     def test_pcd_binary_compressed(self):
         # PCL's binary_compressed: the fields one after the other, LZF (here literal runs of 32 bytes at most).
@@ -623,4 +631,4 @@ class Inputs(unittest.TestCase):
 
 
 if __name__ == '__main__':
-    unittest.main(argv=[sys.argv[0]], verbosity=2)
+    unittest.main(argv=sys.argv[:1] + sys.argv[4:], verbosity=2)
